@@ -1,0 +1,92 @@
+// Input mapping: which key or pointer gesture means what. Pure functions over
+// plain event fields, so the mapping is unit-tested without a browser.
+
+export type KeyAction =
+  | { kind: "arrow"; direction: "left" | "right" | "up" | "down" }
+  | { kind: "togglePlacement" }
+  | { kind: "togglePause" }
+  | { kind: "singleStep" }
+  | { kind: "toggleDebug" }
+  | { kind: "screenshot" }
+  | { kind: "none" };
+
+/** The fields of a KeyboardEvent the mapping reads. */
+export interface KeyFields {
+  key: string;
+  repeat?: boolean;
+  /** True when the key went down in a text field (the panel's number boxes). */
+  inTextField?: boolean;
+}
+
+const ARROWS: Record<string, "left" | "right" | "up" | "down"> = {
+  ArrowLeft: "left",
+  ArrowRight: "right",
+  ArrowUp: "up",
+  ArrowDown: "down",
+};
+
+/** Maps a key press to an action. Arrow keys are held (see `arrowDirection`). */
+export function mapKeyDown(e: KeyFields): KeyAction {
+  const arrow = ARROWS[e.key];
+  if (arrow) return e.inTextField ? { kind: "none" } : { kind: "arrow", direction: arrow };
+  // CTRL toggles placement mode as in the original; a held key does not flicker it.
+  if (e.key === "Control") return e.repeat ? { kind: "none" } : { kind: "togglePlacement" };
+  if (e.inTextField || e.repeat) return { kind: "none" };
+  switch (e.key) {
+    case " ":
+    case "p":
+    case "P":
+      return { kind: "togglePause" };
+    case "n":
+    case "N":
+    case ".":
+      return { kind: "singleStep" };
+    case "d":
+    case "D":
+      return { kind: "toggleDebug" };
+    case "s":
+    case "S":
+      return { kind: "screenshot" };
+    default:
+      return { kind: "none" };
+  }
+}
+
+/** The arrow direction of a key, for key-up tracking; `null` for other keys. */
+export function arrowDirection(key: string): "left" | "right" | "up" | "down" | null {
+  return ARROWS[key] ?? null;
+}
+
+export type PointerAction = "place" | "grab" | "pop" | "camera" | "none";
+
+/** The fields of a pointer-down the mapping reads. */
+export interface PointerFields {
+  /** 0 left, 1 middle, 2 right. */
+  button: number;
+  shiftKey: boolean;
+  altKey: boolean;
+  /** Whether the pointer is over a balloon. */
+  overBalloon: boolean;
+  /** Whether placement mode (CTRL) is on. */
+  placementMode: boolean;
+}
+
+/**
+ * Maps a pointer-down to what it starts:
+ * - placement mode: a left click places a balloon on the floor; nothing else;
+ * - shift- or alt-click on a balloon pops it;
+ * - left press on a balloon grabs it (drag, release to throw);
+ * - anything else goes to the camera (OrbitControls: orbit, pan, zoom).
+ */
+export function mapPointerDown(e: PointerFields): PointerAction {
+  if (e.placementMode) return e.button === 0 ? "place" : "none";
+  if (e.button === 0 && e.overBalloon) return e.shiftKey || e.altKey ? "pop" : "grab";
+  return "camera";
+}
+
+/** A press that moved less than this many CSS pixels is a click, not a drag. */
+export const CLICK_SLOP_PX = 5;
+
+export function isClick(dx: number, dy: number): boolean {
+  return Math.hypot(dx, dy) <= CLICK_SLOP_PX;
+}
