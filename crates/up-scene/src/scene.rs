@@ -1,0 +1,505 @@
+//! Scene files: the room, groups of balloons, the air and the simulation
+//! settings, in TOML or JSON with one schema (docs/scene-format.md).
+//!
+//! Every section and every key may be left out and takes its default; the
+//! defaults are the original project's scene: a 6 m × 6 m room with 3 m walls
+//! and a pyramidal ceiling, 50 balloons in six colours released from the floor.
+//! Unknown keys are errors. After parsing, `validate` checks every number is
+//! finite and within its documented range; errors name the file, the key path
+//! and the line.
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Location, SceneError};
+
+#[path = "scene_locate.rs"]
+mod locate;
+#[path = "scene_validate.rs"]
+mod validate;
+
+pub use locate::KeyLines;
+pub use validate::{
+    MAX_BALLOON_DIAMETER_M, MAX_ROOM_SIZE_M, MAX_SEED, MAX_TOTAL_BALLOONS, MIN_BALLOON_DIAMETER_M,
+    MIN_ROOM_SIZE_M,
+};
+
+/// Metres per inch: balloon sizes are sold in inches (11″ ≈ 0.28 m).
+pub const METRES_PER_INCH: f32 = 0.0254;
+/// Diameter of a balloon group that gives neither `diameter_m` nor `size_in`, m (11″).
+pub const DEFAULT_DIAMETER_M: f32 = 0.28;
+/// Latex envelope of an 11″ balloon, g; other sizes scale with the surface (d²).
+pub const DEFAULT_ENVELOPE_MASS_G_11IN: f32 = 3.0;
+/// Knot and neck latex, g.
+pub const DEFAULT_KNOT_MASS_G: f32 = 0.5;
+/// The original's six colours.
+pub const DEFAULT_COLORS: [&str; 6] = ["red", "yellow", "blue", "green", "purple", "orange"];
+/// Name used in messages for a scene that did not come from a file.
+pub const DEFAULT_SOURCE_NAME: &str = "<default scene>";
+
+/// A whole scene. `Scene::default()` is the original.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Scene {
+    pub room: RoomSpec,
+    /// Groups of identical balloons (colours cycle within a group).
+    pub balloons: Vec<BalloonGroup>,
+    pub air: AirSpec,
+    pub sim: SimSpec,
+    /// Where the scene came from: for messages and for paths relative to the file.
+    #[serde(skip)]
+    pub source: SceneSource,
+}
+
+/// Where a scene was read from.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SceneSource {
+    /// The file name as given, or `<default scene>`.
+    pub name: String,
+    /// Directory that relative paths in the scene (`room.mesh`) start from.
+    pub dir: Option<PathBuf>,
+    /// Lines of the keys in the file, to point messages at them.
+    pub lines: KeyLines,
+}
+
+impl Default for SceneSource {
+    fn default() -> Self {
+        Self {
+            name: DEFAULT_SOURCE_NAME.to_string(),
+            dir: None,
+            lines: KeyLines::default(),
+        }
+    }
+}
+
+/// The room: a box with a pyramidal or flat ceiling, or any closed OBJ mesh.
+/// Origin at the centre of the floor, Y up.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RoomSpec {
+    /// m, along x; 6. Range [0.5, 1000].
+    pub width: f32,
+    /// m, along z; 6. Range [0.5, 1000].
+    pub depth: f32,
+    /// m, floor to the top of the walls; 3. Range [0.5, 1000].
+    pub wall_height: f32,
+    /// `"pyramid"` (the original) or `"flat"`.
+    pub ceiling: CeilingKind,
+    /// m above the walls to the pyramid's apex; 1.5. Range (0, 1000]; pyramid only.
+    pub apex_height: f32,
+    /// A closed OBJ mesh to use instead of the box, relative to the scene file.
+    /// Normals may point either way; the floor should be at y = 0.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mesh: Option<String>,
+}
+
+impl Default for RoomSpec {
+    fn default() -> Self {
+        Self {
+            width: 6.0,
+            depth: 6.0,
+            wall_height: 3.0,
+            ceiling: CeilingKind::Pyramid,
+            apex_height: 1.5,
+            mesh: None,
+        }
+    }
+}
+
+impl RoomSpec {
+    /// Highest point of a box room, m (the apex for a pyramid).
+    pub fn top(&self) -> f32 {
+        match self.ceiling {
+            CeilingKind::Pyramid => self.wall_height + self.apex_height,
+            CeilingKind::Flat => self.wall_height,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum CeilingKind {
+    Pyramid,
+    Flat,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum GasKind {
+    Helium,
+    Air,
+}
+
+/// A group of identical balloons.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct BalloonGroup {
+    /// How many; 1. At most 200 000 over all groups.
+    pub count: u64,
+    /// Colour names (`"red"`, ...) or `"#rrggbb"`, cycled over the group; the six originals.
+    pub colors: Vec<String>,
+    /// m, widest diameter of the inflated balloon; 0.28 (11″). Range [0.05, 5].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub diameter_m: Option<f32>,
+    /// The same in inches, as balloons are sold (11 → 0.2794 m); give one of the two.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub size_in: Option<f32>,
+    /// `"helium"` (rises) or `"air"` (falls slowly).
+    pub gas: GasKind,
+    /// g of latex; 3 for 11″, scaled with the surface for other sizes. Range [0.01, 10000].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub envelope_mass_g: Option<f32>,
+    /// g of knot and neck; 0.5. Range [0, 1000].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub knot_mass_g: Option<f32>,
+    /// Where the balloons start. Left out: spread over the floor.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spawn: Option<SpawnBox>,
+    /// m/s, initial velocity of every balloon of the group; 0. Speed at most 343 (sound).
+    pub velocity: [f32; 3],
+    /// rad/s, initial angular velocity (world frame); 0. At most 1000.
+    pub angular_velocity: [f32; 3],
+    /// Degrees: each balloon starts tilted from upright by a random angle up to this; 3.
+    /// Range [0, 90].
+    pub tilt_deg: f32,
+    /// Degrees: and turned about the vertical by a random angle within ± this; 10.
+    /// Range [0, 180].
+    pub yaw_deg: f32,
+    /// Leaf spheres of the fitted collision tree; 5 (the original's layout). Range 1..=32.
+    pub leaves: u32,
+}
+
+impl Default for BalloonGroup {
+    fn default() -> Self {
+        Self {
+            count: 1,
+            colors: DEFAULT_COLORS.iter().map(|c| c.to_string()).collect(),
+            diameter_m: None,
+            size_in: None,
+            gas: GasKind::Helium,
+            envelope_mass_g: None,
+            knot_mass_g: None,
+            spawn: None,
+            velocity: [0.0; 3],
+            angular_velocity: [0.0; 3],
+            tilt_deg: 3.0,
+            yaw_deg: 10.0,
+            leaves: 5,
+        }
+    }
+}
+
+impl BalloonGroup {
+    /// m: `diameter_m`, else `size_in` converted, else 11″.
+    pub fn diameter(&self) -> f32 {
+        match (self.diameter_m, self.size_in) {
+            (Some(d), _) => d,
+            (None, Some(inches)) => inches * METRES_PER_INCH,
+            (None, None) => DEFAULT_DIAMETER_M,
+        }
+    }
+
+    /// kg of latex envelope: as given, or 3 g scaled by the surface relative to 11″.
+    pub fn envelope_mass_kg(&self) -> f32 {
+        let scale = self.diameter() / DEFAULT_DIAMETER_M;
+        let grams = self
+            .envelope_mass_g
+            .unwrap_or(DEFAULT_ENVELOPE_MASS_G_11IN * scale * scale);
+        grams * 1e-3
+    }
+
+    /// kg of knot.
+    pub fn knot_mass_kg(&self) -> f32 {
+        self.knot_mass_g.unwrap_or(DEFAULT_KNOT_MASS_G) * 1e-3
+    }
+}
+
+/// A box the balloons of a group fill, m, world frame.
+///
+/// Balloons (their bounding spheres) are laid out inside it layer by layer
+/// from `min.y` upward, spread out over its x–z extent; a group too large for
+/// the box stacks further layers above `max.y`, up to the ceiling.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpawnBox {
+    pub min: [f32; 3],
+    pub max: [f32; 3],
+}
+
+/// The room's air: densities for buoyancy, drag and added mass follow (ideal gas).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct AirSpec {
+    /// °C; 20. Range [−60, 60].
+    pub temperature_c: f32,
+    /// kPa; 101.325 (sea level). Range [50, 150].
+    pub pressure_kpa: f32,
+}
+
+impl Default for AirSpec {
+    fn default() -> Self {
+        Self {
+            temperature_c: 20.0,
+            pressure_kpa: 101.325,
+        }
+    }
+}
+
+impl AirSpec {
+    pub fn atmosphere(&self) -> up_physics::Atmosphere {
+        up_physics::Atmosphere {
+            temperature_k: self.temperature_c + 273.15,
+            pressure_pa: self.pressure_kpa * 1000.0,
+        }
+    }
+}
+
+/// Simulation settings. Defaults match `up_physics::WorldDef::default()`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SimSpec {
+    /// Seed of the spawn layout (positions, tilts); 1. Range 0..=2⁵³−1 (exact in JavaScript).
+    pub seed: u64,
+    /// s per step; 1/60. Range (0, 0.1].
+    pub dt: f32,
+    /// Solver substeps per step; 4. Range 1..=64.
+    pub substeps: u32,
+    /// s simulated by `up run` when `--seconds` is not given; 10. Range (0, 86400].
+    pub duration_s: f32,
+    /// m/s²; [0, −9.81, 0]. Each component within ±1000.
+    pub gravity: [f32; 3],
+    /// Coulomb friction coefficient; 0.5. Range [0, 10].
+    pub friction: f32,
+    /// Coefficient of restitution; 0.4. Range [0, 1].
+    pub restitution: f32,
+    /// Drag coefficient C_D; 0.95. Range [0, 10].
+    pub drag_coefficient: f32,
+    /// Added-mass coefficient C_a; 0.5 (sphere). Range [0, 10].
+    pub added_mass_coefficient: f32,
+    /// Rotational air drag, 1/s; 2. Range [0, 1000].
+    pub angular_damping: f32,
+    /// Contact stiffness, Hz; 30. Range (0, 10000].
+    pub contact_hertz: f32,
+    /// Contact damping ratio; 10. Range [0, 1000].
+    pub contact_damping_ratio: f32,
+    /// Let settled balloons sleep; true.
+    pub sleep: bool,
+    /// Sweep fast balloons against the room (time of impact); true.
+    pub continuous: bool,
+}
+
+impl Default for SimSpec {
+    fn default() -> Self {
+        let def = up_physics::WorldDef::default();
+        Self {
+            seed: 1,
+            dt: def.dt,
+            substeps: def.substeps,
+            duration_s: 10.0,
+            gravity: def.gravity.to_array(),
+            friction: def.friction,
+            restitution: def.restitution,
+            drag_coefficient: def.drag_coefficient,
+            added_mass_coefficient: def.added_mass_coefficient,
+            angular_damping: def.angular_damping,
+            contact_hertz: def.contact_hertz,
+            contact_damping_ratio: def.contact_damping_ratio,
+            sleep: def.enable_sleep,
+            continuous: def.enable_continuous,
+        }
+    }
+}
+
+impl Default for Scene {
+    /// The original: 6 m × 6 m room, 3 m walls, pyramid apex 1.5 m above them,
+    /// 50 balloons in six colours released from the floor.
+    fn default() -> Self {
+        Self {
+            room: RoomSpec::default(),
+            balloons: vec![BalloonGroup {
+                count: 50,
+                ..BalloonGroup::default()
+            }],
+            air: AirSpec::default(),
+            sim: SimSpec::default(),
+            source: SceneSource::default(),
+        }
+    }
+}
+
+impl PartialEq for Scene {
+    /// Same content; where it was read from does not matter.
+    fn eq(&self, other: &Self) -> bool {
+        self.room == other.room
+            && self.balloons == other.balloons
+            && self.air == other.air
+            && self.sim == other.sim
+    }
+}
+
+impl Scene {
+    /// Reads a `.toml` or `.json` scene file and validates it.
+    pub fn from_path(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
+        let path = path.as_ref();
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        let is_toml = match ext.as_deref() {
+            Some("toml") => true,
+            Some("json") => false,
+            _ => {
+                return Err(SceneError::UnknownFormat {
+                    path: path.to_path_buf(),
+                })
+            }
+        };
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let name = path.display().to_string();
+        let mut scene = if is_toml {
+            Self::from_toml_str(&text, &name)
+        } else {
+            Self::from_json_str(&text, &name)
+        }?;
+        scene.source.dir = Some(match path.parent() {
+            Some(dir) if !dir.as_os_str().is_empty() => dir.to_path_buf(),
+            _ => PathBuf::from("."),
+        });
+        Ok(scene)
+    }
+
+    /// Parses and validates TOML; `source` names it in messages (a file name).
+    pub fn from_toml_str(text: &str, source: &str) -> Result<Scene, SceneError> {
+        let lines = KeyLines::scan_toml(text);
+        let mut scene: Scene = toml::from_str(text).map_err(|e| {
+            let line = e
+                .span()
+                .map(|span| locate::line_of_offset(text, span.start));
+            let key = line.and_then(|l| lines.key_at(l)).map(str::to_string);
+            let message = e.message().trim().to_string();
+            SceneError::Parse {
+                at: Location {
+                    file: source.to_string(),
+                    key,
+                    line,
+                },
+                message,
+            }
+        })?;
+        scene.source = SceneSource {
+            name: source.to_string(),
+            dir: None,
+            lines,
+        };
+        scene.validate()?;
+        Ok(scene)
+    }
+
+    /// Parses and validates JSON; `source` names it in messages (a file name).
+    pub fn from_json_str(text: &str, source: &str) -> Result<Scene, SceneError> {
+        let lines = KeyLines::scan_json(text);
+        let mut scene: Scene = serde_json::from_str(text).map_err(|e| {
+            let line = (e.line() > 0).then_some(e.line());
+            let key = line.and_then(|l| lines.key_at(l)).map(str::to_string);
+            // serde_json appends " at line L column C"; the location says it already.
+            let full = e.to_string();
+            let message = match full.rfind(" at line ") {
+                Some(cut) => full[..cut].to_string(),
+                None => full,
+            };
+            SceneError::Parse {
+                at: Location {
+                    file: source.to_string(),
+                    key,
+                    line,
+                },
+                message,
+            }
+        })?;
+        scene.source = SceneSource {
+            name: source.to_string(),
+            dir: None,
+            lines,
+        };
+        scene.validate()?;
+        Ok(scene)
+    }
+
+    pub fn to_toml_string(&self) -> Result<String, SceneError> {
+        toml::to_string_pretty(self).map_err(|e| SceneError::Serialize {
+            format: "TOML",
+            message: e.to_string(),
+        })
+    }
+
+    pub fn to_json_string(&self) -> Result<String, SceneError> {
+        serde_json::to_string_pretty(self).map_err(|e| SceneError::Serialize {
+            format: "JSON",
+            message: e.to_string(),
+        })
+    }
+
+    /// Balloons over all groups.
+    pub fn total_balloons(&self) -> u64 {
+        self.balloons.iter().map(|g| g.count).sum()
+    }
+
+    /// Sets the total number of balloons (the CLI's `--balloons N`), spread
+    /// over the groups in order: each gets `N / groups`, the first ones one
+    /// more until the remainder is used up. A scene with no group gets one
+    /// default group. Validates the result.
+    pub fn with_total_balloons(mut self, total: u64) -> Result<Scene, SceneError> {
+        if self.balloons.is_empty() {
+            self.balloons.push(BalloonGroup::default());
+        }
+        let groups = self.balloons.len() as u64;
+        for (i, group) in self.balloons.iter_mut().enumerate() {
+            group.count = total / groups + u64::from((i as u64) < total % groups);
+        }
+        self.validate()?;
+        Ok(self)
+    }
+
+    /// Checks every value against its documented range.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        validate::validate(self)
+    }
+
+    /// Where a key lies, for messages: this scene's file and the key's line.
+    pub fn locate(&self, key: &str) -> Location {
+        Location {
+            file: self.source.name.clone(),
+            key: Some(key.to_string()),
+            line: self.source.lines.line_of(key),
+        }
+    }
+
+    /// The room mesh path resolved against the scene file's directory.
+    pub fn room_mesh_path(&self) -> Option<PathBuf> {
+        let mesh = Path::new(self.room.mesh.as_ref()?);
+        Some(match &self.source.dir {
+            Some(dir) if mesh.is_relative() => dir.join(mesh),
+            _ => mesh.to_path_buf(),
+        })
+    }
+}
+
+/// `"#rrggbb"` → RGB in 0–1 (sRGB, as written); colour names are looked up in `obj::color_rgb`.
+pub fn parse_color(name: &str) -> Option<[f32; 3]> {
+    if let Some(hex) = name.strip_prefix('#') {
+        if hex.len() != 6 || !hex.is_ascii() {
+            return None;
+        }
+        let channel = |i: usize| u8::from_str_radix(&hex[i..i + 2], 16).ok();
+        return Some([channel(0)?, channel(2)?, channel(4)?].map(|c| f32::from(c) / 255.0));
+    }
+    crate::obj::color_rgb(name)
+}
+
+#[cfg(test)]
+#[path = "scene_tests.rs"]
+mod tests;

@@ -1,0 +1,364 @@
+//! Parsing and validation of scene files: every error path names the file,
+//! the key and (where known) the line.
+
+use super::*;
+
+fn toml_err(text: &str) -> SceneError {
+    match Scene::from_toml_str(text, "test.toml") {
+        Ok(scene) => panic!("expected an error, got {scene:?}"),
+        Err(e) => e,
+    }
+}
+
+fn json_err(text: &str) -> SceneError {
+    match Scene::from_json_str(text, "test.json") {
+        Ok(scene) => panic!("expected an error, got {scene:?}"),
+        Err(e) => e,
+    }
+}
+
+#[test]
+fn empty_file_is_the_default_scene() {
+    let scene = Scene::from_toml_str("", "empty.toml").unwrap();
+    assert_eq!(scene, Scene::default());
+    let scene = Scene::from_json_str("{}", "empty.json").unwrap();
+    assert_eq!(scene, Scene::default());
+}
+
+#[test]
+fn default_scene_is_the_original_room_and_fifty_balloons() {
+    let scene = Scene::default();
+    assert_eq!(
+        (scene.room.width, scene.room.depth, scene.room.wall_height),
+        (6.0, 6.0, 3.0)
+    );
+    assert_eq!(scene.room.ceiling, CeilingKind::Pyramid);
+    assert_eq!(scene.room.apex_height, 1.5);
+    assert_eq!(scene.total_balloons(), 50);
+    assert_eq!(
+        scene.balloons[0].colors,
+        DEFAULT_COLORS.map(String::from).to_vec()
+    );
+    assert!(scene.balloons[0].spawn.is_none(), "released from the floor");
+    assert_eq!(scene.source.name, DEFAULT_SOURCE_NAME);
+    scene.validate().unwrap();
+}
+
+#[test]
+fn default_scene_round_trips_through_toml_and_json() {
+    let scene = Scene::default();
+    let toml_text = scene.to_toml_string().unwrap();
+    assert_eq!(
+        Scene::from_toml_str(&toml_text, "rt.toml").unwrap(),
+        scene,
+        "{toml_text}"
+    );
+    let json_text = scene.to_json_string().unwrap();
+    assert_eq!(
+        Scene::from_json_str(&json_text, "rt.json").unwrap(),
+        scene,
+        "{json_text}"
+    );
+}
+
+#[test]
+fn full_scene_parses_every_key() {
+    let text = r##"
+[room]
+width = 8
+depth = 7.5
+wall_height = 4.0
+ceiling = "flat"
+
+[[balloons]]
+count = 3
+colors = ["red", "#00ff80"]
+size_in = 16
+gas = "air"
+envelope_mass_g = 6.5
+knot_mass_g = 1.0
+spawn = { min = [-1.0, 0.5, -1.0], max = [1.0, 1.5, 1.0] }
+velocity = [30.0, 0.0, 0.0]
+angular_velocity = [0.0, 1.0, 0.0]
+tilt_deg = 0
+yaw_deg = 0
+leaves = 7
+
+[air]
+temperature_c = 25.0
+pressure_kpa = 95.0
+
+[sim]
+seed = 42
+dt = 0.01
+substeps = 8
+duration_s = 2.5
+gravity = [0.0, -9.81, 0.0]
+friction = 0.3
+restitution = 0.5
+drag_coefficient = 0.5
+added_mass_coefficient = 0.5
+angular_damping = 1.0
+contact_hertz = 60
+contact_damping_ratio = 5
+sleep = false
+continuous = false
+"##;
+    let scene = Scene::from_toml_str(text, "full.toml").unwrap();
+    assert_eq!(scene.room.ceiling, CeilingKind::Flat);
+    let g = &scene.balloons[0];
+    assert!((g.diameter() - 16.0 * METRES_PER_INCH).abs() < 1e-6);
+    assert_eq!(g.gas, GasKind::Air);
+    assert!((g.envelope_mass_kg() - 0.0065).abs() < 1e-9);
+    assert_eq!(g.spawn.unwrap().max, [1.0, 1.5, 1.0]);
+    assert_eq!(scene.sim.seed, 42);
+    assert!(!scene.sim.sleep);
+    assert!((scene.air.atmosphere().pressure_pa - 95_000.0).abs() < 1e-2);
+    // The same scene written as JSON reads back identical.
+    let json = scene.to_json_string().unwrap();
+    assert_eq!(Scene::from_json_str(&json, "full.json").unwrap(), scene);
+}
+
+#[test]
+fn unknown_key_is_rejected_with_file_key_and_line() {
+    let e = toml_err("[room]\nwidth = 6.0\nwidht = 5.0\n");
+    let text = e.to_string();
+    assert!(text.starts_with("test.toml:3: room.widht: "), "{text}");
+    assert!(text.contains("unknown field `widht`"), "{text}");
+    assert_eq!(e.line(), Some(3));
+
+    let e = toml_err("[[balloons]]\ncount = 2\ncolour = \"red\"\n");
+    assert_eq!(e.key(), Some("balloons[0].colour"), "{e}");
+
+    let e = toml_err("[lights]\nbrightness = 1\n");
+    assert!(e.to_string().contains("unknown field `lights`"), "{e}");
+    assert_eq!(e.line(), Some(1));
+}
+
+#[test]
+fn unknown_key_in_json_names_key_and_line() {
+    let e = json_err("{\n  \"sim\": {\n    \"dt\": 0.01,\n    \"stepz\": 3\n  }\n}");
+    let text = e.to_string();
+    assert!(
+        text.starts_with("test.json:4: sim.stepz: unknown field `stepz`"),
+        "{text}"
+    );
+}
+
+#[test]
+fn wrong_type_is_rejected_with_what_was_expected() {
+    let e = toml_err("[[balloons]]\ncount = \"ten\"\n");
+    let text = e.to_string();
+    assert!(
+        text.starts_with("test.toml:2: balloons[0].count: "),
+        "{text}"
+    );
+    assert!(text.contains("invalid type: string \"ten\""), "{text}");
+    assert!(text.contains("expected u64"), "{text}");
+
+    let e = json_err("{\"room\": {\"width\": \"wide\"}}");
+    assert!(
+        e.to_string()
+            .starts_with("test.json:1: room.width: invalid type"),
+        "{e}"
+    );
+
+    let e = toml_err("[room]\nceiling = \"dome\"\n");
+    assert!(
+        e.to_string().contains("expected `pyramid` or `flat`"),
+        "{e}"
+    );
+    assert_eq!(e.key(), Some("room.ceiling"));
+}
+
+#[test]
+fn syntax_error_names_the_line() {
+    let e = toml_err("[room]\nwidth = = 3\n");
+    assert_eq!(e.line(), Some(2), "{e}");
+    let e = json_err("{\n\"room\": {\"width\": 6,}\n}");
+    assert_eq!(e.line(), Some(2), "{e}");
+}
+
+#[test]
+fn nan_and_infinity_are_rejected() {
+    let e = toml_err("[room]\nwidth = nan\n");
+    let text = e.to_string();
+    assert!(
+        text.starts_with("test.toml:2: room.width: expected a finite number in [0.5, 1000] m"),
+        "{text}"
+    );
+    assert!(text.ends_with("found NaN"), "{text}");
+
+    let e = toml_err("[sim]\ndt = inf\n");
+    assert!(
+        e.to_string()
+            .contains("sim.dt: expected a finite number in (0, 0.1] s, found inf"),
+        "{e}"
+    );
+
+    let e = toml_err("[[balloons]]\nvelocity = [0.0, -inf, 0.0]\n");
+    assert_eq!(e.key(), Some("balloons[0].velocity"), "{e}");
+    assert_eq!(e.line(), Some(2));
+}
+
+#[test]
+fn negative_and_zero_sizes_are_rejected() {
+    let e = toml_err("[room]\ndepth = -6.0\n");
+    assert_eq!(e.key(), Some("room.depth"), "{e}");
+    let e = toml_err("[[balloons]]\ndiameter_m = 0.0\n");
+    assert_eq!(e.key(), Some("balloons[0].diameter_m"), "{e}");
+    let e = json_err("{\"balloons\": [{\"count\": -3}]}");
+    assert!(
+        e.to_string()
+            .contains("balloons[0].count: invalid value: integer `-3`"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_billion_balloons_are_rejected() {
+    let e = toml_err("[[balloons]]\ncount = 1000000000\n");
+    let text = e.to_string();
+    assert!(
+        text.starts_with("test.toml:2: balloons[0].count: expected at most 200000"),
+        "{text}"
+    );
+    // The limit is over all groups.
+    let e = toml_err("[[balloons]]\ncount = 150000\n[[balloons]]\ncount = 60000\n");
+    assert_eq!(e.key(), Some("balloons[1].count"));
+    assert_eq!(e.line(), Some(4));
+}
+
+#[test]
+fn balloon_bigger_than_the_room_is_rejected() {
+    let e = toml_err("[room]\nwall_height = 1.0\n[[balloons]]\ndiameter_m = 1.5\n");
+    let text = e.to_string();
+    assert!(
+        text.starts_with("test.toml:4: balloons[0].diameter_m: expected a balloon smaller"),
+        "{text}"
+    );
+}
+
+#[test]
+fn spawn_region_outside_the_room_is_rejected() {
+    let e = toml_err("[[balloons]]\nspawn = { min = [2.0, 0.0, -1.0], max = [4.0, 1.0, 1.0] }\n");
+    let text = e.to_string();
+    assert!(
+        text.starts_with("test.toml:2: balloons[0].spawn: expected a region inside the room"),
+        "{text}"
+    );
+
+    let e =
+        toml_err("[[balloons]]\n[balloons.spawn]\nmin = [1.0, 0.0, 0.0]\nmax = [0.0, 1.0, 1.0]\n");
+    assert_eq!(e.key(), Some("balloons[0].spawn.max"), "{e}");
+    assert_eq!(e.line(), Some(4));
+
+    let e = toml_err("[[balloons]]\nspawn = { min = [0.0, 0.0, 0.0], max = [0.1, 1.0, 1.0] }\n");
+    assert!(e.to_string().contains("at least one balloon"), "{e}");
+}
+
+#[test]
+fn other_ranges_are_checked() {
+    let cases = [
+        ("[sim]\ndt = 0.5\n", "sim.dt"),
+        ("[sim]\nsubsteps = 0\n", "sim.substeps"),
+        ("[sim]\nsubsteps = 65\n", "sim.substeps"),
+        ("[sim]\nrestitution = 1.5\n", "sim.restitution"),
+        ("[sim]\nseed = 9007199254740992\n", "sim.seed"),
+        ("[air]\ntemperature_c = -300\n", "air.temperature_c"),
+        (
+            "[room]\nceiling = \"pyramid\"\napex_height = 0\n",
+            "room.apex_height",
+        ),
+        ("[[balloons]]\ncolors = []\n", "balloons[0].colors"),
+        (
+            "[[balloons]]\ncolors = [\"red\", \"plaid\"]\n",
+            "balloons[0].colors[1]",
+        ),
+        (
+            "[[balloons]]\ndiameter_m = 0.3\nsize_in = 11\n",
+            "balloons[0].size_in",
+        ),
+        ("[[balloons]]\ntilt_deg = 100\n", "balloons[0].tilt_deg"),
+        ("[[balloons]]\nleaves = 0\n", "balloons[0].leaves"),
+        (
+            "[[balloons]]\nvelocity = [400.0, 0.0, 0.0]\n",
+            "balloons[0].velocity",
+        ),
+        ("[room]\nmesh = \"\"\n", "room.mesh"),
+    ];
+    for (text, key) in cases {
+        let e = toml_err(text);
+        assert_eq!(e.key(), Some(key), "{text}: {e}");
+        assert!(e.to_string().contains("expected"), "{e}");
+    }
+}
+
+#[test]
+fn flat_ceiling_ignores_apex_height() {
+    let scene = Scene::from_toml_str("[room]\nceiling = \"flat\"\napex_height = 0\n", "f.toml");
+    assert!(scene.is_ok(), "{scene:?}");
+}
+
+#[test]
+fn missing_file_names_the_path() {
+    let e = Scene::from_path("/no/such/dir/scene.toml").unwrap_err();
+    let text = e.to_string();
+    assert!(
+        text.starts_with("/no/such/dir/scene.toml: cannot read the scene file"),
+        "{text}"
+    );
+    let e = Scene::from_path("scene.yaml").unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("expected a `.toml` or `.json` extension"),
+        "{e}"
+    );
+}
+
+#[test]
+fn files_are_read_by_extension_and_mesh_paths_resolve_against_them() {
+    let dir = std::env::temp_dir().join(format!("up-scene-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let toml_path = dir.join("a.toml");
+    std::fs::write(&toml_path, "[room]\nmesh = \"hall.obj\"\n").unwrap();
+    let scene = Scene::from_path(&toml_path).unwrap();
+    assert_eq!(scene.room_mesh_path(), Some(dir.join("hall.obj")));
+    assert_eq!(scene.source.name, toml_path.display().to_string());
+
+    let json_path = dir.join("b.JSON");
+    std::fs::write(&json_path, "{\"sim\": {\"dt\": 0.2}}").unwrap();
+    let e = Scene::from_path(&json_path).unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with(&format!("{}:1: sim.dt: expected", json_path.display())),
+        "{e}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn total_balloons_are_spread_over_groups() {
+    let scene = Scene::from_toml_str(
+        "[[balloons]]\ncount = 1\n[[balloons]]\ncount = 1\n[[balloons]]\ncount = 1\n",
+        "g.toml",
+    )
+    .unwrap();
+    let scene = scene.with_total_balloons(10).unwrap();
+    let counts: Vec<u64> = scene.balloons.iter().map(|g| g.count).collect();
+    assert_eq!(counts, vec![4, 3, 3]);
+    let e = scene.with_total_balloons(1_000_000).unwrap_err();
+    assert_eq!(e.key(), Some("balloons[0].count"));
+    let none = Scene {
+        balloons: vec![],
+        ..Scene::default()
+    };
+    assert_eq!(none.with_total_balloons(2).unwrap().total_balloons(), 2);
+}
+
+#[test]
+fn hex_colours_parse() {
+    assert_eq!(parse_color("#ff0000"), Some([1.0, 0.0, 0.0]));
+    assert_eq!(parse_color("#ff00"), None);
+    assert_eq!(parse_color("#gg0000"), None);
+}

@@ -1,0 +1,307 @@
+//! Range checks on a parsed scene. The first problem found is returned, with
+//! the key path and line of the offending value and the documented range.
+
+use super::{parse_color, CeilingKind, Scene};
+use crate::error::SceneError;
+
+/// At most this many balloons over all groups.
+pub const MAX_TOTAL_BALLOONS: u64 = 200_000;
+/// Room width, depth and wall height range, m.
+pub const MIN_ROOM_SIZE_M: f32 = 0.5;
+pub const MAX_ROOM_SIZE_M: f32 = 1000.0;
+/// Balloon diameter range, m.
+pub const MIN_BALLOON_DIAMETER_M: f32 = 0.05;
+pub const MAX_BALLOON_DIAMETER_M: f32 = 5.0;
+/// Largest seed: 2⁵³ − 1, exact as a JavaScript number.
+pub const MAX_SEED: u64 = (1 << 53) - 1;
+/// Fastest initial speed, m/s (the speed of sound).
+const MAX_SPEED: f32 = 343.0;
+
+struct Checker<'a> {
+    scene: &'a Scene,
+}
+
+impl Checker<'_> {
+    fn fail(&self, key: &str, expected: impl Into<String>, found: impl Into<String>) -> SceneError {
+        SceneError::Invalid {
+            at: self.scene.locate(key),
+            expected: expected.into(),
+            found: found.into(),
+        }
+    }
+
+    /// `lo <= value <= hi` (or `lo < value` when `lo_open`), finite.
+    fn range(
+        &self,
+        key: &str,
+        value: f32,
+        lo: f32,
+        hi: f32,
+        lo_open: bool,
+        unit: &str,
+    ) -> Result<(), SceneError> {
+        let above = if lo_open { value > lo } else { value >= lo };
+        if value.is_finite() && above && value <= hi {
+            return Ok(());
+        }
+        let open = if lo_open { '(' } else { '[' };
+        let unit = if unit.is_empty() {
+            String::new()
+        } else {
+            format!(" {unit}")
+        };
+        Err(self.fail(
+            key,
+            format!("a finite number in {open}{lo}, {hi}]{unit}"),
+            value.to_string(),
+        ))
+    }
+
+    fn vector(&self, key: &str, v: [f32; 3], max_len: f32, unit: &str) -> Result<(), SceneError> {
+        let len = v.iter().map(|c| c * c).sum::<f32>().sqrt();
+        if v.iter().all(|c| c.is_finite()) && len <= max_len {
+            return Ok(());
+        }
+        Err(self.fail(
+            key,
+            format!("finite [x, y, z] no longer than {max_len} {unit}"),
+            format!("{v:?}"),
+        ))
+    }
+}
+
+pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
+    let c = Checker { scene };
+    let room = &scene.room;
+    let (lo, hi) = (MIN_ROOM_SIZE_M, MAX_ROOM_SIZE_M);
+    if room.mesh.is_none() {
+        c.range("room.width", room.width, lo, hi, false, "m")?;
+        c.range("room.depth", room.depth, lo, hi, false, "m")?;
+        c.range("room.wall_height", room.wall_height, lo, hi, false, "m")?;
+        if room.ceiling == CeilingKind::Pyramid {
+            c.range("room.apex_height", room.apex_height, 0.0, hi, true, "m")?;
+        }
+    } else if room.mesh.as_deref().is_some_and(|m| m.trim().is_empty()) {
+        return Err(c.fail("room.mesh", "a path to an OBJ file", "an empty string"));
+    }
+
+    let air = &scene.air;
+    c.range(
+        "air.temperature_c",
+        air.temperature_c,
+        -60.0,
+        60.0,
+        false,
+        "°C",
+    )?;
+    c.range(
+        "air.pressure_kpa",
+        air.pressure_kpa,
+        50.0,
+        150.0,
+        false,
+        "kPa",
+    )?;
+
+    let sim = &scene.sim;
+    if sim.seed > MAX_SEED {
+        return Err(c.fail(
+            "sim.seed",
+            format!("an integer in [0, {MAX_SEED}]"),
+            sim.seed.to_string(),
+        ));
+    }
+    c.range("sim.dt", sim.dt, 0.0, 0.1, true, "s")?;
+    if !(1..=64).contains(&sim.substeps) {
+        return Err(c.fail(
+            "sim.substeps",
+            "an integer in [1, 64]",
+            sim.substeps.to_string(),
+        ));
+    }
+    c.range("sim.duration_s", sim.duration_s, 0.0, 86_400.0, true, "s")?;
+    for (i, g) in sim.gravity.iter().enumerate() {
+        c.range(
+            &format!("sim.gravity[{i}]"),
+            *g,
+            -1000.0,
+            1000.0,
+            false,
+            "m/s²",
+        )?;
+    }
+    c.range("sim.friction", sim.friction, 0.0, 10.0, false, "")?;
+    c.range("sim.restitution", sim.restitution, 0.0, 1.0, false, "")?;
+    c.range(
+        "sim.drag_coefficient",
+        sim.drag_coefficient,
+        0.0,
+        10.0,
+        false,
+        "",
+    )?;
+    c.range(
+        "sim.added_mass_coefficient",
+        sim.added_mass_coefficient,
+        0.0,
+        10.0,
+        false,
+        "",
+    )?;
+    c.range(
+        "sim.angular_damping",
+        sim.angular_damping,
+        0.0,
+        1000.0,
+        false,
+        "1/s",
+    )?;
+    c.range(
+        "sim.contact_hertz",
+        sim.contact_hertz,
+        0.0,
+        10_000.0,
+        true,
+        "Hz",
+    )?;
+    c.range(
+        "sim.contact_damping_ratio",
+        sim.contact_damping_ratio,
+        0.0,
+        1000.0,
+        false,
+        "",
+    )?;
+
+    let mut total: u64 = 0;
+    for (i, group) in scene.balloons.iter().enumerate() {
+        let key = |k: &str| format!("balloons[{i}].{k}");
+        total = total.saturating_add(group.count);
+        if group.count > MAX_TOTAL_BALLOONS || total > MAX_TOTAL_BALLOONS {
+            return Err(c.fail(
+                &key("count"),
+                format!("at most {MAX_TOTAL_BALLOONS} balloons over all groups"),
+                format!("{} in this group, {total} so far", group.count),
+            ));
+        }
+        if group.colors.is_empty() {
+            return Err(c.fail(&key("colors"), "at least one colour", "an empty list"));
+        }
+        for (j, color) in group.colors.iter().enumerate() {
+            if parse_color(color).is_none() {
+                return Err(c.fail(
+                    &format!("balloons[{i}].colors[{j}]"),
+                    "a colour name (red, yellow, blue, green, purple, orange, ...) or \"#rrggbb\"",
+                    format!("{color:?}"),
+                ));
+            }
+        }
+        if group.diameter_m.is_some() && group.size_in.is_some() {
+            return Err(c.fail(
+                &key("size_in"),
+                "either diameter_m or size_in, not both",
+                "both",
+            ));
+        }
+        let (dmin, dmax) = (MIN_BALLOON_DIAMETER_M, MAX_BALLOON_DIAMETER_M);
+        if let Some(d) = group.diameter_m {
+            c.range(&key("diameter_m"), d, dmin, dmax, false, "m")?;
+        }
+        if let Some(inches) = group.size_in {
+            let (lo, hi) = (dmin / super::METRES_PER_INCH, dmax / super::METRES_PER_INCH);
+            c.range(&key("size_in"), inches, lo.ceil(), hi.floor(), false, "in")?;
+        }
+        if let Some(m) = group.envelope_mass_g {
+            c.range(&key("envelope_mass_g"), m, 0.01, 10_000.0, false, "g")?;
+        }
+        if let Some(m) = group.knot_mass_g {
+            c.range(&key("knot_mass_g"), m, 0.0, 1000.0, false, "g")?;
+        }
+        c.vector(&key("velocity"), group.velocity, MAX_SPEED, "m/s")?;
+        c.vector(
+            &key("angular_velocity"),
+            group.angular_velocity,
+            1000.0,
+            "rad/s",
+        )?;
+        c.range(&key("tilt_deg"), group.tilt_deg, 0.0, 90.0, false, "°")?;
+        c.range(&key("yaw_deg"), group.yaw_deg, 0.0, 180.0, false, "°")?;
+        if !(1..=32).contains(&group.leaves) {
+            return Err(c.fail(
+                &key("leaves"),
+                "an integer in [1, 32]",
+                group.leaves.to_string(),
+            ));
+        }
+
+        // The balloon must fit in a box room (mesh rooms are checked when built).
+        let d = group.diameter();
+        let smallest_side = room.width.min(room.depth).min(room.wall_height);
+        let diameter_key = if group.size_in.is_some() {
+            key("size_in")
+        } else {
+            key("diameter_m")
+        };
+        if room.mesh.is_none() && d >= smallest_side {
+            return Err(c.fail(
+                &diameter_key,
+                format!("a balloon smaller than the room's smallest side ({smallest_side} m)"),
+                format!("{d} m"),
+            ));
+        }
+
+        if let Some(spawn) = &group.spawn {
+            for axis in 0..3 {
+                let name = ["x", "y", "z"][axis];
+                c.range(
+                    &format!("{}.min[{axis}]", key("spawn")),
+                    spawn.min[axis],
+                    -hi,
+                    hi,
+                    false,
+                    "m",
+                )?;
+                c.range(
+                    &format!("{}.max[{axis}]", key("spawn")),
+                    spawn.max[axis],
+                    -hi,
+                    hi,
+                    false,
+                    "m",
+                )?;
+                if spawn.max[axis] < spawn.min[axis] {
+                    return Err(c.fail(
+                        &key("spawn.max"),
+                        format!("max.{name} ≥ min.{name} ({})", spawn.min[axis]),
+                        spawn.max[axis].to_string(),
+                    ));
+                }
+            }
+            for axis in [0, 2] {
+                let extent = spawn.max[axis] - spawn.min[axis];
+                if extent < d {
+                    let name = ["x", "y", "z"][axis];
+                    return Err(c.fail(
+                        &key("spawn"),
+                        format!("a region at least one balloon ({d} m) wide along {name}"),
+                        format!("{extent} m"),
+                    ));
+                }
+            }
+            if room.mesh.is_none() {
+                let (hx, hz) = (room.width / 2.0, room.depth / 2.0);
+                let lo = [-hx, 0.0, -hz];
+                let hi = [hx, room.top(), hz];
+                let inside = (0..3).all(|a| spawn.min[a] >= lo[a] && spawn.max[a] <= hi[a]);
+                if !inside {
+                    return Err(c.fail(
+                        &key("spawn"),
+                        format!("a region inside the room, from {lo:?} to {hi:?} m"),
+                        format!("from {:?} to {:?}", spawn.min, spawn.max),
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
+}
