@@ -1,0 +1,171 @@
+//! Bodies: handles, shapes and the struct-of-arrays storage of their state.
+
+use glam::{Mat3, Quat, Vec3};
+use serde::{Deserialize, Serialize};
+use up_geom::{Pose, SphereTree};
+
+/// A generational handle to a body: stale handles are detected, never reused silently.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub struct BodyId {
+    pub index: u32,
+    pub generation: u32,
+}
+
+/// Index of a shape registered with `World::add_shape`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub struct ShapeId(pub u32);
+
+/// Everything the world needs to know about one kind of balloon.
+/// All quantities in the body frame (the mesh frame), SI units.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BalloonShape {
+    /// Collision spheres, body frame.
+    pub tree: SphereTree,
+    /// kg: envelope + knot + gas; ≈ 5.4 g for an 11″ latex balloon.
+    pub mass: f32,
+    /// Body frame, m. Lies below the centre of buoyancy (the knot is heavy).
+    pub center_of_mass: Vec3,
+    /// kg·m², about the centre of mass, body axes; ≈ 1e-4 for 11″.
+    pub inertia: Mat3,
+    /// m³ of displaced air; ≈ 0.0142 for 11″.
+    pub volume: f32,
+    /// Body frame, m: the centroid of the displaced volume, where buoyancy acts.
+    pub center_of_buoyancy: Vec3,
+    /// m²: frontal area for drag; ≈ 0.0708 for 11″ (equivalent sphere d = 0.30 m).
+    pub reference_area: f32,
+}
+
+/// How to create a body.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BodyDef {
+    pub shape: ShapeId,
+    /// Pose of the body frame (the mesh frame, not the centre of mass).
+    pub pose: Pose,
+    /// m/s, of the centre of mass.
+    pub linear_velocity: Vec3,
+    /// rad/s, world frame.
+    pub angular_velocity: Vec3,
+    /// Free for the caller (the colour index, say); carried along, never read.
+    pub user_data: u32,
+}
+
+impl BodyDef {
+    pub fn new(shape: ShapeId, pose: Pose) -> Self {
+        Self { shape, pose, linear_velocity: Vec3::ZERO, angular_velocity: Vec3::ZERO, user_data: 0 }
+    }
+}
+
+/// Per-shape constants the step reads, derived once from `BalloonShape`.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub(crate) struct ShapeData {
+    pub def: BalloonShape,
+    /// The tree re-centred on the centre of mass.
+    pub tree: SphereTree,
+    /// 1 / (mass + added mass), kg⁻¹.
+    pub inv_mass_translational: f32,
+    /// Inverse inertia about the centre of mass, body axes.
+    pub inv_inertia_local: Mat3,
+    /// Centre of buoyancy relative to the centre of mass, body axes.
+    pub buoyancy_arm: Vec3,
+    /// Root bounding radius about the centre of mass, m.
+    pub bound_radius: f32,
+    /// Smallest leaf radius, m: the scale for continuous collision.
+    pub min_leaf_radius: f32,
+    /// Added mass C_a·ρ_air·V, kg.
+    pub added_mass: f32,
+}
+
+/// Hot and warm body state, struct of arrays, indexed densely (0..len).
+/// Removal swaps the last body into the hole, so the arrays stay packed.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+pub(crate) struct Bodies {
+    pub id: Vec<BodyId>,
+    pub shape: Vec<u32>,
+    pub user_data: Vec<u32>,
+    /// World position of the centre of mass.
+    pub center: Vec<Vec3>,
+    pub rotation: Vec<Quat>,
+    pub linear_velocity: Vec<Vec3>,
+    pub angular_velocity: Vec<Vec3>,
+    /// External force and torque held for the next step (about the centre of mass), N and N·m.
+    pub force: Vec<Vec3>,
+    pub torque: Vec<Vec3>,
+    /// Seconds spent below the sleep thresholds.
+    pub sleep_time: Vec<f32>,
+    pub awake: Vec<bool>,
+    /// Sleeping island this body belongs to, `u32::MAX` when awake.
+    pub island: Vec<u32>,
+}
+
+impl Bodies {
+    pub fn len(&self) -> usize {
+        self.id.len()
+    }
+
+    pub fn push(&mut self, id: BodyId, shape: u32, user_data: u32, center: Vec3, rotation: Quat, v: Vec3, w: Vec3) {
+        self.id.push(id);
+        self.shape.push(shape);
+        self.user_data.push(user_data);
+        self.center.push(center);
+        self.rotation.push(rotation);
+        self.linear_velocity.push(v);
+        self.angular_velocity.push(w);
+        self.force.push(Vec3::ZERO);
+        self.torque.push(Vec3::ZERO);
+        self.sleep_time.push(0.0);
+        self.awake.push(true);
+        self.island.push(u32::MAX);
+    }
+
+    pub fn swap_remove(&mut self, i: usize) {
+        self.id.swap_remove(i);
+        self.shape.swap_remove(i);
+        self.user_data.swap_remove(i);
+        self.center.swap_remove(i);
+        self.rotation.swap_remove(i);
+        self.linear_velocity.swap_remove(i);
+        self.angular_velocity.swap_remove(i);
+        self.force.swap_remove(i);
+        self.torque.swap_remove(i);
+        self.sleep_time.swap_remove(i);
+        self.awake.swap_remove(i);
+        self.island.swap_remove(i);
+    }
+}
+
+/// Maps handles to dense indices.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+pub(crate) struct HandleMap {
+    /// Per handle index: current generation and dense index (`u32::MAX` when free).
+    pub slots: Vec<(u32, u32)>,
+    pub free: Vec<u32>,
+}
+
+impl HandleMap {
+    pub fn allocate(&mut self, dense: u32) -> BodyId {
+        if let Some(index) = self.free.pop() {
+            let slot = &mut self.slots[index as usize];
+            slot.1 = dense;
+            BodyId { index, generation: slot.0 }
+        } else {
+            self.slots.push((0, dense));
+            BodyId { index: self.slots.len() as u32 - 1, generation: 0 }
+        }
+    }
+
+    pub fn dense(&self, id: BodyId) -> Option<usize> {
+        let &(generation, dense) = self.slots.get(id.index as usize)?;
+        (generation == id.generation && dense != u32::MAX).then_some(dense as usize)
+    }
+
+    pub fn release(&mut self, id: BodyId) {
+        let slot = &mut self.slots[id.index as usize];
+        slot.0 = slot.0.wrapping_add(1);
+        slot.1 = u32::MAX;
+        self.free.push(id.index);
+    }
+
+    pub fn set_dense(&mut self, id: BodyId, dense: u32) {
+        self.slots[id.index as usize].1 = dense;
+    }
+}

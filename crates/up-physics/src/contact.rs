@@ -1,0 +1,100 @@
+//! Contact points as the narrowphase hands them to the solver, and the
+//! impulses kept from one step to the next for warm starting.
+
+use glam::Vec3;
+use serde::{Deserialize, Serialize};
+
+/// Stands for the static room in a contact's `body_b`.
+pub(crate) const STATIC_BODY: u32 = u32::MAX;
+
+/// One contact point between body A and body B (or the room). 48 bytes.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ContactPoint {
+    /// Dense body indices; `body_b == STATIC_BODY` for the room.
+    pub body_a: u32,
+    pub body_b: u32,
+    /// Unit, from A to B.
+    pub normal: Vec3,
+    /// Surface points, world frame, at the start of the step.
+    pub point_a: Vec3,
+    pub point_b: Vec3,
+    /// Negative when overlapping, m.
+    pub separation: f32,
+    /// Which sphere/triangle touched: `feature_a << 32 | feature_b`.
+    pub feature: u64,
+}
+
+/// The impulses a contact point ended the last step with.
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize)]
+pub(crate) struct StoredImpulse {
+    pub feature: u64,
+    /// N·s per substep, along the normal.
+    pub normal: f32,
+    /// N·s per substep, tangential, as a world vector (so that a new tangent basis can take it).
+    pub tangent: Vec3,
+}
+
+/// Warm-start memory: per body pair, the impulses of its contact points last step.
+///
+/// Pairs are keyed by the handle indices of their bodies (stable across
+/// removals, unlike dense indices). An open-addressing table maps a key to a
+/// run of `impulses`; it is rebuilt each step into reused buffers, so a warm
+/// step does not allocate.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+pub(crate) struct WarmStartCache {
+    /// (pair key, first impulse, count), in the order the narrowphase found them.
+    pub runs: Vec<(u64, u32, u32)>,
+    pub impulses: Vec<StoredImpulse>,
+    #[serde(skip)]
+    table: Vec<u32>,
+}
+
+const EMPTY_SLOT: u32 = u32::MAX;
+
+impl WarmStartCache {
+    pub fn clear(&mut self) {
+        self.runs.clear();
+        self.impulses.clear();
+    }
+
+    /// Rebuilds the lookup table after `runs` changed.
+    pub fn index(&mut self) {
+        let capacity = (self.runs.len() * 2).next_power_of_two().max(16);
+        self.table.clear();
+        self.table.resize(capacity, EMPTY_SLOT);
+        let mask = capacity - 1;
+        for (run, &(key, _, _)) in self.runs.iter().enumerate() {
+            let mut slot = crate::hash::mix64(key) as usize & mask;
+            while self.table[slot] != EMPTY_SLOT {
+                slot = (slot + 1) & mask;
+            }
+            self.table[slot] = run as u32;
+        }
+    }
+
+    /// The stored impulses of a pair, if it had contacts last step.
+    pub fn find(&self, key: u64) -> &[StoredImpulse] {
+        if self.table.is_empty() {
+            return &[];
+        }
+        let mask = self.table.len() - 1;
+        let mut slot = crate::hash::mix64(key) as usize & mask;
+        loop {
+            let run = self.table[slot];
+            if run == EMPTY_SLOT {
+                return &[];
+            }
+            let (k, start, count) = self.runs[run as usize];
+            if k == key {
+                return &self.impulses[start as usize..(start + count) as usize];
+            }
+            slot = (slot + 1) & mask;
+        }
+    }
+}
+
+/// Key of a body pair from the handle indices of its bodies (`u32::MAX` for the room).
+#[inline]
+pub(crate) fn pair_key(handle_a: u32, handle_b: u32) -> u64 {
+    ((handle_a as u64) << 32) | handle_b as u64
+}

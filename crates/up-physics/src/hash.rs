@@ -1,0 +1,49 @@
+//! FNV-1a, 64-bit: the state hash and the warm-start lookup key hash.
+//! Chosen because it is tiny, fixed and identical on every platform.
+
+pub(crate) const FNV_OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
+const FNV_PRIME: u64 = 0x0000_0100_0000_01b3;
+
+/// Streaming FNV-1a over 32-bit words.
+#[derive(Clone, Copy)]
+pub(crate) struct Fnv1a(pub u64);
+
+impl Fnv1a {
+    pub fn new() -> Self {
+        Self(FNV_OFFSET)
+    }
+
+    #[inline]
+    pub fn write_u32(&mut self, x: u32) {
+        for byte in x.to_le_bytes() {
+            self.0 ^= byte as u64;
+            self.0 = self.0.wrapping_mul(FNV_PRIME);
+        }
+    }
+
+    #[inline]
+    pub fn write_f32(&mut self, x: f32) {
+        self.write_u32(x.to_bits());
+    }
+
+    pub fn write_bytes(&mut self, bytes: &[u8]) {
+        for &byte in bytes {
+            self.0 ^= byte as u64;
+            self.0 = self.0.wrapping_mul(FNV_PRIME);
+        }
+    }
+
+    pub fn finish(self) -> u64 {
+        self.0
+    }
+}
+
+/// A quick, deterministic mix of a 64-bit key, for open-addressing tables.
+#[inline]
+pub(crate) fn mix64(mut x: u64) -> u64 {
+    x ^= x >> 33;
+    x = x.wrapping_mul(0xff51_afd7_ed55_8ccd);
+    x ^= x >> 33;
+    x = x.wrapping_mul(0xc4ce_b9fe_1a85_ec53);
+    x ^ (x >> 33)
+}

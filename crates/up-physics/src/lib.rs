@@ -1,0 +1,28 @@
+//! UP's physics world: rigid balloons made of sphere trees, a static
+//! triangle-mesh room, a substepped soft contact solver with friction and
+//! restitution, and the forces of air (buoyancy, drag, added mass).
+//!
+//! Conventions, stated once: SI units (m, kg, s, N), right-handed, Y up.
+//! Deterministic: the same inputs give bit-identical states on every run and
+//! on every platform (no fast-math, libm for transcendental functions, no
+//! hash-map iteration on the step's path).
+
+mod body;
+mod broad_phase;
+mod contact;
+mod counters;
+pub mod forces;
+mod grab;
+mod hash;
+mod narrow_phase;
+mod sleep;
+mod snapshot;
+mod solver;
+mod world;
+
+pub use body::{BalloonShape, BodyDef, BodyId, ShapeId};
+pub use counters::Counters;
+pub use forces::atmosphere::Atmosphere;
+pub use snapshot::SnapshotError;
+pub use up_geom;
+pub use world::{PhysicsError, StepStats, World, WorldDef};

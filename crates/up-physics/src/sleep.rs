@@ -1,0 +1,69 @@
+//! Sleeping: a settled group of touching balloons stops costing anything.
+//!
+//! Each step, awake bodies that touch are joined into islands (union-find
+//! over touching contacts). When every body of an island has been slow for
+//! `time_to_sleep`, the island sleeps together and is remembered as a group.
+//! An awake body touching a sleeping one wakes that body's whole group, and
+//! so does the user (an impulse, a grab, a removal next door).
+
+use serde::{Deserialize, Serialize};
+
+use crate::body::BodyId;
+
+/// Union-find over dense body indices; reused buffers.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct UnionFind {
+    parent: Vec<u32>,
+}
+
+impl UnionFind {
+    pub fn reset(&mut self, n: usize) {
+        self.parent.clear();
+        self.parent.extend(0..n as u32);
+    }
+
+    pub fn find(&mut self, mut x: u32) -> u32 {
+        while self.parent[x as usize] != x {
+            let grand = self.parent[self.parent[x as usize] as usize];
+            self.parent[x as usize] = grand;
+            x = grand;
+        }
+        x
+    }
+
+    /// Joins two sets; the smaller root wins, so the result is order-independent.
+    pub fn union(&mut self, a: u32, b: u32) {
+        let (ra, rb) = (self.find(a), self.find(b));
+        if ra != rb {
+            let (lo, hi) = (ra.min(rb), ra.max(rb));
+            self.parent[hi as usize] = lo;
+        }
+    }
+}
+
+/// The groups of bodies asleep together.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+pub(crate) struct SleepingIslands {
+    /// Island index → its bodies (empty when the slot is free).
+    pub members: Vec<Vec<BodyId>>,
+    pub free: Vec<u32>,
+}
+
+impl SleepingIslands {
+    pub fn add(&mut self, bodies: Vec<BodyId>) -> u32 {
+        if let Some(slot) = self.free.pop() {
+            self.members[slot as usize] = bodies;
+            slot
+        } else {
+            self.members.push(bodies);
+            self.members.len() as u32 - 1
+        }
+    }
+
+    /// Empties an island and returns its bodies.
+    pub fn take(&mut self, island: u32) -> Vec<BodyId> {
+        let bodies = std::mem::take(&mut self.members[island as usize]);
+        self.free.push(island);
+        bodies
+    }
+}

@@ -1,0 +1,217 @@
+//! Contact constraints: prepare, warm start, solve (with and without bias),
+//! restitution, and storing impulses for the next step.
+//!
+//! Each contact point holds a non-penetration row along the normal and two
+//! friction rows along tangents, clamped to the Coulomb disk μ·λn. Anchors
+//! are fixed at the start of the step; the current separation is updated
+//! from the bodies' motion since then (Box2D v3), so substeps never rerun
+//! collision detection.
+
+use glam::Vec3;
+
+use super::body_state::BodyState;
+use super::softness::Softness;
+use crate::contact::{ContactPoint, StoredImpulse};
+
+/// 136 bytes.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ContactConstraint {
+    /// Solver state indices (the room is the last, static state).
+    pub a: u32,
+    pub b: u32,
+    pub normal: Vec3,
+    pub tangent: [Vec3; 2],
+    /// Anchors from each centre of mass, world frame, at step start.
+    pub r_a: Vec3,
+    pub r_b: Vec3,
+    /// Separation minus the anchors' offset along the normal, m.
+    pub adjusted_separation: f32,
+    pub normal_mass: f32,
+    pub tangent_mass: [f32; 2],
+    pub normal_impulse: f32,
+    pub tangent_impulse: [f32; 2],
+    pub max_normal_impulse: f32,
+    /// Normal relative velocity before solving, m/s (for restitution).
+    pub relative_velocity: f32,
+    pub friction: f32,
+    pub restitution: f32,
+    pub feature: u64,
+}
+
+/// A right-handed orthonormal basis around `n`, the same on every platform.
+#[inline]
+pub(crate) fn tangents(n: Vec3) -> [Vec3; 2] {
+    // Pick the axis least aligned with n (Frisvad-style branch, no transcendental).
+    let t1 = if n.x.abs() < 0.57735 { Vec3::new(0.0, n.z, -n.y) } else { Vec3::new(n.y, -n.x, 0.0) };
+    let t1 = t1.normalize();
+    [t1, n.cross(t1)]
+}
+
+#[inline]
+fn effective_mass(a: &BodyState, b: &BodyState, r_a: Vec3, r_b: Vec3, axis: Vec3) -> f32 {
+    let ra_x = r_a.cross(axis);
+    let rb_x = r_b.cross(axis);
+    let k = a.inv_mass + b.inv_mass + ra_x.dot(a.inv_inertia * ra_x) + rb_x.dot(b.inv_inertia * rb_x);
+    if k > 0.0 {
+        1.0 / k
+    } else {
+        0.0
+    }
+}
+
+/// Builds a constraint, warm-started from `previous` when the same feature touched last step.
+pub(crate) fn prepare(
+    c: &ContactPoint,
+    a: u32,
+    b: u32,
+    states: &[BodyState],
+    centers: (Vec3, Vec3),
+    material: (f32, f32),
+    previous: &[StoredImpulse],
+) -> ContactConstraint {
+    let (sa, sb) = (&states[a as usize], &states[b as usize]);
+    let n = c.normal;
+    let tangent = tangents(n);
+    let r_a = c.point_a - centers.0;
+    let r_b = c.point_b - centers.1;
+    let mut normal_impulse = 0.0;
+    let mut tangent_impulse = [0.0; 2];
+    if let Some(p) = previous.iter().find(|p| p.feature == c.feature) {
+        normal_impulse = p.normal;
+        tangent_impulse = [p.tangent.dot(tangent[0]), p.tangent.dot(tangent[1])];
+    }
+    let dv = sb.point_velocity(r_b) - sa.point_velocity(r_a);
+    ContactConstraint {
+        a,
+        b,
+        normal: n,
+        tangent,
+        r_a,
+        r_b,
+        adjusted_separation: c.separation - (r_b - r_a).dot(n),
+        normal_mass: effective_mass(sa, sb, r_a, r_b, n),
+        tangent_mass: [
+            effective_mass(sa, sb, r_a, r_b, tangent[0]),
+            effective_mass(sa, sb, r_a, r_b, tangent[1]),
+        ],
+        normal_impulse,
+        tangent_impulse,
+        max_normal_impulse: 0.0,
+        relative_velocity: dv.dot(n),
+        friction: material.0,
+        restitution: material.1,
+        feature: c.feature,
+    }
+}
+
+#[inline]
+fn pair_mut(states: &mut [BodyState], a: u32, b: u32) -> (&mut BodyState, &mut BodyState) {
+    let (a, b) = (a as usize, b as usize);
+    debug_assert_ne!(a, b);
+    if a < b {
+        let (lo, hi) = states.split_at_mut(b);
+        (&mut lo[a], &mut hi[0])
+    } else {
+        let (lo, hi) = states.split_at_mut(a);
+        (&mut hi[0], &mut lo[b])
+    }
+}
+
+pub(crate) fn warm_start(constraints: &[ContactConstraint], states: &mut [BodyState]) {
+    for c in constraints {
+        let (sa, sb) = pair_mut(states, c.a, c.b);
+        let p = c.normal_impulse * c.normal
+            + c.tangent_impulse[0] * c.tangent[0]
+            + c.tangent_impulse[1] * c.tangent[1];
+        sa.apply_impulse(-p, c.r_a);
+        sb.apply_impulse(p, c.r_b);
+    }
+}
+
+/// One Gauss-Seidel pass. With `use_bias` overlap is pushed out softly;
+/// without it (the relax pass) only the velocity constraint remains.
+pub(crate) fn solve(
+    constraints: &mut [ContactConstraint],
+    states: &mut [BodyState],
+    soft: Softness,
+    inv_h: f32,
+    max_push_out: f32,
+    use_bias: bool,
+) {
+    for c in constraints.iter_mut() {
+        let (sa, sb) = pair_mut(states, c.a, c.b);
+
+        // Current separation from the motion since the step began.
+        let d = (sb.dp - sa.dp) + (sb.dq * c.r_b - sa.dq * c.r_a);
+        let s = d.dot(c.normal) + c.adjusted_separation;
+
+        let (bias, mass_scale, impulse_scale) = if s > 0.0 {
+            (s * inv_h, 1.0, 0.0) // speculative: close the gap, no more
+        } else if use_bias {
+            ((soft.bias_rate * s).max(-max_push_out), soft.mass_scale, soft.impulse_scale)
+        } else {
+            (0.0, 1.0, 0.0)
+        };
+
+        let vn = (sb.point_velocity(c.r_b) - sa.point_velocity(c.r_a)).dot(c.normal);
+        let impulse = -c.normal_mass * mass_scale * (vn + bias) - impulse_scale * c.normal_impulse;
+        let total = (c.normal_impulse + impulse).max(0.0);
+        let applied = total - c.normal_impulse;
+        c.normal_impulse = total;
+        c.max_normal_impulse = c.max_normal_impulse.max(applied);
+        let p = applied * c.normal;
+        sa.apply_impulse(-p, c.r_a);
+        sb.apply_impulse(p, c.r_b);
+
+        // Friction: both tangent rows, then clamp the pair to the Coulomb disk.
+        let dv = sb.point_velocity(c.r_b) - sa.point_velocity(c.r_a);
+        let old = c.tangent_impulse;
+        let mut new = [
+            old[0] - c.tangent_mass[0] * dv.dot(c.tangent[0]),
+            old[1] - c.tangent_mass[1] * dv.dot(c.tangent[1]),
+        ];
+        let limit = c.friction * c.normal_impulse;
+        let len_sq = new[0] * new[0] + new[1] * new[1];
+        if len_sq > limit * limit {
+            let scale = limit / len_sq.sqrt();
+            new = [new[0] * scale, new[1] * scale];
+        }
+        c.tangent_impulse = new;
+        let p = (new[0] - old[0]) * c.tangent[0] + (new[1] - old[1]) * c.tangent[1];
+        sa.apply_impulse(-p, c.r_a);
+        sb.apply_impulse(p, c.r_b);
+    }
+}
+
+/// Bounces: contacts that approached faster than `threshold` and pushed this
+/// step leave at `restitution` times their approach speed.
+pub(crate) fn apply_restitution(
+    constraints: &mut [ContactConstraint],
+    states: &mut [BodyState],
+    threshold: f32,
+) {
+    for c in constraints.iter_mut() {
+        if c.restitution == 0.0 || c.relative_velocity > -threshold || c.max_normal_impulse == 0.0 {
+            continue;
+        }
+        let (sa, sb) = pair_mut(states, c.a, c.b);
+        let vn = (sb.point_velocity(c.r_b) - sa.point_velocity(c.r_a)).dot(c.normal);
+        let impulse = -c.normal_mass * (vn + c.restitution * c.relative_velocity);
+        let total = (c.normal_impulse + impulse).max(0.0);
+        let applied = total - c.normal_impulse;
+        c.normal_impulse = total;
+        let p = applied * c.normal;
+        sa.apply_impulse(-p, c.r_a);
+        sb.apply_impulse(p, c.r_b);
+    }
+}
+
+/// What a constraint hands to the next step's warm start.
+#[inline]
+pub(crate) fn stored(c: &ContactConstraint) -> StoredImpulse {
+    StoredImpulse {
+        feature: c.feature,
+        normal: c.normal_impulse,
+        tangent: c.tangent_impulse[0] * c.tangent[0] + c.tangent_impulse[1] * c.tangent[1],
+    }
+}

@@ -1,0 +1,70 @@
+//! Integrating velocities under the air forces, once per substep.
+
+use glam::Vec3;
+
+use super::body_state::BodyState;
+use crate::forces::buoyancy::buoyancy_torque;
+use crate::forces::drag::drag_force;
+
+/// Per-body forces for one step, gathered at prepare time.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct BodyForces {
+    /// Gravity + buoyancy + the user's force, N (all constant over the step).
+    pub force: Vec3,
+    /// Buoyancy alone, N: it also turns the body, about the centre of buoyancy.
+    pub buoyancy: Vec3,
+    /// Centre of buoyancy from the centre of mass, body frame, m.
+    pub buoyancy_arm: Vec3,
+    /// The user's torque, N·m.
+    pub torque: Vec3,
+    /// ½·ρ·C_D·A, kg/m.
+    pub drag_factor: f32,
+}
+
+/// A soft spring pulling a point of one body toward a target (the mouse).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct GrabSpring {
+    pub state: u32,
+    /// Grabbed point from the centre of mass, body frame at the step start... rotated by dq.
+    pub anchor: Vec3,
+    /// World centre of mass at the step start.
+    pub center0: Vec3,
+    pub target: Vec3,
+    /// N/m and N·s/m, from the body's mass so any balloon follows alike.
+    pub stiffness: f32,
+    pub damping: f32,
+    pub max_force: f32,
+}
+
+/// v ← (v + h·F/m) / (1 + h·k|v|/m): drag taken implicitly, so that a balloon
+/// thrown at 30 m/s cannot overshoot, and the terminal velocity is exact.
+pub(crate) fn integrate_velocities(
+    states: &mut [BodyState],
+    forces: &[BodyForces],
+    awake: &[u32],
+    angular_damping: f32,
+    grab: Option<&GrabSpring>,
+    h: f32,
+) {
+    for &i in awake {
+        let s = &mut states[i as usize];
+        let f = &forces[i as usize];
+        let arm = s.q * f.buoyancy_arm;
+        let drag = drag_force(f.drag_factor, s.v);
+        let torque = f.torque + buoyancy_torque(arm, f.buoyancy) + arm.cross(drag);
+        let speed_damping = h * f.drag_factor * s.v.length() * s.inv_mass;
+        s.v = (s.v + h * s.inv_mass * f.force) / (1.0 + speed_damping);
+        s.w = (s.w + h * (s.inv_inertia * torque)) / (1.0 + h * angular_damping);
+    }
+    if let Some(g) = grab {
+        let s = &mut states[g.state as usize];
+        let r = s.dq * g.anchor;
+        let point = g.center0 + s.dp + r;
+        let mut force = g.stiffness * (g.target - point) - g.damping * s.point_velocity(r);
+        let len = force.length();
+        if len > g.max_force {
+            force *= g.max_force / len;
+        }
+        s.apply_impulse(h * force, r);
+    }
+}

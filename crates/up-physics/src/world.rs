@@ -1,0 +1,1065 @@
+//! The world: bodies, the static room, and `step()`.
+
+use glam::{Quat, Vec3};
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+use up_geom::query::toi_sphere_trimesh::toi_sphere_trimesh;
+use up_geom::{Pose, Sphere, TriMesh};
+
+use crate::body::{BalloonShape, Bodies, BodyDef, BodyId, HandleMap, ShapeData, ShapeId};
+use crate::broad_phase::BroadPhase;
+use crate::contact::{WarmStartCache, STATIC_BODY};
+use crate::counters::{Counters, Stopwatch};
+use crate::forces::atmosphere::Atmosphere;
+use crate::forces::buoyancy::buoyancy_force;
+use crate::forces::drag::{added_mass, drag_factor};
+use crate::forces::gravity::gravity_force;
+use crate::grab::{Grab, GRAB_DAMPING_RATIO, GRAB_HERTZ, GRAB_MAX_WEIGHTS};
+use crate::hash::Fnv1a;
+use crate::narrow_phase::{NarrowInput, NarrowPhase};
+use crate::sleep::{SleepingIslands, UnionFind};
+use crate::snapshot::{self, SnapshotError};
+use crate::solver::body_state::{world_inverse_inertia, BodyState};
+use crate::solver::contact_constraint;
+use crate::solver::integrate::{BodyForces, GrabSpring};
+use crate::solver::{SolveParams, Solver};
+
+/// Everything that defines a world, with documented defaults (`Default`).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct WorldDef {
+    /// m/s²; (0, −9.81, 0).
+    pub gravity: Vec3,
+    /// The room's air: densities for buoyancy, drag and added mass follow from it.
+    pub atmosphere: Atmosphere,
+    /// s per step; 1/60.
+    pub dt: f32,
+    /// Solver substeps per step; 4.
+    pub substeps: u32,
+    /// Contact stiffness, Hz; 30 (clamped to a quarter of the substep rate).
+    pub contact_hertz: f32,
+    /// Contact damping ratio, dimensionless; 10 (heavily damped, as Box2D and Rapier).
+    pub contact_damping_ratio: f32,
+    /// Fastest speed at which overlap is pushed apart, m/s; 1.
+    pub max_push_out: f32,
+    /// Coulomb friction coefficient, latex on latex and on walls; 0.5 (a guess: 0.3–0.8).
+    pub friction: f32,
+    /// Coefficient of restitution; 0.4 (a guess: 0.3–0.6).
+    pub restitution: f32,
+    /// Approach speed below which contacts do not bounce, m/s; 0.1.
+    pub restitution_threshold: f32,
+    /// Drag coefficient C_D; 0.95 (fits the measured ascent of pilot balloons).
+    pub drag_coefficient: f32,
+    /// Added-mass coefficient C_a; 0.5 (sphere).
+    pub added_mass_coefficient: f32,
+    /// Angular damping rate, 1/s; 2 (rotational air drag, tunable: see the physics reference).
+    pub angular_damping: f32,
+    /// Contacts are found this far before surfaces touch, m; 0.01.
+    pub speculative_distance: f32,
+    /// Whether settled balloons go to sleep; true.
+    pub enable_sleep: bool,
+    /// A body slower than this is a candidate for sleep, m/s; 0.005.
+    pub sleep_linear_speed: f32,
+    /// ... and turning slower than this, rad/s; 0.05.
+    pub sleep_angular_speed: f32,
+    /// Seconds a whole island must stay slow before it sleeps; 0.5.
+    pub time_to_sleep: f32,
+    /// Sweep fast bodies against the room with time of impact; true.
+    pub enable_continuous: bool,
+    /// The static room, one-sided, normals pointing into the room. `None`: free space.
+    pub room: Option<TriMesh>,
+}
+
+impl Default for WorldDef {
+    fn default() -> Self {
+        Self {
+            gravity: Vec3::new(0.0, -9.81, 0.0),
+            atmosphere: Atmosphere::default(),
+            dt: 1.0 / 60.0,
+            substeps: 4,
+            contact_hertz: 30.0,
+            contact_damping_ratio: 10.0,
+            max_push_out: 1.0,
+            friction: 0.5,
+            restitution: 0.4,
+            restitution_threshold: 0.1,
+            drag_coefficient: 0.95,
+            added_mass_coefficient: 0.5,
+            angular_damping: 2.0,
+            speculative_distance: 0.01,
+            enable_sleep: true,
+            sleep_linear_speed: 0.005,
+            sleep_angular_speed: 0.05,
+            time_to_sleep: 0.5,
+            enable_continuous: true,
+            room: None,
+        }
+    }
+}
+
+#[derive(Debug, Error, PartialEq)]
+pub enum PhysicsError {
+    #[error("invalid world parameter `{key}` = {value}: expected {expected}")]
+    BadParameter { key: &'static str, value: f32, expected: &'static str },
+    #[error("invalid balloon shape: {0}")]
+    BadShape(String),
+    #[error("unknown shape {0}")]
+    UnknownShape(u32),
+    #[error("body {0:?} does not exist (removed, or from another world)")]
+    StaleBody(BodyId),
+    #[error("non-finite {what}")]
+    NonFinite { what: &'static str },
+    #[error("the world is full: at most {0} bodies")]
+    Full(usize),
+}
+
+/// What the last step measured.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct StepStats {
+    /// Deepest overlap found by the last narrowphase (balloon–balloon or balloon–room), m.
+    pub max_penetration: f32,
+    pub pair_count: u32,
+    pub contact_count: u32,
+    pub awake_count: u32,
+}
+
+/// The most bodies a world holds (handles and buffers are sized by u32).
+pub const MAX_BODIES: usize = 4_000_000;
+
+/// Buffers rebuilt every step; never part of the state.
+#[derive(Clone, Debug, Default)]
+struct Scratch {
+    node_centers: Vec<Vec3>,
+    node_start: Vec<u32>,
+    bound_center: Vec<Vec3>,
+    bound_radius: Vec<f32>,
+    margin: Vec<f32>,
+    handle: Vec<u32>,
+    broad: BroadPhase,
+    narrow: NarrowPhase,
+    solver: Solver,
+    islands: UnionFind,
+    wake: Vec<u32>,
+}
+
+/// A world of balloons in a room. See the crate docs for conventions.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct World {
+    def: WorldDef,
+    shapes: Vec<ShapeData>,
+    bodies: Bodies,
+    handles: HandleMap,
+    warm: WarmStartCache,
+    sleeping: SleepingIslands,
+    grab: Option<Grab>,
+    time: f64,
+    step_count: u64,
+    stats: StepStats,
+    #[serde(skip)]
+    counters: Counters,
+    #[serde(skip)]
+    scratch: Scratch,
+}
+
+fn check(ok: bool, key: &'static str, value: f32, expected: &'static str) -> Result<(), PhysicsError> {
+    if ok && value.is_finite() {
+        Ok(())
+    } else {
+        Err(PhysicsError::BadParameter { key, value, expected })
+    }
+}
+
+impl WorldDef {
+    /// Checks every parameter against its accepted range.
+    pub fn validate(&self) -> Result<(), PhysicsError> {
+        if !self.gravity.is_finite() {
+            return Err(PhysicsError::NonFinite { what: "gravity" });
+        }
+        let a = &self.atmosphere;
+        check(a.temperature_k > 0.0, "atmosphere.temperature_k", a.temperature_k, "> 0 K")?;
+        check(a.pressure_pa > 0.0, "atmosphere.pressure_pa", a.pressure_pa, "> 0 Pa")?;
+        check(self.dt > 0.0 && self.dt <= 0.1, "dt", self.dt, "0 < dt ≤ 0.1 s")?;
+        let substeps = self.substeps as f32;
+        check((1..=64).contains(&self.substeps), "substeps", substeps, "1 to 64")?;
+        check(self.contact_hertz >= 0.0, "contact_hertz", self.contact_hertz, "≥ 0 Hz")?;
+        let zeta = self.contact_damping_ratio;
+        check(zeta >= 0.0, "contact_damping_ratio", zeta, "≥ 0")?;
+        check(self.max_push_out > 0.0, "max_push_out", self.max_push_out, "> 0 m/s")?;
+        check(self.friction >= 0.0, "friction", self.friction, "≥ 0")?;
+        let e = self.restitution;
+        check((0.0..=1.0).contains(&e), "restitution", e, "0 to 1")?;
+        let th = self.restitution_threshold;
+        check(th >= 0.0, "restitution_threshold", th, "≥ 0 m/s")?;
+        let cd = self.drag_coefficient;
+        check(cd >= 0.0, "drag_coefficient", cd, "≥ 0")?;
+        let ca = self.added_mass_coefficient;
+        check(ca >= 0.0, "added_mass_coefficient", ca, "≥ 0")?;
+        let ad = self.angular_damping;
+        check(ad >= 0.0, "angular_damping", ad, "≥ 0 1/s")?;
+        let sd = self.speculative_distance;
+        check(sd >= 0.0, "speculative_distance", sd, "≥ 0 m")?;
+        let sl = self.sleep_linear_speed;
+        check(sl >= 0.0, "sleep_linear_speed", sl, "≥ 0 m/s")?;
+        let sa = self.sleep_angular_speed;
+        check(sa >= 0.0, "sleep_angular_speed", sa, "≥ 0 rad/s")?;
+        let ts = self.time_to_sleep;
+        check(ts >= 0.0, "time_to_sleep", ts, "≥ 0 s")?;
+        Ok(())
+    }
+}
+
+impl World {
+    pub fn new(def: WorldDef) -> Result<World, PhysicsError> {
+        def.validate()?;
+        Ok(World {
+            def,
+            shapes: Vec::new(),
+            bodies: Bodies::default(),
+            handles: HandleMap::default(),
+            warm: WarmStartCache::default(),
+            sleeping: SleepingIslands::default(),
+            grab: None,
+            time: 0.0,
+            step_count: 0,
+            stats: StepStats::default(),
+            counters: Counters::default(),
+            scratch: Scratch::default(),
+        })
+    }
+
+    pub fn def(&self) -> &WorldDef {
+        &self.def
+    }
+
+    /// Registers a kind of balloon; its derived constants use this world's air.
+    pub fn add_shape(&mut self, shape: BalloonShape) -> Result<ShapeId, PhysicsError> {
+        let bad = |why: &str| Err(PhysicsError::BadShape(why.to_string()));
+        if !(shape.mass.is_finite() && shape.mass > 0.0) {
+            return bad("mass must be finite and > 0 kg");
+        }
+        if !(shape.volume.is_finite() && shape.volume >= 0.0) {
+            return bad("volume must be finite and ≥ 0 m³");
+        }
+        if !(shape.reference_area.is_finite() && shape.reference_area >= 0.0) {
+            return bad("reference_area must be finite and ≥ 0 m²");
+        }
+        if !(shape.center_of_mass.is_finite() && shape.center_of_buoyancy.is_finite()) {
+            return bad("centre of mass and centre of buoyancy must be finite");
+        }
+        let inertia = shape.inertia;
+        if !inertia.is_finite() || inertia.determinant() <= 0.0 {
+            return bad("inertia must be finite and positive definite");
+        }
+        let air = self.def.atmosphere.air_density();
+        let added_mass =
+            added_mass(self.def.added_mass_coefficient, air, shape.volume);
+        let tree = shape.tree.translated(-shape.center_of_mass);
+        let root = *tree.root();
+        let bound_radius = root.center.length() + root.radius;
+        let min_leaf_radius =
+            tree.leaf_spheres().map(|s| s.radius).fold(f32::INFINITY, f32::min);
+        let data = ShapeData {
+            inv_mass_translational: 1.0 / (shape.mass + added_mass),
+            inv_inertia_local: inertia.inverse(),
+            buoyancy_arm: shape.center_of_buoyancy - shape.center_of_mass,
+            bound_radius,
+            min_leaf_radius,
+            added_mass,
+            tree,
+            def: shape,
+        };
+        self.shapes.push(data);
+        Ok(ShapeId(self.shapes.len() as u32 - 1))
+    }
+
+    pub fn shape(&self, id: ShapeId) -> Option<&BalloonShape> {
+        self.shapes.get(id.0 as usize).map(|s| &s.def)
+    }
+
+    /// Added mass of a shape in this world's air, kg.
+    pub fn added_mass(&self, id: ShapeId) -> Option<f32> {
+        self.shapes.get(id.0 as usize).map(|s| s.added_mass)
+    }
+
+    pub fn add_body(&mut self, def: &BodyDef) -> Result<BodyId, PhysicsError> {
+        let shape = self
+            .shapes
+            .get(def.shape.0 as usize)
+            .ok_or(PhysicsError::UnknownShape(def.shape.0))?;
+        if !def.pose.position.is_finite() || !def.pose.rotation.is_finite() {
+            return Err(PhysicsError::NonFinite { what: "pose" });
+        }
+        if def.pose.rotation.length_squared() < 1e-6 {
+            return Err(PhysicsError::NonFinite { what: "rotation (zero quaternion)" });
+        }
+        if !def.linear_velocity.is_finite() || !def.angular_velocity.is_finite() {
+            return Err(PhysicsError::NonFinite { what: "velocity" });
+        }
+        if self.bodies.len() >= MAX_BODIES {
+            return Err(PhysicsError::Full(MAX_BODIES));
+        }
+        let rotation = def.pose.rotation.normalize();
+        let center = def.pose.position + rotation * shape.def.center_of_mass;
+        let dense = self.bodies.len() as u32;
+        let id = self.handles.allocate(dense);
+        self.bodies.push(
+            id,
+            def.shape.0,
+            def.user_data,
+            center,
+            rotation,
+            def.linear_velocity,
+            def.angular_velocity,
+        );
+        Ok(id)
+    }
+
+    pub fn remove_body(&mut self, id: BodyId) -> Result<(), PhysicsError> {
+        let i = self.dense(id)?;
+        // Whatever it held up must be free to move.
+        self.wake_neighbours_of(i);
+        if !self.bodies.awake[i] {
+            self.wake_island(self.bodies.island[i]);
+        }
+        if self.grab.is_some_and(|g| g.body == id) {
+            self.grab = None;
+        }
+        let last = self.bodies.len() - 1;
+        self.bodies.swap_remove(i);
+        self.handles.release(id);
+        if i != last {
+            let moved = self.bodies.id[i];
+            self.handles.set_dense(moved, i as u32);
+        }
+        Ok(())
+    }
+
+    fn dense(&self, id: BodyId) -> Result<usize, PhysicsError> {
+        self.handles.dense(id).ok_or(PhysicsError::StaleBody(id))
+    }
+
+    pub fn body_count(&self) -> usize {
+        self.bodies.len()
+    }
+
+    /// Handles in dense order (the order of `write_poses`).
+    pub fn body_ids(&self) -> &[BodyId] {
+        &self.bodies.id
+    }
+
+    pub fn contains(&self, id: BodyId) -> bool {
+        self.handles.dense(id).is_some()
+    }
+
+    /// Pose of the body frame (the mesh frame).
+    pub fn pose(&self, id: BodyId) -> Option<Pose> {
+        self.handles.dense(id).map(|i| self.pose_at(i))
+    }
+
+    fn pose_at(&self, i: usize) -> Pose {
+        let q = self.bodies.rotation[i];
+        let com = self.shapes[self.bodies.shape[i] as usize].def.center_of_mass;
+        Pose::new(self.bodies.center[i] - q * com, q)
+    }
+
+    /// All poses, dense order.
+    pub fn poses(&self) -> impl Iterator<Item = (BodyId, Pose)> + '_ {
+        (0..self.bodies.len()).map(|i| (self.bodies.id[i], self.pose_at(i)))
+    }
+
+    /// Writes x, y, z, qx, qy, qz, qw of each body frame, dense order, into
+    /// `out` (7 floats per body; extra bodies or room are left untouched).
+    pub fn write_poses(&self, out: &mut [f32]) {
+        for (i, chunk) in out.chunks_exact_mut(7).take(self.bodies.len()).enumerate() {
+            let p = self.pose_at(i);
+            chunk.copy_from_slice(&[
+                p.position.x,
+                p.position.y,
+                p.position.z,
+                p.rotation.x,
+                p.rotation.y,
+                p.rotation.z,
+                p.rotation.w,
+            ]);
+        }
+    }
+
+    pub fn center_of_mass(&self, id: BodyId) -> Option<Vec3> {
+        self.handles.dense(id).map(|i| self.bodies.center[i])
+    }
+
+    pub fn linear_velocity(&self, id: BodyId) -> Option<Vec3> {
+        self.handles.dense(id).map(|i| self.bodies.linear_velocity[i])
+    }
+
+    pub fn angular_velocity(&self, id: BodyId) -> Option<Vec3> {
+        self.handles.dense(id).map(|i| self.bodies.angular_velocity[i])
+    }
+
+    pub fn user_data(&self, id: BodyId) -> Option<u32> {
+        self.handles.dense(id).map(|i| self.bodies.user_data[i])
+    }
+
+    pub fn shape_of(&self, id: BodyId) -> Option<ShapeId> {
+        self.handles.dense(id).map(|i| ShapeId(self.bodies.shape[i]))
+    }
+
+    pub fn is_awake(&self, id: BodyId) -> Option<bool> {
+        self.handles.dense(id).map(|i| self.bodies.awake[i])
+    }
+
+    /// Mass used for momentum: body mass plus added mass, kg.
+    pub fn effective_mass(&self, id: BodyId) -> Option<f32> {
+        let i = self.handles.dense(id)?;
+        Some(1.0 / self.shapes[self.bodies.shape[i] as usize].inv_mass_translational)
+    }
+
+    /// World-frame inertia about the centre of mass, kg·m².
+    pub fn world_inertia(&self, id: BodyId) -> Option<glam::Mat3> {
+        let i = self.handles.dense(id)?;
+        let r = glam::Mat3::from_quat(self.bodies.rotation[i]);
+        let local = self.shapes[self.bodies.shape[i] as usize].def.inertia;
+        Some(r * local * r.transpose())
+    }
+
+    pub fn wake(&mut self, id: BodyId) -> Result<(), PhysicsError> {
+        let i = self.dense(id)?;
+        if !self.bodies.awake[i] {
+            self.wake_island(self.bodies.island[i]);
+        }
+        self.bodies.sleep_time[i] = 0.0;
+        Ok(())
+    }
+
+    pub fn set_velocity(&mut self, id: BodyId, linear: Vec3, angular: Vec3) -> Result<(), PhysicsError> {
+        if !linear.is_finite() || !angular.is_finite() {
+            return Err(PhysicsError::NonFinite { what: "velocity" });
+        }
+        self.wake(id)?;
+        let i = self.dense(id)?;
+        self.bodies.linear_velocity[i] = linear;
+        self.bodies.angular_velocity[i] = angular;
+        Ok(())
+    }
+
+    /// An instantaneous impulse (N·s) at a world point; wakes the body.
+    pub fn apply_impulse_at_point(&mut self, id: BodyId, impulse: Vec3, point: Vec3) -> Result<(), PhysicsError> {
+        if !impulse.is_finite() || !point.is_finite() {
+            return Err(PhysicsError::NonFinite { what: "impulse" });
+        }
+        self.wake(id)?;
+        let i = self.dense(id)?;
+        let shape = &self.shapes[self.bodies.shape[i] as usize];
+        let r = point - self.bodies.center[i];
+        let inv_inertia = world_inverse_inertia(self.bodies.rotation[i], shape.inv_inertia_local);
+        self.bodies.linear_velocity[i] += shape.inv_mass_translational * impulse;
+        self.bodies.angular_velocity[i] += inv_inertia * r.cross(impulse);
+        Ok(())
+    }
+
+    /// A force (N) at a world point, held for the next step only; wakes the body.
+    pub fn apply_force_at_point(&mut self, id: BodyId, force: Vec3, point: Vec3) -> Result<(), PhysicsError> {
+        if !force.is_finite() || !point.is_finite() {
+            return Err(PhysicsError::NonFinite { what: "force" });
+        }
+        self.wake(id)?;
+        let i = self.dense(id)?;
+        self.bodies.force[i] += force;
+        self.bodies.torque[i] += (point - self.bodies.center[i]).cross(force);
+        Ok(())
+    }
+
+    /// Starts dragging the body by a world point (the mouse); see `set_grab_target`.
+    pub fn grab(&mut self, id: BodyId, point: Vec3) -> Result<(), PhysicsError> {
+        if !point.is_finite() {
+            return Err(PhysicsError::NonFinite { what: "grab point" });
+        }
+        self.wake(id)?;
+        let i = self.dense(id)?;
+        let anchor = self.bodies.rotation[i].inverse() * (point - self.bodies.center[i]);
+        self.grab = Some(Grab { body: id, anchor, target: point });
+        Ok(())
+    }
+
+    /// Moves the point the grabbed body is pulled toward, m.
+    pub fn set_grab_target(&mut self, target: Vec3) -> Result<(), PhysicsError> {
+        if !target.is_finite() {
+            return Err(PhysicsError::NonFinite { what: "grab target" });
+        }
+        if let Some(g) = &mut self.grab {
+            g.target = target;
+        }
+        Ok(())
+    }
+
+    /// Lets go; the body keeps its velocity (a throw). Returns the body that was held.
+    pub fn release_grab(&mut self) -> Option<BodyId> {
+        self.grab.take().map(|g| g.body)
+    }
+
+    pub fn grabbed(&self) -> Option<BodyId> {
+        self.grab.map(|g| g.body)
+    }
+
+    /// Simulated seconds since the world was made.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    pub fn step_count(&self) -> u64 {
+        self.step_count
+    }
+
+    pub fn stats(&self) -> &StepStats {
+        &self.stats
+    }
+
+    pub fn counters(&self) -> &Counters {
+        &self.counters
+    }
+
+    pub fn room(&self) -> Option<&TriMesh> {
+        self.def.room.as_ref()
+    }
+
+    /// ½·m_eff·v² + ½·ωᵀ·I·ω summed over all bodies, J (added mass included: the air moves too).
+    pub fn kinetic_energy(&self) -> f32 {
+        (0..self.bodies.len())
+            .map(|i| {
+                let shape = &self.shapes[self.bodies.shape[i] as usize];
+                let v = self.bodies.linear_velocity[i];
+                let w = self.bodies.angular_velocity[i];
+                let r = glam::Mat3::from_quat(self.bodies.rotation[i]);
+                let inertia = r * shape.def.inertia * r.transpose();
+                0.5 * v.length_squared() / shape.inv_mass_translational + 0.5 * w.dot(inertia * w)
+            })
+            .sum()
+    }
+
+    /// A fresh narrowphase over the current state: the deepest overlap now, m.
+    pub fn max_penetration_now(&mut self) -> f32 {
+        self.place_bodies(true);
+        self.find_contacts(true);
+        self.scratch.narrow.max_penetration
+    }
+
+    /// FNV-1a over every body's handle, pose, velocity and sleep state, in dense order.
+    pub fn state_hash(&self) -> u64 {
+        let mut h = Fnv1a::new();
+        h.write_u32(self.bodies.len() as u32);
+        h.write_bytes(&self.step_count.to_le_bytes());
+        for i in 0..self.bodies.len() {
+            let b = &self.bodies;
+            h.write_u32(b.id[i].index);
+            h.write_u32(b.id[i].generation);
+            for v in [b.center[i], b.linear_velocity[i], b.angular_velocity[i]] {
+                h.write_f32(v.x);
+                h.write_f32(v.y);
+                h.write_f32(v.z);
+            }
+            let q = b.rotation[i];
+            for x in [q.x, q.y, q.z, q.w, b.sleep_time[i]] {
+                h.write_f32(x);
+            }
+            h.write_u32(b.awake[i] as u32);
+        }
+        h.finish()
+    }
+
+    /// The whole world as bytes; `World::restore` gives it back exactly.
+    pub fn snapshot(&self) -> Vec<u8> {
+        snapshot::encode(self)
+    }
+
+    pub fn restore(bytes: &[u8]) -> Result<World, SnapshotError> {
+        let mut world: World = snapshot::decode(bytes)?;
+        world.def.validate().map_err(|e| SnapshotError::Invalid(e.to_string()))?;
+        world.check_consistency().map_err(SnapshotError::Invalid)?;
+        world.warm.index();
+        Ok(world)
+    }
+
+    fn check_consistency(&self) -> Result<(), String> {
+        let n = self.bodies.len();
+        let b = &self.bodies;
+        let lens = [
+            b.shape.len(),
+            b.user_data.len(),
+            b.center.len(),
+            b.rotation.len(),
+            b.linear_velocity.len(),
+            b.angular_velocity.len(),
+            b.force.len(),
+            b.torque.len(),
+            b.sleep_time.len(),
+            b.awake.len(),
+            b.island.len(),
+        ];
+        if lens.iter().any(|&l| l != n) {
+            return Err("body arrays of different lengths".into());
+        }
+        for i in 0..n {
+            if b.shape[i] as usize >= self.shapes.len() {
+                return Err(format!("body {i} has unknown shape {}", b.shape[i]));
+            }
+            if self.handles.dense(b.id[i]) != Some(i) {
+                return Err(format!("body {i}: handle table does not point back"));
+            }
+            if !b.awake[i] && self.sleeping.members.get(b.island[i] as usize).is_none() {
+                return Err(format!("body {i} sleeps in a missing island"));
+            }
+        }
+        for (island, members) in self.sleeping.members.iter().enumerate() {
+            for &id in members {
+                let Some(i) = self.handles.dense(id) else {
+                    return Err(format!("island {island} holds a removed body"));
+                };
+                if b.awake[i] || b.island[i] as usize != island {
+                    return Err(format!("island {island} disagrees with body {i}"));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A fast body's core, swept against the room: this share of each leaf's radius.
+const CORE_FRACTION: f32 = 0.5;
+/// Bodies that moved more than this share of their smallest leaf radius in a step are swept.
+const FAST_FRACTION: f32 = 0.25;
+
+impl World {
+    /// Advances the world by `def.dt` seconds.
+    pub fn step(&mut self) {
+        let mut clock = Stopwatch::start();
+        let mut counters = Counters::default();
+
+        self.place_bodies(false);
+        self.find_pairs();
+        if self.wake_touched_islands() {
+            // Woken bodies need their own pairs and placements.
+            self.place_bodies(false);
+            self.find_pairs();
+        }
+        counters.broadphase_ms = clock.lap();
+
+        self.find_contacts(false);
+        counters.narrowphase_ms = clock.lap();
+
+        let grab = self.prepare_solver();
+        counters.prepare_ms = clock.lap();
+
+        let params = SolveParams {
+            dt: self.def.dt,
+            substeps: self.def.substeps,
+            contact_hertz: self.def.contact_hertz,
+            contact_damping_ratio: self.def.contact_damping_ratio,
+            max_push_out: self.def.max_push_out,
+            restitution_threshold: self.def.restitution_threshold,
+            angular_damping: self.def.angular_damping,
+        };
+        self.scratch.solver.solve(&params, grab.as_ref());
+        counters.solve_ms = clock.lap();
+
+        self.scratch.solver.restitution(params.restitution_threshold);
+        self.store_impulses();
+        self.finish_motion();
+        counters.restitution_ms = clock.lap();
+
+        if self.def.enable_continuous {
+            self.sweep_fast_bodies();
+        }
+        counters.continuous_ms = clock.lap();
+
+        self.update_sleep();
+        counters.sleep_ms = clock.lap();
+
+        self.time += self.def.dt as f64;
+        self.step_count += 1;
+        counters.total_ms = counters.broadphase_ms
+            + counters.narrowphase_ms
+            + counters.prepare_ms
+            + counters.solve_ms
+            + counters.restitution_ms
+            + counters.continuous_ms
+            + counters.sleep_ms;
+        self.counters = counters;
+    }
+
+    /// World centres of every node of every body, bounding spheres and speculative margins.
+    fn place_bodies(&mut self, at_rest: bool) {
+        let n = self.bodies.len();
+        let s = &mut self.scratch;
+        s.node_start.clear();
+        s.bound_center.clear();
+        s.bound_radius.clear();
+        s.margin.clear();
+        s.handle.clear();
+        let mut total = 0u32;
+        for i in 0..n {
+            s.node_start.push(total);
+            total += self.shapes[self.bodies.shape[i] as usize].tree.nodes().len() as u32;
+        }
+        s.node_centers.resize(total as usize, Vec3::ZERO);
+        let dt = self.def.dt;
+        for i in 0..n {
+            let shape = &self.shapes[self.bodies.shape[i] as usize];
+            let pose = Pose::new(self.bodies.center[i], self.bodies.rotation[i]);
+            let start = s.node_start[i] as usize;
+            let nodes = shape.tree.nodes().len();
+            shape.tree.place(&pose, &mut s.node_centers[start..start + nodes]);
+            let motion = if at_rest || !self.bodies.awake[i] {
+                0.0
+            } else {
+                (self.bodies.linear_velocity[i].length()
+                    + self.bodies.angular_velocity[i].length() * shape.bound_radius)
+                    * dt
+            };
+            let margin = self.def.speculative_distance + motion;
+            s.margin.push(margin);
+            s.bound_center.push(s.node_centers[start]);
+            s.bound_radius.push(shape.tree.root().radius + margin);
+            s.handle.push(self.bodies.id[i].index);
+        }
+    }
+
+    /// Cell radius: the largest root sphere plus its margin at a brisk ascent.
+    fn cell_radius(&self) -> f32 {
+        let largest = self.shapes.iter().map(|s| s.tree.root().radius).fold(0.0, f32::max);
+        largest + self.def.speculative_distance + 3.0 * self.def.dt
+    }
+
+    fn find_pairs(&mut self) {
+        let cell_radius = self.cell_radius();
+        let s = &mut self.scratch;
+        s.broad.update(&s.bound_center, &s.bound_radius, &self.bodies.awake, cell_radius);
+    }
+
+    /// Wakes every sleeping island that an awake body's bounding sphere reaches.
+    fn wake_touched_islands(&mut self) -> bool {
+        let mut woke = false;
+        let mut k = 0;
+        while k < self.scratch.broad.pairs.len() {
+            let (a, b) = self.scratch.broad.pairs[k];
+            k += 1;
+            let (a, b) = (a as usize, b as usize);
+            if self.bodies.awake[a] == self.bodies.awake[b] {
+                continue;
+            }
+            let (awake, asleep) = if self.bodies.awake[a] { (a, b) } else { (b, a) };
+            // Touching, not merely within the speculative margin: root spheres overlap.
+            let ra = self.shapes[self.bodies.shape[awake] as usize].tree.root().radius;
+            let rb = self.shapes[self.bodies.shape[asleep] as usize].tree.root().radius;
+            let d = self.scratch.bound_center[awake].distance(self.scratch.bound_center[asleep]);
+            if d < ra + rb && self.bodies.sleep_time[awake] < self.def.time_to_sleep {
+                self.wake_island(self.bodies.island[asleep]);
+                woke = true;
+            }
+        }
+        woke
+    }
+
+    fn wake_island(&mut self, island: u32) {
+        if island == u32::MAX || island as usize >= self.sleeping.members.len() {
+            return;
+        }
+        for id in self.sleeping.take(island) {
+            if let Some(i) = self.handles.dense(id) {
+                self.bodies.awake[i] = true;
+                self.bodies.island[i] = u32::MAX;
+                self.bodies.sleep_time[i] = 0.0;
+            }
+        }
+    }
+
+    /// Wakes the sleeping bodies whose bounding spheres touch body `i`'s.
+    fn wake_neighbours_of(&mut self, i: usize) {
+        let ri = self.shapes[self.bodies.shape[i] as usize].bound_radius;
+        let ci = self.bodies.center[i];
+        let reach = ri + self.def.speculative_distance;
+        let mut islands = std::mem::take(&mut self.scratch.wake);
+        islands.clear();
+        for j in 0..self.bodies.len() {
+            if j == i || self.bodies.awake[j] {
+                continue;
+            }
+            let rj = self.shapes[self.bodies.shape[j] as usize].bound_radius;
+            if self.bodies.center[j].distance(ci) <= reach + rj {
+                islands.push(self.bodies.island[j]);
+            }
+        }
+        for &island in &islands {
+            self.wake_island(island);
+        }
+        self.scratch.wake = islands;
+    }
+
+    fn find_contacts(&mut self, all: bool) {
+        let s = &mut self.scratch;
+        if all {
+            // Every pair, awake or not (a measurement, not a step).
+            let every = vec![true; self.bodies.len()];
+            s.broad.update(&s.bound_center, &s.bound_radius, &every, {
+                let largest = self.shapes.iter().map(|s| s.tree.root().radius).fold(0.0, f32::max);
+                largest + self.def.speculative_distance + 3.0 * self.def.dt
+            });
+            let input = NarrowInput {
+                shapes: &self.shapes,
+                shape: &self.bodies.shape,
+                node_centers: &s.node_centers,
+                node_start: &s.node_start,
+                handle: &s.handle,
+                awake: &every,
+                margin: &s.margin,
+            };
+            s.narrow.update(&input, &s.broad.pairs, self.def.room.as_ref());
+            return;
+        }
+        let input = NarrowInput {
+            shapes: &self.shapes,
+            shape: &self.bodies.shape,
+            node_centers: &s.node_centers,
+            node_start: &s.node_start,
+            handle: &s.handle,
+            awake: &self.bodies.awake,
+            margin: &s.margin,
+        };
+        s.narrow.update(&input, &s.broad.pairs, self.def.room.as_ref());
+        self.stats = StepStats {
+            max_penetration: s.narrow.max_penetration,
+            pair_count: s.broad.pairs.len() as u32,
+            contact_count: s.narrow.contacts.len() as u32,
+            awake_count: self.bodies.awake.iter().filter(|&&a| a).count() as u32,
+        };
+    }
+
+    /// Body states, forces and contact constraints for this step's solve.
+    fn prepare_solver(&mut self) -> Option<GrabSpring> {
+        let n = self.bodies.len();
+        let air = self.def.atmosphere.air_density();
+        let g = self.def.gravity;
+        let solver = &mut self.scratch.solver;
+        solver.states.clear();
+        solver.forces.clear();
+        solver.awake.clear();
+        for i in 0..n {
+            let shape = &self.shapes[self.bodies.shape[i] as usize];
+            if !self.bodies.awake[i] {
+                let mut st = BodyState::STATIC;
+                st.q = self.bodies.rotation[i];
+                solver.states.push(st);
+                solver.forces.push(BodyForces::default());
+                continue;
+            }
+            solver.awake.push(i as u32);
+            let q = self.bodies.rotation[i];
+            solver.states.push(BodyState {
+                v: self.bodies.linear_velocity[i],
+                w: self.bodies.angular_velocity[i],
+                dp: Vec3::ZERO,
+                dq: Quat::IDENTITY,
+                q,
+                inv_mass: shape.inv_mass_translational,
+                inv_inertia: world_inverse_inertia(q, shape.inv_inertia_local),
+            });
+            let buoyancy = buoyancy_force(air, shape.def.volume, g);
+            solver.forces.push(BodyForces {
+                force: gravity_force(shape.def.mass, g) + buoyancy + self.bodies.force[i],
+                buoyancy,
+                buoyancy_arm: shape.buoyancy_arm,
+                torque: self.bodies.torque[i],
+                drag_factor: drag_factor(air, self.def.drag_coefficient, shape.def.reference_area),
+            });
+        }
+        // The room: one static state after the bodies.
+        solver.states.push(BodyState::STATIC);
+        let room_state = n as u32;
+
+        solver.constraints.clear();
+        let narrow = &self.scratch.narrow;
+        let material = (self.def.friction, self.def.restitution);
+        for &(key, start, count) in &narrow.runs {
+            let previous = self.warm.find(key);
+            for c in &narrow.contacts[start as usize..(start + count) as usize] {
+                let a = c.body_a;
+                let b = if c.body_b == STATIC_BODY { room_state } else { c.body_b };
+                let center_b =
+                    if c.body_b == STATIC_BODY { c.point_b } else { self.bodies.center[b as usize] };
+                solver.constraints.push(contact_constraint::prepare(
+                    c,
+                    a,
+                    b,
+                    &solver.states,
+                    (self.bodies.center[a as usize], center_b),
+                    material,
+                    previous,
+                ));
+            }
+        }
+
+        let grab = self.grab?;
+        let i = self.handles.dense(grab.body)?;
+        if !self.bodies.awake[i] {
+            return None;
+        }
+        let shape = &self.shapes[self.bodies.shape[i] as usize];
+        let mass = 1.0 / shape.inv_mass_translational;
+        let omega = 2.0 * std::f32::consts::PI * GRAB_HERTZ;
+        Some(GrabSpring {
+            state: i as u32,
+            anchor: self.bodies.rotation[i] * grab.anchor,
+            center0: self.bodies.center[i],
+            target: grab.target,
+            stiffness: mass * omega * omega,
+            damping: 2.0 * mass * GRAB_DAMPING_RATIO * omega,
+            max_force: GRAB_MAX_WEIGHTS * shape.def.mass * g.length(),
+        })
+    }
+
+    fn store_impulses(&mut self) {
+        self.warm.clear();
+        let narrow = &self.scratch.narrow;
+        let constraints = &self.scratch.solver.constraints;
+        for &(key, start, count) in &narrow.runs {
+            self.warm.runs.push((key, self.warm.impulses.len() as u32, count));
+            for c in &constraints[start as usize..(start + count) as usize] {
+                self.warm.impulses.push(contact_constraint::stored(c));
+            }
+        }
+        self.warm.index();
+    }
+
+    /// Copies the solver's results back to the bodies; clears held forces.
+    fn finish_motion(&mut self) {
+        let solver = &self.scratch.solver;
+        for &i in &solver.awake {
+            let i = i as usize;
+            let s = &solver.states[i];
+            self.bodies.center[i] += s.dp;
+            self.bodies.rotation[i] = s.q;
+            self.bodies.linear_velocity[i] = s.v;
+            self.bodies.angular_velocity[i] = s.w;
+        }
+        for f in self.bodies.force.iter_mut().chain(self.bodies.torque.iter_mut()) {
+            *f = Vec3::ZERO;
+        }
+    }
+
+    /// Continuous collision against the room: a body that moved far this step
+    /// has the core of each leaf swept along its path; on a hit it is moved
+    /// back to the time of impact and loses its velocity into the wall.
+    fn sweep_fast_bodies(&mut self) {
+        let Some(room) = self.def.room.as_ref() else { return };
+        let solver = &self.scratch.solver;
+        for &i in &solver.awake {
+            let i = i as usize;
+            let s = &solver.states[i];
+            let shape = &self.shapes[self.bodies.shape[i] as usize];
+            let moved = s.dp.length() + s.w.length() * shape.bound_radius * self.def.dt;
+            if moved <= FAST_FRACTION * shape.min_leaf_radius {
+                continue;
+            }
+            let end = self.bodies.center[i];
+            let begin = end - s.dp;
+            let q0 = (s.dq.inverse() * s.q).normalize();
+            let mut earliest: Option<(f32, Vec3)> = None;
+            for leaf in shape.tree.leaf_spheres() {
+                let from = begin + q0 * leaf.center;
+                let to = end + s.q * leaf.center;
+                let core = Sphere::new(from, leaf.radius * CORE_FRACTION);
+                if let Some((t, _, normal)) = toi_sphere_trimesh(core, to - from, room) {
+                    if earliest.is_none_or(|(te, _)| t < te) {
+                        earliest = Some((t, normal));
+                    }
+                }
+            }
+            if let Some((t, normal)) = earliest {
+                self.bodies.center[i] = begin + t * s.dp;
+                self.bodies.rotation[i] = q0.lerp(s.q, t).normalize();
+                let v = self.bodies.linear_velocity[i];
+                let into = v.dot(normal);
+                if into > 0.0 {
+                    self.bodies.linear_velocity[i] = v - (1.0 + self.def.restitution) * into * normal;
+                }
+            }
+        }
+    }
+
+    /// Sleep timers, islands of touching awake bodies, and islands falling asleep.
+    fn update_sleep(&mut self) {
+        let n = self.bodies.len();
+        let dt = self.def.dt;
+        let grabbed = self.grab.and_then(|g| self.handles.dense(g.body));
+        for i in 0..n {
+            if !self.bodies.awake[i] {
+                continue;
+            }
+            let slow = self.bodies.linear_velocity[i].length() < self.def.sleep_linear_speed
+                && self.bodies.angular_velocity[i].length() < self.def.sleep_angular_speed;
+            if slow && grabbed != Some(i) {
+                self.bodies.sleep_time[i] += dt;
+            } else {
+                self.bodies.sleep_time[i] = 0.0;
+            }
+        }
+        if !self.def.enable_sleep {
+            return;
+        }
+        let s = &mut self.scratch;
+        s.islands.reset(n);
+        for c in &s.narrow.contacts {
+            let (a, b) = (c.body_a as usize, c.body_b as usize);
+            if c.body_b != STATIC_BODY
+                && c.separation < self.def.speculative_distance
+                && self.bodies.awake[a]
+                && self.bodies.awake[b]
+            {
+                s.islands.union(c.body_a, c.body_b);
+            }
+        }
+        // Each island's least-rested body decides, held at the island's root.
+        let mut min_rest = std::mem::take(&mut s.margin);
+        min_rest.clear();
+        min_rest.resize(n, f32::INFINITY);
+        for i in 0..n {
+            if self.bodies.awake[i] {
+                let root = s.islands.find(i as u32) as usize;
+                min_rest[root] = min_rest[root].min(self.bodies.sleep_time[i]);
+            }
+        }
+        let mut roots_to_sleep = std::mem::take(&mut s.wake);
+        roots_to_sleep.clear();
+        for i in 0..n {
+            if self.bodies.awake[i]
+                && s.islands.find(i as u32) as usize == i
+                && min_rest[i] >= self.def.time_to_sleep
+            {
+                roots_to_sleep.push(i as u32);
+            }
+        }
+        if !roots_to_sleep.is_empty() {
+            // One pass: each sleeping root gets an island, each member joins its root's.
+            let mut island_of_root = std::mem::take(&mut s.handle);
+            island_of_root.clear();
+            island_of_root.resize(n, u32::MAX);
+            for &root in &roots_to_sleep {
+                island_of_root[root as usize] = self.sleeping.add(Vec::new());
+            }
+            for i in 0..n {
+                if !self.bodies.awake[i] {
+                    continue;
+                }
+                let island = island_of_root[s.islands.find(i as u32) as usize];
+                if island != u32::MAX {
+                    self.sleeping.members[island as usize].push(self.bodies.id[i]);
+                    self.bodies.awake[i] = false;
+                    self.bodies.island[i] = island;
+                    self.bodies.linear_velocity[i] = Vec3::ZERO;
+                    self.bodies.angular_velocity[i] = Vec3::ZERO;
+                }
+            }
+            s.handle = island_of_root;
+        }
+        s.margin = min_rest;
+        s.wake = roots_to_sleep;
+    }
+}

@@ -1,0 +1,15 @@
+//! Scenes for UP: the balloon model (procedural mesh, fitted sphere tree, mass
+//! properties), the room, and scene files (TOML or JSON) built into a `World`.
+//!
+//! SI units, Y up, origin at the centre of the floor.
+
+// The balloon and the room.
+pub mod balloon;
+pub mod balloon_mesh;
+pub mod obj;
+pub mod room;
+
+// Scene files and building a world from them.
+pub mod build;
+pub mod error;
+pub mod scene;
