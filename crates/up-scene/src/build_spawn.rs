@@ -1,0 +1,287 @@
+//! Where balloons start: spread out on a jittered grid, never overlapping.
+//!
+//! Each balloon is reduced to its bounding sphere (radius `r`), which any
+//! rotation leaves inside a cube of side `2r`. A grid cell is at least that
+//! cube plus a small gap, so balloons in different cells never touch. A layer
+//! of cells lies over the region's x–z footprint; the coarsest grid that still
+//! holds the layer's share of balloons is used, so a few balloons spread over
+//! the whole floor instead of huddling in a corner. Cells are jittered within
+//! their slack, and chosen by a seeded shuffle when there are more than needed.
+//! A cell is usable when its eight corners and centre are inside the room and
+//! it overlaps no balloon placed before (other groups). Layers that fill up
+//! stack upward until the top of the room.
+
+use std::collections::HashMap;
+
+use glam::Vec3;
+
+use super::rng::SplitMix64;
+
+/// Gap between neighbouring balloons' bounding cubes: 5 % of the diameter plus 5 mm.
+fn cell_size(radius: f32) -> f32 {
+    2.0 * radius * 1.05 + 0.005
+}
+
+/// Where one group goes.
+#[derive(Clone, Copy, Debug)]
+pub struct SpawnRegion {
+    /// Lower corner: x–z footprint start, and the bottom of the first layer, m.
+    pub min: Vec3,
+    /// Upper corner: x–z footprint end; layers below `max.y` share the balloons
+    /// evenly, further layers stack above it, m.
+    pub max: Vec3,
+    /// No layer may reach above this, m (the top of the room).
+    pub top: f32,
+}
+
+/// Bounding spheres already placed, bucketed for overlap queries (lookups only:
+/// the map's iteration order never affects the result).
+#[derive(Default)]
+pub struct Occupancy {
+    spheres: Vec<(Vec3, f32)>,
+    buckets: HashMap<(i32, i32, i32), Vec<u32>>,
+}
+
+/// Bucket edge, m.
+const BUCKET: f32 = 1.0;
+
+fn bucket_range(min: Vec3, max: Vec3) -> impl Iterator<Item = (i32, i32, i32)> {
+    let lo = (min / BUCKET).floor().as_ivec3();
+    let hi = (max / BUCKET).floor().as_ivec3();
+    (lo.x..=hi.x).flat_map(move |x| {
+        (lo.y..=hi.y).flat_map(move |y| (lo.z..=hi.z).map(move |z| (x, y, z)))
+    })
+}
+
+impl Occupancy {
+    pub fn insert(&mut self, center: Vec3, radius: f32) {
+        let index = self.spheres.len() as u32;
+        self.spheres.push((center, radius));
+        for key in bucket_range(center - Vec3::splat(radius), center + Vec3::splat(radius)) {
+            self.buckets.entry(key).or_default().push(index);
+        }
+    }
+
+    /// Whether the box overlaps any placed sphere's bounding box.
+    fn overlaps_box(&self, min: Vec3, max: Vec3) -> bool {
+        bucket_range(min, max).any(|key| {
+            self.buckets.get(&key).is_some_and(|list| {
+                list.iter().any(|&i| {
+                    let (c, r) = self.spheres[i as usize];
+                    (c + Vec3::splat(r)).cmpgt(min).all() && (c - Vec3::splat(r)).cmplt(max).all()
+                })
+            })
+        })
+    }
+}
+
+/// A grid over the footprint: `nx × nz` cells of `cell_x × cell_z`.
+#[derive(Clone, Copy, Debug)]
+struct Grid {
+    nx: usize,
+    nz: usize,
+    cell_x: f32,
+    cell_z: f32,
+}
+
+/// Places up to `count` bounding spheres of `radius`; returns their centres
+/// (fewer than `count` when the room is full). `inside` says whether a point
+/// is inside the room.
+pub fn place_spheres(
+    count: usize,
+    radius: f32,
+    region: &SpawnRegion,
+    inside: &dyn Fn(Vec3) -> bool,
+    occupied: &mut Occupancy,
+    rng: &mut SplitMix64,
+) -> Vec<Vec3> {
+    let mut placed = Vec::with_capacity(count);
+    let c = cell_size(radius);
+    let (width, depth) = (region.max.x - region.min.x, region.max.z - region.min.z);
+    let (fine_nx, fine_nz) = ((width / c).floor() as usize, (depth / c).floor() as usize);
+    if fine_nx == 0 || fine_nz == 0 || count == 0 {
+        return placed;
+    }
+    let region_layers = (((region.max.y - region.min.y) / c).floor() as usize).max(1);
+    let fine = Grid { nx: fine_nx, nz: fine_nz, cell_x: width / fine_nx as f32, cell_z: depth / fine_nz as f32 };
+    let mut layer = 0usize;
+    loop {
+        let bottom = region.min.y + layer as f32 * c;
+        let remaining = count - placed.len();
+        if remaining == 0 || bottom + c > region.top {
+            break;
+        }
+        // Layers inside the region share what is left evenly; above it, fill.
+        let target = if layer < region_layers {
+            remaining.div_ceil(region_layers - layer)
+        } else {
+            remaining
+        };
+        let usable = |grid: &Grid| usable_cells(grid, region, bottom, c, inside, occupied);
+        let mut chosen: Option<(Grid, Vec<usize>)> = None;
+        if target < fine.nx * fine.nz {
+            for grid in coarse_grids(target, width, depth, c) {
+                let cells = usable(&grid);
+                if cells.len() >= target {
+                    chosen = Some((grid, cells));
+                    break;
+                }
+            }
+        }
+        let (grid, mut cells) = chosen.unwrap_or_else(|| (fine, usable(&fine)));
+        if cells.len() > target {
+            rng.shuffle(&mut cells);
+            cells.truncate(target);
+            cells.sort_unstable();
+        }
+        for cell in cells {
+            let (ix, iz) = (cell % grid.nx, cell / grid.nx);
+            let slack_x = (grid.cell_x - 2.0 * radius) * 0.5;
+            let slack_z = (grid.cell_z - 2.0 * radius) * 0.5;
+            let center = Vec3::new(
+                region.min.x + (ix as f32 + 0.5) * grid.cell_x + rng.range(-slack_x, slack_x) * 0.9,
+                bottom + 0.5 * c,
+                region.min.z + (iz as f32 + 0.5) * grid.cell_z + rng.range(-slack_z, slack_z) * 0.9,
+            );
+            occupied.insert(center, radius);
+            placed.push(center);
+        }
+        layer += 1;
+    }
+    placed
+}
+
+/// Grids that hold at least `target` cells, coarsest (largest cells) first.
+fn coarse_grids(target: usize, width: f32, depth: f32, c: f32) -> Vec<Grid> {
+    let max_nx = (width / c).floor() as usize;
+    let max_nz = (depth / c).floor() as usize;
+    let mut grids: Vec<Grid> = (1..=max_nx)
+        .filter_map(|nx| {
+            let nz = target.div_ceil(nx).max(1);
+            (nz <= max_nz).then(|| Grid {
+                nx,
+                nz,
+                cell_x: width / nx as f32,
+                cell_z: depth / nz as f32,
+            })
+        })
+        .collect();
+    // Largest smallest side first; ties keep the order of nx (stable sort).
+    grids.sort_by(|a, b| b.cell_x.min(b.cell_z).total_cmp(&a.cell_x.min(a.cell_z)));
+    grids
+}
+
+/// Indices (`ix + iz·nx`) of the cells of one layer that are inside the room and free.
+fn usable_cells(
+    grid: &Grid,
+    region: &SpawnRegion,
+    bottom: f32,
+    c: f32,
+    inside: &dyn Fn(Vec3) -> bool,
+    occupied: &Occupancy,
+) -> Vec<usize> {
+    let mut cells = Vec::new();
+    for iz in 0..grid.nz {
+        for ix in 0..grid.nx {
+            let min = Vec3::new(
+                region.min.x + ix as f32 * grid.cell_x,
+                bottom,
+                region.min.z + iz as f32 * grid.cell_z,
+            );
+            let max = min + Vec3::new(grid.cell_x, c, grid.cell_z);
+            let corners_inside = (0..8).all(|k| {
+                let pick = |bit: usize, lo: f32, hi: f32| if k & bit == 0 { lo } else { hi };
+                inside(Vec3::new(pick(1, min.x, max.x), pick(2, min.y, max.y), pick(4, min.z, max.z)))
+            });
+            if corners_inside && inside((min + max) * 0.5) && !occupied.overlaps_box(min, max) {
+                cells.push(ix + iz * grid.nx);
+            }
+        }
+    }
+    cells
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn box_inside(half: Vec3, height: f32) -> impl Fn(Vec3) -> bool {
+        move |p: Vec3| p.x.abs() <= half.x && p.z.abs() <= half.z && p.y >= 0.0 && p.y <= height
+    }
+
+    fn floor_region(half: f32, top: f32) -> SpawnRegion {
+        SpawnRegion {
+            min: Vec3::new(-half, 0.01, -half),
+            max: Vec3::new(half, 0.01, half),
+            top,
+        }
+    }
+
+    fn assert_apart(centres: &[Vec3], radius: f32) {
+        for (i, a) in centres.iter().enumerate() {
+            for b in &centres[i + 1..] {
+                assert!(a.distance(*b) > 2.0 * radius, "{a} and {b} overlap");
+            }
+        }
+    }
+
+    #[test]
+    fn fifty_balloons_spread_over_the_floor_without_overlap() {
+        let inside = box_inside(Vec3::new(3.0, 0.0, 3.0), 3.0);
+        let mut occ = Occupancy::default();
+        let mut rng = SplitMix64::new(1);
+        let r = 0.2;
+        let c = place_spheres(50, r, &floor_region(2.99, 3.0), &inside, &mut occ, &mut rng);
+        assert_eq!(c.len(), 50);
+        assert_apart(&c, r);
+        assert!(c.iter().all(|p| (p.y - (0.01 + 0.5 * cell_size(r))).abs() < 1e-5), "one layer");
+        // Spread out: they reach near every wall.
+        let max_x = c.iter().map(|p| p.x).fold(f32::MIN, f32::max);
+        let min_z = c.iter().map(|p| p.z).fold(f32::MAX, f32::min);
+        assert!(max_x > 2.0 && min_z < -2.0, "{max_x} {min_z}");
+    }
+
+    #[test]
+    fn too_many_for_one_layer_stack_upward_and_stop_at_the_top() {
+        let inside = box_inside(Vec3::new(1.0, 0.0, 1.0), 1.5);
+        let mut occ = Occupancy::default();
+        let mut rng = SplitMix64::new(3);
+        let r = 0.3; // cell 0.635 m: 3 × 3 per layer, 2 layers below 1.5 m
+        let c = place_spheres(100, r, &floor_region(0.99, 1.5), &inside, &mut occ, &mut rng);
+        assert_eq!(c.len(), 18);
+        assert_apart(&c, r);
+        assert!(c.iter().all(|p| p.y + r <= 1.5));
+    }
+
+    #[test]
+    fn later_groups_avoid_earlier_ones() {
+        let inside = box_inside(Vec3::new(2.0, 0.0, 2.0), 3.0);
+        let mut occ = Occupancy::default();
+        let mut rng = SplitMix64::new(5);
+        let region = floor_region(1.99, 3.0);
+        let mut all = place_spheres(20, 0.15, &region, &inside, &mut occ, &mut rng);
+        all.extend(place_spheres(20, 0.15, &region, &inside, &mut occ, &mut rng));
+        assert_eq!(all.len(), 40);
+        assert_apart(&all, 0.15);
+    }
+
+    #[test]
+    fn layout_is_deterministic_for_a_seed() {
+        let inside = box_inside(Vec3::new(3.0, 0.0, 3.0), 3.0);
+        let run = |seed| {
+            let mut occ = Occupancy::default();
+            let mut rng = SplitMix64::new(seed);
+            place_spheres(30, 0.14, &floor_region(2.99, 3.0), &inside, &mut occ, &mut rng)
+        };
+        assert_eq!(run(9), run(9));
+        assert_ne!(run(9), run(10));
+    }
+
+    #[test]
+    fn region_narrower_than_a_balloon_places_nothing() {
+        let inside = box_inside(Vec3::new(3.0, 0.0, 3.0), 3.0);
+        let region = SpawnRegion { min: Vec3::ZERO, max: Vec3::new(0.1, 1.0, 1.0), top: 3.0 };
+        let c = place_spheres(1, 0.2, &region, &inside, &mut Occupancy::default(), &mut SplitMix64::new(1));
+        assert!(c.is_empty());
+    }
+}
