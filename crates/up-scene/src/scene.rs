@@ -166,7 +166,7 @@ pub struct BalloonGroup {
     /// Degrees: and turned about the vertical by a random angle within ± this; 10.
     /// Range [0, 180].
     pub yaw_deg: f32,
-    /// Leaf spheres of the fitted collision tree; 5 (the original's layout). Range 1..=32.
+    /// Leaf spheres of the fitted collision tree; 5 (the original's layout). Range 1..=64.
     pub leaves: u32,
 }
 

@@ -281,6 +281,7 @@ fn other_ranges_are_checked() {
         ),
         ("[[balloons]]\ntilt_deg = 100\n", "balloons[0].tilt_deg"),
         ("[[balloons]]\nleaves = 0\n", "balloons[0].leaves"),
+        ("[[balloons]]\nleaves = 65\n", "balloons[0].leaves"),
         (
             "[[balloons]]\nvelocity = [400.0, 0.0, 0.0]\n",
             "balloons[0].velocity",
@@ -361,4 +362,37 @@ fn hex_colours_parse() {
     assert_eq!(parse_color("#ff0000"), Some([1.0, 0.0, 0.0]));
     assert_eq!(parse_color("#ff00"), None);
     assert_eq!(parse_color("#gg0000"), None);
+}
+
+fn asset(name: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../assets/scenes")
+        .join(name)
+}
+
+#[test]
+fn example_scenes_parse_and_validate() {
+    let names = [
+        "default.toml",
+        "terminal-velocity.toml",
+        "party-hall.toml",
+        "thrown.toml",
+        "two-gases.json",
+    ];
+    for name in names {
+        let scene = Scene::from_path(asset(name)).unwrap_or_else(|e| panic!("{e}"));
+        scene.validate().unwrap();
+    }
+    let party = Scene::from_path(asset("party-hall.toml")).unwrap();
+    assert_eq!(party.total_balloons(), 1000);
+    let thrown = Scene::from_path(asset("thrown.toml")).unwrap();
+    assert_eq!(thrown.balloons[0].velocity, [30.0, 0.0, 0.0]);
+}
+
+#[test]
+fn default_scene_file_is_the_default_scene() {
+    assert_eq!(
+        Scene::from_path(asset("default.toml")).unwrap(),
+        Scene::default()
+    );
 }

@@ -3,6 +3,7 @@
 
 use super::{parse_color, CeilingKind, Scene};
 use crate::error::SceneError;
+use up_geom::fit::MAX_LEAVES;
 
 /// At most this many balloons over all groups.
 pub const MAX_TOTAL_BALLOONS: u64 = 200_000;
