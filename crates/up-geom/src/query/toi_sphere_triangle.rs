@@ -1,0 +1,238 @@
+//! Time of impact of a linearly moving sphere with a one-sided triangle.
+//!
+//! Centre c(t) = c + v·t, radius r, triangle with unit normal n and height
+//! h(t) = (c(t) − a)·n. The first contact is the earliest of:
+//! - touching now: the sphere already reaches the triangle at t = 0 (or at
+//!   the moment its centre comes round to the front), t = that moment;
+//! - the face: when approaching (v·n < 0) from h(0) ≥ r, the plane is
+//!   reached at t = (h(0) − r) / (−v·n), if c(t) − r·n lies inside the triangle;
+//! - an edge p0→p1 (unit direction ê): the centre reaches distance r from the
+//!   edge's line when |w⊥ + v⊥·t|² = r², with w⊥ and v⊥ the parts of c − p0
+//!   and v perpendicular to ê; solved like two spheres
+//!   (`toi_sphere_sphere`), accepted if the foot of the centre on the line
+//!   lies between p0 and p1;
+//! - a vertex: a moving sphere against a point.
+//!
+//! Contacts whose centre is behind the plane are ignored (one-sided). A
+//! zero-area triangle has no face and no back: only edges and vertices.
+
+use glam::Vec3;
+
+use super::closest_point_triangle::closest_point_triangle;
+use super::toi_sphere_sphere::toi_moving_point_sphere;
+use crate::{Sphere, TriangleRegion};
+
+/// Slack (m) on "behind the plane" and "inside the segment" tests, so a
+/// contact exactly on a boundary is not lost to rounding.
+const BOUNDARY_SLACK: f32 = 1e-6;
+
+/// Analytic time of impact of a sphere moving linearly over t ∈ [0, 1] with a one-sided triangle.
+///
+/// Returns the time and the triangle region touched first; `(0.0, region)`
+/// when the sphere already touches the triangle from the front.
+pub fn toi_sphere_triangle(
+    s: Sphere,
+    v: Vec3,
+    triangle: &[Vec3; 3],
+) -> Option<(f32, TriangleRegion)> {
+    let [a, b, c] = *triangle;
+    let normal = (b - a).cross(c - a).try_normalize();
+    let height0 = normal.map_or(0.0, |n| (s.center - a).dot(n));
+    let approach = normal.map_or(0.0, |n| v.dot(n));
+    let in_front = |t: f32| height0 + approach * t >= -BOUNDARY_SLACK;
+    let touching = |t: f32| {
+        let center = s.center + v * t;
+        let (closest, region) = closest_point_triangle(center, a, b, c);
+        (center.distance_squared(closest) <= s.radius * s.radius).then_some(region)
+    };
+
+    // Already touching, or touching when the centre crosses to the front.
+    let start = if height0 >= 0.0 {
+        0.0
+    } else if approach > 0.0 && -height0 <= approach {
+        -height0 / approach
+    } else {
+        return None;
+    };
+    if let Some(region) = touching(start) {
+        return Some((start, region));
+    }
+
+    let mut best: Option<(f32, TriangleRegion)> = None;
+    let mut consider = |t: f32, region: TriangleRegion| {
+        let earlier = match best {
+            None => true,
+            Some((bt, _)) => t < bt,
+        };
+        if earlier && t >= start && t <= 1.0 && in_front(t) {
+            best = Some((t, region));
+        }
+    };
+
+    if let Some(n) = normal {
+        if approach < 0.0 && height0 >= s.radius {
+            let t = (height0 - s.radius) / -approach;
+            if t <= 1.0 {
+                let foot = s.center + v * t - n * s.radius;
+                if inside_triangle(foot, a, b, c, n) {
+                    consider(t, TriangleRegion::Face);
+                }
+            }
+        }
+    }
+
+    let corners = [a, b, c];
+    for k in 0..3 {
+        let (p0, p1) = (corners[k], corners[(k + 1) % 3]);
+        if let Some(t) = toi_sphere_line_segment(s, v, p0, p1) {
+            consider(t, TriangleRegion::Edge(k as u8));
+        }
+        if let Some(t) = toi_moving_point_sphere(s.center - p0, v, s.radius) {
+            consider(t, TriangleRegion::Vertex(k as u8));
+        }
+    }
+    best
+}
+
+/// First t ∈ [0, 1] at which the sphere's centre comes within its radius of
+/// the segment's interior, reaching it from outside the infinite cylinder.
+#[inline]
+fn toi_sphere_line_segment(s: Sphere, v: Vec3, p0: Vec3, p1: Vec3) -> Option<f32> {
+    let edge = p1 - p0;
+    let length = edge.length();
+    let axis = (edge / length).try_normalize()?;
+    let w = s.center - p0;
+    let w_perp = w - axis * w.dot(axis);
+    let v_perp = v - axis * v.dot(axis);
+    // Inside the cylinder already: a first contact would be through an end,
+    // which the vertex test finds.
+    if w_perp.length_squared() < s.radius * s.radius {
+        return None;
+    }
+    let t = toi_moving_point_sphere(w_perp, v_perp, s.radius)?;
+    let along = (w + v * t).dot(axis);
+    (along >= -BOUNDARY_SLACK && along <= length + BOUNDARY_SLACK).then_some(t)
+}
+
+/// Whether `p`, on the plane of triangle abc with unit normal `n`, lies inside
+/// it (edges included, within `BOUNDARY_SLACK`).
+#[inline]
+fn inside_triangle(p: Vec3, a: Vec3, b: Vec3, c: Vec3, n: Vec3) -> bool {
+    let side = |p0: Vec3, p1: Vec3| {
+        let edge = p1 - p0;
+        let out = edge.cross(n).normalize_or_zero();
+        (p - p0).dot(out) <= BOUNDARY_SLACK
+    };
+    side(a, b) && side(b, c) && side(c, a)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::query::toi_bisect::toi_sphere_triangle_bisect;
+    use proptest::prelude::*;
+
+    const TRI: [Vec3; 3] = [
+        Vec3::ZERO,
+        Vec3::new(2.0, 0.0, 0.0),
+        Vec3::new(0.0, 2.0, 0.0),
+    ];
+
+    #[test]
+    fn face_edge_and_vertex_hits() {
+        let s = |x, y, z| Sphere::new(Vec3::new(x, y, z), 0.5);
+        let (t, r) = toi_sphere_triangle(s(0.5, 0.5, 2.5), -Vec3::Z * 4.0, &TRI).unwrap();
+        assert_eq!(r, TriangleRegion::Face);
+        assert!((t - 0.5).abs() < 1e-6);
+        // Sliding in sideways at the height of the plane: the edge y = 0 first.
+        let (t, r) = toi_sphere_triangle(s(1.0, -2.5, 0.0), Vec3::Y * 4.0, &TRI).unwrap();
+        assert_eq!(r, TriangleRegion::Edge(0));
+        assert!((t - 0.5).abs() < 1e-6);
+        let (t, r) = toi_sphere_triangle(s(-2.5, 0.0, 0.0), Vec3::X * 4.0, &TRI).unwrap();
+        assert!(matches!(r, TriangleRegion::Vertex(0)), "{r:?}");
+        assert!((t - 0.5).abs() < 1e-6);
+    }
+
+    #[test]
+    fn back_side_and_receding_spheres_do_not_hit() {
+        // From behind, the sphere counts only once its centre is through the
+        // plane (it then overlaps from the front).
+        let s = Sphere::new(Vec3::new(0.5, 0.5, -2.5), 0.5);
+        assert_eq!(
+            toi_sphere_triangle(s, Vec3::Z * 4.0, &TRI).map(|h| h.0),
+            Some(0.625)
+        );
+        assert_eq!(toi_sphere_triangle(s, Vec3::Z, &TRI), None);
+        let s = Sphere::new(Vec3::new(0.5, 0.5, 2.5), 0.5);
+        assert_eq!(toi_sphere_triangle(s, Vec3::Z, &TRI), None);
+        assert_eq!(toi_sphere_triangle(s, -Vec3::Z, &TRI), None);
+    }
+
+    #[test]
+    fn touching_now_is_time_zero() {
+        let s = Sphere::new(Vec3::new(0.5, 0.5, 0.5), 0.5);
+        assert_eq!(
+            toi_sphere_triangle(s, -Vec3::Z, &TRI),
+            Some((0.0, TriangleRegion::Face))
+        );
+    }
+
+    #[test]
+    fn zero_area_triangle_is_hit_on_its_segment() {
+        let seg = [Vec3::ZERO, Vec3::X, Vec3::X * 2.0];
+        let s = Sphere::new(Vec3::new(1.5, 0.0, 2.0), 0.5);
+        let (t, _) = toi_sphere_triangle(s, -Vec3::Z * 3.0, &seg).unwrap();
+        assert!((t - 0.5).abs() < 1e-6);
+    }
+
+    fn vec3(range: f32) -> impl Strategy<Value = Vec3> {
+        (-range..range, -range..range, -range..range).prop_map(|(x, y, z)| Vec3::new(x, y, z))
+    }
+
+    /// Signed one-sided distance in f64 at time t (None when behind).
+    fn distance64(s: Sphere, v: Vec3, tri: &[Vec3; 3], t: f32) -> Option<f64> {
+        let center = s.center + v * t;
+        let n = (tri[1] - tri[0]).cross(tri[2] - tri[0]).try_normalize();
+        if n.is_some_and(|n| (center - tri[0]).dot(n) < -1e-5) {
+            return None;
+        }
+        let (q, _) = closest_point_triangle(center, tri[0], tri[1], tri[2]);
+        Some(center.as_dvec3().distance(q.as_dvec3()) - s.radius as f64)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(600))]
+
+        #[test]
+        fn analytic_agrees_with_bisection(
+            a in vec3(1.0), b in vec3(1.0), c in vec3(1.0),
+            start in vec3(2.5), target_bary in (0.0f32..1.2, 0.0f32..1.2), jitter in vec3(0.4),
+            radius in 0.05f32..0.6, overshoot in 0.8f32..2.5, graze in 0usize..3
+        ) {
+            let tri = [a, b, c];
+            // Aim at a point on (or just beside) the triangle, sometimes at a
+            // grazing offset of about one radius.
+            let (u, w) = target_bary;
+            let target = a + (b - a) * u + (c - a) * w + jitter * (graze as f32 * 0.5);
+            let s = Sphere::new(start, radius);
+            let v = (target - start) * overshoot;
+            let analytic = toi_sphere_triangle(s, v, &tri);
+            let bisected = toi_sphere_triangle_bisect(s, v, &tri, 1e-6);
+            match (analytic, bisected) {
+                (Some((ta, _)), Some(tb)) => {
+                    prop_assert!((ta - tb).abs() <= 1e-4, "analytic {} bisect {}", ta, tb);
+                }
+                (Some((ta, _)), None) => {
+                    // Only a tangent touch may be seen by one method alone.
+                    let d = distance64(s, v, &tri, ta).unwrap_or(0.0);
+                    prop_assert!(d.abs() < 1e-4, "analytic-only hit at {} with distance {}", ta, d);
+                }
+                (None, Some(tb)) => {
+                    let d = distance64(s, v, &tri, tb).unwrap_or(0.0);
+                    prop_assert!(d.abs() < 1e-4 * (1.0 + v.length() as f64), "bisect-only hit at {} with distance {}", tb, d);
+                }
+                (None, None) => {}
+            }
+        }
+    }
+}
