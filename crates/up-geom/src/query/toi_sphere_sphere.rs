@@ -57,6 +57,8 @@ pub(crate) fn toi_moving_point_sphere(p: Vec3, v: Vec3, radius: f32) -> Option<f
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::query::toi_bisect::toi_sphere_sphere_bisect;
+    use proptest::prelude::*;
 
     fn s(x: f32, r: f32) -> Sphere {
         Sphere::new(Vec3::new(x, 0.0, 0.0), r)
@@ -107,5 +109,61 @@ mod tests {
         // Gap of 1e-6 m closing at 1 m per step: t = 1e-6 to f32 precision.
         let t = toi_sphere_sphere(s(0.0, 0.15), Vec3::X, s(0.300001, 0.15), Vec3::ZERO).unwrap();
         assert!((t - 1e-6).abs() < 1e-7, "{t}");
+    }
+
+    fn unit(range: f32) -> impl Strategy<Value = Vec3> {
+        (-range..range, -range..range, -range..range)
+            .prop_map(|(x, y, z)| Vec3::new(x, y, z).try_normalize().unwrap_or(Vec3::X))
+    }
+
+    /// Smallest f64 distance between the surfaces over t ∈ [0, 1].
+    fn min_gap(p: Vec3, v: Vec3, r: f32) -> f64 {
+        let (p, v) = (p.as_dvec3(), v.as_dvec3());
+        let t = if v.length_squared() > 0.0 {
+            (-p.dot(v) / v.length_squared()).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        (p + v * t).length() - r as f64
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(1000))]
+
+        /// Random, grazing (closest approach a little inside the sum of the
+        /// radii) and touching (starting at contact, approaching) pairs.
+        #[test]
+        fn analytic_agrees_with_bisection(
+            centre_a in (-3.0f32..3.0, -3.0f32..3.0, -3.0f32..3.0),
+            ra in 0.05f32..1.0, rb in 0.05f32..1.0,
+            u in unit(1.0), w in unit(1.0), speed in 0.1f32..6.0,
+            random_v in (-5.0f32..5.0, -5.0f32..5.0, -5.0f32..5.0), random_p in (-4.0f32..4.0, -4.0f32..4.0, -4.0f32..4.0),
+            mode in 0usize..3, eps in 1e-3f32..0.1, when in 0.1f32..0.9, vb in (-1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0)
+        ) {
+            let r = ra + rb;
+            let side = (w - u * w.dot(u)).try_normalize().unwrap_or(u.any_orthonormal_vector());
+            let (p, v) = match mode {
+                0 => (Vec3::from(random_p), Vec3::from(random_v)),
+                1 => {
+                    let v = u * speed;
+                    (side * r * (1.0 - eps) - v * when, v)
+                }
+                _ => (u * r * (1.0 + eps * 1e-3), -u * speed + side * speed * 0.5),
+            };
+            let a = Sphere::new(Vec3::from(centre_a), ra);
+            let vb = Vec3::from(vb);
+            let b = Sphere::new(a.center - p, rb);
+            let va = v + vb;
+            let analytic = toi_sphere_sphere(a, va, b, vb);
+            let bisected = toi_sphere_sphere_bisect(a, va, b, vb, 1e-6);
+            match (analytic, bisected) {
+                (Some(ta), Some(tb)) => prop_assert!((ta - tb).abs() <= 1e-4, "analytic {} bisect {}", ta, tb),
+                (None, None) => {}
+                _ => prop_assert!(min_gap(p, v, r).abs() < 1e-5, "{:?} vs {:?}", analytic, bisected),
+            }
+            if mode == 1 && when < 0.85 {
+                prop_assert!(analytic.is_some());
+            }
+        }
     }
 }

@@ -185,6 +185,52 @@ mod tests {
         assert!((t - 0.5).abs() < 1e-6);
     }
 
+    /// A fixed pseudo-random sweep (so the count of hits is pinned): the two
+    /// methods agree, and the cases cover face, edge and vertex hits.
+    #[test]
+    fn analytic_agrees_with_bisection_on_a_fixed_sweep() {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
+        };
+        let mut point = |scale: f32| Vec3::new(next(), next(), next()) * scale;
+        let (mut hits, mut faces, mut edges, mut vertices) = (0, 0, 0, 0);
+        for _ in 0..2000 {
+            let tri = [point(1.0), point(1.0), point(1.0)];
+            let start = point(2.5);
+            let target = tri[0]
+                + (tri[1] - tri[0]) * 0.6 * (point(1.0).x + 1.0) * 0.5
+                + (tri[2] - tri[0]) * 0.6 * (point(1.0).y + 1.0) * 0.5
+                + point(0.3);
+            let s = Sphere::new(start, 0.05 + 0.3 * (point(1.0).z + 1.0));
+            let v = (target - start) * 1.5;
+            let analytic = toi_sphere_triangle(s, v, &tri);
+            let bisected = toi_sphere_triangle_bisect(s, v, &tri, 1e-6);
+            match (analytic, bisected) {
+                (Some((ta, region)), Some(tb)) => {
+                    assert!((ta - tb).abs() <= 1e-4, "analytic {ta} bisect {tb}");
+                    if ta > 0.0 {
+                        hits += 1;
+                        match region {
+                            TriangleRegion::Face => faces += 1,
+                            TriangleRegion::Edge(_) => edges += 1,
+                            TriangleRegion::Vertex(_) => vertices += 1,
+                        }
+                    }
+                }
+                (None, None) => {}
+                (a, b) => panic!("one method alone: {a:?} vs {b:?}"),
+            }
+        }
+        assert!(
+            hits > 400 && faces > 100 && edges > 50 && vertices > 10,
+            "{hits} {faces} {edges} {vertices}"
+        );
+    }
+
     fn vec3(range: f32) -> impl Strategy<Value = Vec3> {
         (-range..range, -range..range, -range..range).prop_map(|(x, y, z)| Vec3::new(x, y, z))
     }
