@@ -2,7 +2,7 @@
 //! Collision Detection*, §5.1.5).
 //!
 //! The vertex and edge regions are tested first with dot products only; the
-//! face case divides by the squared double area. When that area is zero or
+//! face case projects onto the plane. When the triangle's area is zero or
 //! too small to trust (collinear or coincident corners, slivers), the triangle
 //! is treated as its three edges and the nearest segment point wins, so the
 //! result is always a finite point on the triangle.
@@ -71,17 +71,19 @@ pub fn closest_point_triangle(p: Vec3, a: Vec3, b: Vec3, c: Vec3) -> (Vec3, Tria
         }
     }
 
-    let area2 = va + vb + vc;
-    let scale = ab.length_squared() * ac.length_squared();
-    if area2 > SLIVER_SIN2 * scale {
-        let inv = 1.0 / area2;
-        let v = vb * inv;
-        let w = vc * inv;
-        if v >= 0.0 && w >= 0.0 && v + w <= 1.0 {
-            let q = a + ab * v + ac * w;
-            if q.is_finite() {
-                return (q, TriangleRegion::Face);
-            }
+    // Face region by elimination. Project onto the plane with the normal
+    // computed directly (the sum va + vb + vc equals |n|² only in exact
+    // arithmetic and cancels badly for slivers), then confirm the projection
+    // is inside; if rounding put it outside, the edge fallback is exact.
+    let n = ab.cross(ac);
+    let nn = n.length_squared();
+    if nn > SLIVER_SIN2 * ab.length_squared() * ac.length_squared() {
+        let q = p - n * (ap.dot(n) / nn);
+        let inside = (b - a).cross(q - a).dot(n) >= 0.0
+            && (c - b).cross(q - b).dot(n) >= 0.0
+            && (a - c).cross(q - c).dot(n) >= 0.0;
+        if inside && q.is_finite() {
+            return (q, TriangleRegion::Face);
         }
     }
     closest_point_on_edges(p, [a, b, c])

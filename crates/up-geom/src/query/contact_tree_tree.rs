@@ -7,7 +7,7 @@
 //! the trees' depths, not their widths, and nothing is allocated.
 
 use super::contact_sphere_sphere::contact_sphere_sphere;
-use crate::{Contact, PlacedTree};
+use crate::{Contact, PlacedTree, Sphere};
 
 /// Depth of pending pairs held without recursion (sum of both trees' depths).
 const STACK_SIZE: usize = 64;
@@ -57,9 +57,8 @@ fn descend(a: &PlacedTree, b: &PlacedTree, ia: u32, ib: u32, margin: f32, out: &
         if let Some((ia, ib)) = pair.take() {
             let (na, nb) = (&a.tree.nodes()[ia as usize], &b.tree.nodes()[ib as usize]);
             if na.is_leaf() && nb.is_leaf() {
-                let (sa, sb) = (na.sphere(), nb.sphere());
-                let sa = crate::Sphere::new(a.centers[ia as usize], sa.radius);
-                let sb = crate::Sphere::new(b.centers[ib as usize], sb.radius);
+                let sa = Sphere::new(a.centers[ia as usize], na.radius);
+                let sb = Sphere::new(b.centers[ib as usize], nb.radius);
                 if let Some(mut c) = contact_sphere_sphere(sa, sb, margin) {
                     c.feature_a = ia;
                     c.feature_b = ib;
@@ -115,7 +114,7 @@ fn descend(a: &PlacedTree, b: &PlacedTree, ia: u32, ib: u32, margin: f32, out: &
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{Pose, Quat, Sphere, SphereNode, SphereTree, Vec3};
+    use crate::{Pose, Quat, SphereNode, SphereTree, Vec3};
     use proptest::prelude::*;
 
     /// A three-level tree: root, `groups` inner nodes, each with `per` leaves

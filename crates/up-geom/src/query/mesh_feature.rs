@@ -56,6 +56,7 @@ pub fn mesh_contact_direction(
     }
     let m = delta / distance;
     match region {
+        // Handled above; kept so the match stays exhaustive.
         TriangleRegion::Face => Some((normal, height)),
         TriangleRegion::Edge(k) => {
             let k = k as usize;
