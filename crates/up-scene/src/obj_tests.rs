@@ -1,0 +1,227 @@
+//! OBJ/MTL reading and writing tests.
+
+use super::*;
+
+/// A fresh, empty directory under the system temp dir for one test.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("up-scene-obj-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// A unit cube as six separate quads, each with its own four vertices (as
+/// some exporters write it): welding must make it closed.
+const SPLIT_CUBE: &str = "\
+o cube
+v 0 0 0\nv 0 1 0\nv 1 1 0\nv 1 0 0\nf 1 2 3 4
+v 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\nf 5 6 7 8
+v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nf 9 10 11 12
+v 0 1 0\nv 0 1 1\nv 1 1 1\nv 1 1 0\nf 13 14 15 16
+v 0 0 0\nv 0 0 1\nv 0 1 1\nv 0 1 0\nf 17 18 19 20
+v 1 0 0\nv 1 1 0\nv 1 1 1\nv 1 0 1\nf 21 22 23 24
+";
+
+#[test]
+fn every_named_colour_has_an_rgb() {
+    for name in COLOR_NAMES {
+        let rgb = color_rgb(name).unwrap();
+        assert!(rgb.iter().all(|c| (0.0..=1.0).contains(c)), "{name}");
+    }
+    assert_eq!(color_rgb("Red"), color_rgb("red"));
+    assert_eq!(color_rgb("chartreuse"), None);
+}
+
+#[test]
+fn quads_are_triangulated_and_split_vertices_welded() {
+    let dir = scratch("cube");
+    let mesh = read_obj_mesh(&write(&dir, "cube.obj", SPLIT_CUBE)).unwrap();
+    assert_eq!(mesh.vertices().len(), 8);
+    assert_eq!(mesh.triangles().len(), 12);
+    assert!(mesh.check_closed().is_ok());
+    let v = up_geom::fit::mesh_integrals::solid_integrals(mesh.vertices(), mesh.triangles());
+    assert!((v.volume - 1.0).abs() < 1e-6, "{}", v.volume);
+}
+
+#[test]
+fn balloon_round_trips_through_obj() {
+    let dir = scratch("balloon");
+    let written = export_balloon_assets(&dir).unwrap();
+    assert_eq!(written.len(), 1 + COLOR_NAMES.len());
+    assert!(written.iter().all(|p| p.exists()));
+    let leftovers = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter(|e| e.as_ref().unwrap().path().extension() == Some("tmp".as_ref()))
+        .count();
+    assert_eq!(leftovers, 0);
+    let mesh = read_obj_mesh(&dir.join("balloon.obj")).unwrap();
+    let original = BalloonMesh::new(0.28).unwrap();
+    assert_eq!(mesh.vertices().len(), original.positions.len());
+    assert_eq!(mesh.triangles(), &original.indices[..]);
+    assert!(mesh.check_closed().is_ok());
+    // tobj reads the material the OBJ names.
+    let (models, materials) =
+        tobj::load_obj(dir.join("balloon.obj"), &tobj::LoadOptions::default()).unwrap();
+    let materials = materials.unwrap();
+    assert_eq!(materials[0].name, "balloon");
+    assert_eq!(models[0].mesh.material_id, Some(0));
+    assert_eq!(materials[0].diffuse, color_rgb("red"));
+}
+
+#[test]
+fn missing_file_is_reported_by_name() {
+    let e = read_obj_mesh(Path::new("/nonexistent/ball.obj")).unwrap_err();
+    assert!(matches!(e, ObjError::Missing { .. }));
+    assert_eq!(e.to_string(), "/nonexistent/ball.obj: file not found");
+}
+
+#[test]
+fn malformed_lines_name_the_file_and_line() {
+    let dir = scratch("bad");
+    let p = write(&dir, "a.obj", "v 0 0 0\nv 1 0 zero\nv 0 1 0\nf 1 2 3\n");
+    let e = read_obj_mesh(&p).unwrap_err();
+    assert!(matches!(e, ObjError::Malformed { line: 2, .. }), "{e}");
+    assert!(e.to_string().contains("a.obj:2: expected a number"), "{e}");
+
+    let p = write(&dir, "b.obj", "v 0 0 0\nv 1 0\nf 1 2 1\n");
+    assert!(matches!(
+        read_obj_mesh(&p),
+        Err(ObjError::Malformed { line: 2, .. })
+    ));
+
+    let p = write(&dir, "c.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n");
+    assert!(matches!(
+        read_obj_mesh(&p),
+        Err(ObjError::Malformed { line: 4, .. })
+    ));
+
+    let p = write(&dir, "d.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 x 3\n");
+    assert!(matches!(
+        read_obj_mesh(&p),
+        Err(ObjError::Malformed { line: 4, .. })
+    ));
+}
+
+#[test]
+fn nan_coordinates_are_rejected() {
+    let dir = scratch("nan");
+    let p = write(&dir, "n.obj", "v 0 0 0\nv NaN 0 0\nv 0 1 0\nf 1 2 3\n");
+    let e = read_obj_mesh(&p).unwrap_err();
+    assert!(matches!(e, ObjError::NonFinite { line: 2, .. }), "{e}");
+    let p = write(&dir, "i.obj", "v 0 0 0\nv inf 0 0\nv 0 1 0\nf 1 2 3\n");
+    assert!(matches!(
+        read_obj_mesh(&p),
+        Err(ObjError::NonFinite { line: 2, .. })
+    ));
+}
+
+#[test]
+fn files_without_triangles_are_rejected() {
+    let dir = scratch("empty");
+    let p = write(&dir, "e.obj", "# nothing\nv 0 0 0\n");
+    let e = read_obj_mesh(&p).unwrap_err();
+    assert!(matches!(e, ObjError::NoTriangles { .. }));
+    assert!(e
+        .to_string()
+        .ends_with("no triangles (expected at least one face `f a b c`)"));
+}
+
+#[test]
+fn face_indices_out_of_range_are_rejected() {
+    let dir = scratch("range");
+    let p = write(&dir, "r.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n");
+    let e = read_obj_mesh(&p).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            ObjError::IndexOutOfRange {
+                line: 4,
+                index: 4,
+                count: 3,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    let p = write(&dir, "z.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n");
+    assert!(matches!(
+        read_obj_mesh(&p),
+        Err(ObjError::IndexOutOfRange { index: 0, .. })
+    ));
+    // Negative (relative) indices are fine when they stay in range.
+    let p = write(&dir, "neg.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n");
+    assert_eq!(read_obj_mesh(&p).unwrap().triangles().len(), 1);
+    let p = write(
+        &dir,
+        "neg_bad.obj",
+        "v 0 0 0\nv 1 0 0\nf -3 -2 -1\nv 0 1 0\n",
+    );
+    assert!(matches!(
+        read_obj_mesh(&p),
+        Err(ObjError::IndexOutOfRange { index: -3, .. })
+    ));
+}
+
+#[test]
+fn open_mesh_fails_the_closed_check_naming_the_file() {
+    let dir = scratch("open");
+    let p = write(
+        &dir,
+        "open.obj",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\n",
+    );
+    let mesh = read_obj_mesh(&p).unwrap();
+    let e = mesh.check_closed().unwrap_err();
+    assert!(
+        e.to_string().contains("open.obj: the mesh is not closed"),
+        "{e}"
+    );
+}
+
+#[test]
+fn degenerate_triangles_are_tolerated() {
+    let dir = scratch("degenerate");
+    let text = format!("{SPLIT_CUBE}f 1 1 2\n");
+    let mesh = read_obj_mesh(&write(&dir, "d.obj", &text)).unwrap();
+    assert_eq!(mesh.check_closed().unwrap().degenerate_triangles, 1);
+}
+
+#[test]
+fn room_exports_with_inward_face_normals() {
+    let dir = scratch("room");
+    let room = crate::room::box_room(6.0, 6.0, 3.0, crate::room::Ceiling::Flat).unwrap();
+    let written = export_room_obj(&dir, &room).unwrap();
+    assert_eq!(written.len(), 2);
+    let back = read_obj_mesh(&written[0]).unwrap();
+    assert_eq!(back.triangles().len(), room.triangles().len());
+    let text = std::fs::read_to_string(&written[0]).unwrap();
+    // The floor's normal points up, into the room.
+    assert!(text.contains("vn 0.000000 1.000000 0.000000"), "{text}");
+}
+
+/// `assets/` holds what `export_balloon_assets` writes. Regenerate with
+/// `UP_WRITE_ASSETS=1 cargo test --release -p up-scene committed_assets`.
+#[test]
+fn committed_assets_match_the_generator() {
+    let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets");
+    if std::env::var_os("UP_WRITE_ASSETS").is_some() {
+        export_balloon_assets(&assets).unwrap();
+    }
+    let dir = scratch("assets");
+    for fresh in export_balloon_assets(&dir).unwrap() {
+        let name = fresh.file_name().unwrap();
+        let committed = std::fs::read_to_string(assets.join(name))
+            .unwrap_or_else(|e| panic!("assets/{}: {e}", name.to_string_lossy()));
+        assert!(
+            committed == std::fs::read_to_string(&fresh).unwrap(),
+            "assets/{} is stale: regenerate it (see this test's docs)",
+            name.to_string_lossy()
+        );
+    }
+}
