@@ -315,6 +315,12 @@ mod tests {
         let s = default_model().shape;
         assert!(s.center_of_mass.y < s.center_of_buoyancy.y - 0.005, "{s:?}");
         assert!(s.center_of_mass.x.abs() < 1e-5 && s.center_of_mass.z.abs() < 1e-5);
+        // The fitted spheres sit on the axis.
+        assert!(s
+            .tree
+            .nodes()
+            .iter()
+            .all(|n| n.center.x.abs() < 1e-6 && n.center.z.abs() < 1e-6));
         assert!(s.center_of_buoyancy.x.abs() < 1e-5 && s.center_of_buoyancy.z.abs() < 1e-5);
     }
 

@@ -7,7 +7,7 @@
 //! - head: the upper half of an ellipse, semi-axes R (across) and R (up);
 //! - body: `ρ = R (1 − s³)` for `s = −y / (1.52 R)` in 0..1 — full near the
 //!   widest circle, then a blunt cone into the neck (a balloon is taller than
-//!   wide: 11″ comes out 28 cm across, 38.5 cm from top to knot, 14.1 L);
+//!   wide: 11″ comes out 28 cm across, 38.7 cm from top to knot, 14.1 L);
 //! - neck: a short cylinder of radius 0.045 R, joined to the body by a smooth
 //!   maximum so the body flows into it;
 //! - knot: a small ball of radius 0.08 R under the neck, closing the surface.
@@ -15,7 +15,7 @@
 //! Everything scales with the diameter. The mesh is closed and watertight
 //! (one vertex per pole, rings share their seam vertex), wound
 //! counter-clockwise seen from outside (outward normals), with smooth
-//! per-vertex normals for rendering: about 2,600 triangles.
+//! per-vertex normals for rendering: 2,736 triangles.
 
 use glam::{Vec2, Vec3};
 use thiserror::Error;
@@ -227,7 +227,7 @@ mod tests {
             "{} triangles",
             m.indices.len()
         );
-        // Wider than... no: taller than wide, 28 cm across at y = 0.
+        // Taller than wide: 28 cm across at y = 0, 38.7 cm from top to knot tip.
         let b = up_geom::Aabb::from_points(&m.positions);
         assert!((b.extents().x - 0.28).abs() < 1e-3 && (b.extents().z - 0.28).abs() < 2e-3);
         assert!(

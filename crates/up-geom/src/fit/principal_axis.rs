@@ -53,7 +53,10 @@ pub fn symmetric_eigen(m: Mat3) -> ([f32; 3], [Vec3; 3]) {
 /// largest component is positive.
 pub fn principal_axis(covariance: Mat3) -> Vec3 {
     let (_, vectors) = symmetric_eigen(covariance);
+    // Round-off leaves components of ~1e-9 on a mesh built along a
+    // coordinate axis: snap them to zero so fitted centres sit exactly on it.
     let axis = vectors[0];
+    let axis = Vec3::select(axis.abs().cmplt(Vec3::splat(1e-6)), Vec3::ZERO, axis).normalize();
     let a = axis.abs();
     let largest = if a.x >= a.y && a.x >= a.z {
         axis.x
