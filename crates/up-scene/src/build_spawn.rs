@@ -48,9 +48,8 @@ const BUCKET: f32 = 1.0;
 fn bucket_range(min: Vec3, max: Vec3) -> impl Iterator<Item = (i32, i32, i32)> {
     let lo = (min / BUCKET).floor().as_ivec3();
     let hi = (max / BUCKET).floor().as_ivec3();
-    (lo.x..=hi.x).flat_map(move |x| {
-        (lo.y..=hi.y).flat_map(move |y| (lo.z..=hi.z).map(move |z| (x, y, z)))
-    })
+    (lo.x..=hi.x)
+        .flat_map(move |x| (lo.y..=hi.y).flat_map(move |y| (lo.z..=hi.z).map(move |z| (x, y, z))))
 }
 
 impl Occupancy {
@@ -103,7 +102,12 @@ pub fn place_spheres(
         return placed;
     }
     let region_layers = (((region.max.y - region.min.y) / c).floor() as usize).max(1);
-    let fine = Grid { nx: fine_nx, nz: fine_nz, cell_x: width / fine_nx as f32, cell_z: depth / fine_nz as f32 };
+    let fine = Grid {
+        nx: fine_nx,
+        nz: fine_nz,
+        cell_x: width / fine_nx as f32,
+        cell_z: depth / fine_nz as f32,
+    };
     let mut layer = 0usize;
     loop {
         let bottom = region.min.y + layer as f32 * c;
@@ -191,7 +195,11 @@ fn usable_cells(
             let max = min + Vec3::new(grid.cell_x, c, grid.cell_z);
             let corners_inside = (0..8).all(|k| {
                 let pick = |bit: usize, lo: f32, hi: f32| if k & bit == 0 { lo } else { hi };
-                inside(Vec3::new(pick(1, min.x, max.x), pick(2, min.y, max.y), pick(4, min.z, max.z)))
+                inside(Vec3::new(
+                    pick(1, min.x, max.x),
+                    pick(2, min.y, max.y),
+                    pick(4, min.z, max.z),
+                ))
             });
             if corners_inside && inside((min + max) * 0.5) && !occupied.overlaps_box(min, max) {
                 cells.push(ix + iz * grid.nx);
@@ -234,7 +242,11 @@ mod tests {
         let c = place_spheres(50, r, &floor_region(2.99, 3.0), &inside, &mut occ, &mut rng);
         assert_eq!(c.len(), 50);
         assert_apart(&c, r);
-        assert!(c.iter().all(|p| (p.y - (0.01 + 0.5 * cell_size(r))).abs() < 1e-5), "one layer");
+        assert!(
+            c.iter()
+                .all(|p| (p.y - (0.01 + 0.5 * cell_size(r))).abs() < 1e-5),
+            "one layer"
+        );
         // Spread out: they reach near every wall.
         let max_x = c.iter().map(|p| p.x).fold(f32::MIN, f32::max);
         let min_z = c.iter().map(|p| p.z).fold(f32::MAX, f32::min);
@@ -247,7 +259,14 @@ mod tests {
         let mut occ = Occupancy::default();
         let mut rng = SplitMix64::new(3);
         let r = 0.3; // cell 0.635 m: 3 × 3 per layer, 2 layers below 1.5 m
-        let c = place_spheres(100, r, &floor_region(0.99, 1.5), &inside, &mut occ, &mut rng);
+        let c = place_spheres(
+            100,
+            r,
+            &floor_region(0.99, 1.5),
+            &inside,
+            &mut occ,
+            &mut rng,
+        );
         assert_eq!(c.len(), 18);
         assert_apart(&c, r);
         assert!(c.iter().all(|p| p.y + r <= 1.5));
@@ -260,7 +279,9 @@ mod tests {
         let mut rng = SplitMix64::new(5);
         let region = floor_region(1.99, 3.0);
         let mut all = place_spheres(20, 0.15, &region, &inside, &mut occ, &mut rng);
-        all.extend(place_spheres(20, 0.15, &region, &inside, &mut occ, &mut rng));
+        all.extend(place_spheres(
+            20, 0.15, &region, &inside, &mut occ, &mut rng,
+        ));
         assert_eq!(all.len(), 40);
         assert_apart(&all, 0.15);
     }
@@ -271,7 +292,14 @@ mod tests {
         let run = |seed| {
             let mut occ = Occupancy::default();
             let mut rng = SplitMix64::new(seed);
-            place_spheres(30, 0.14, &floor_region(2.99, 3.0), &inside, &mut occ, &mut rng)
+            place_spheres(
+                30,
+                0.14,
+                &floor_region(2.99, 3.0),
+                &inside,
+                &mut occ,
+                &mut rng,
+            )
         };
         assert_eq!(run(9), run(9));
         assert_ne!(run(9), run(10));
@@ -280,8 +308,19 @@ mod tests {
     #[test]
     fn region_narrower_than_a_balloon_places_nothing() {
         let inside = box_inside(Vec3::new(3.0, 0.0, 3.0), 3.0);
-        let region = SpawnRegion { min: Vec3::ZERO, max: Vec3::new(0.1, 1.0, 1.0), top: 3.0 };
-        let c = place_spheres(1, 0.2, &region, &inside, &mut Occupancy::default(), &mut SplitMix64::new(1));
+        let region = SpawnRegion {
+            min: Vec3::ZERO,
+            max: Vec3::new(0.1, 1.0, 1.0),
+            top: 3.0,
+        };
+        let c = place_spheres(
+            1,
+            0.2,
+            &region,
+            &inside,
+            &mut Occupancy::default(),
+            &mut SplitMix64::new(1),
+        );
         assert!(c.is_empty());
     }
 }

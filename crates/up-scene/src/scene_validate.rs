@@ -227,12 +227,9 @@ pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
         )?;
         c.range(&key("tilt_deg"), group.tilt_deg, 0.0, 90.0, false, "°")?;
         c.range(&key("yaw_deg"), group.yaw_deg, 0.0, 180.0, false, "°")?;
-        if !(1..=32).contains(&group.leaves) {
-            return Err(c.fail(
-                &key("leaves"),
-                "an integer in [1, 32]",
-                group.leaves.to_string(),
-            ));
+        if !(1..=MAX_LEAVES as u32).contains(&group.leaves) {
+            let expected = format!("an integer in [1, {MAX_LEAVES}]");
+            return Err(c.fail(&key("leaves"), expected, group.leaves.to_string()));
         }
 
         // The balloon must fit in a box room (mesh rooms are checked when built).

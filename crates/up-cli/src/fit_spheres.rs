@@ -1,0 +1,55 @@
+//! `up fit-spheres`: fit a sphere tree to any closed OBJ mesh (bring your own
+//! balloon) and write it, with the fit's quality, as JSON.
+
+use std::path::PathBuf;
+
+use anyhow::{bail, Context, Result};
+use clap::Args;
+use up_geom::fit::{fit_sphere_tree, FitOptions, DEFAULT_LEAVES, MAX_LEAVES};
+use up_scene::obj::read_obj_mesh;
+
+use crate::atomic_file::write_atomically;
+
+#[derive(Args, Debug)]
+pub struct FitSpheresArgs {
+    /// A closed, consistently wound triangle mesh (OBJ), in metres.
+    pub model: PathBuf,
+    /// Number of leaf spheres (1 to 64): head, neck and fillers.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_LEAVES)]
+    pub leaves: usize,
+    /// Write the JSON here (atomically) instead of to standard output.
+    #[arg(long, value_name = "FILE.json")]
+    pub out: Option<PathBuf>,
+}
+
+pub fn run(args: &FitSpheresArgs) -> Result<()> {
+    if !(1..=MAX_LEAVES).contains(&args.leaves) {
+        bail!(
+            "--leaves: expected 1 to {MAX_LEAVES}, found {}",
+            args.leaves
+        );
+    }
+    let mesh = read_obj_mesh(&args.model)?;
+    let report = fit_sphere_tree(
+        mesh.vertices(),
+        mesh.triangles(),
+        &FitOptions::with_leaves(args.leaves),
+    )
+    .with_context(|| format!("{}", args.model.display()))?;
+    let json = serde_json::to_string_pretty(&report)?;
+    match &args.out {
+        Some(path) => {
+            write_atomically(path, format!("{json}\n").as_bytes())?;
+            eprintln!(
+                "{}: {} leaves, coverage {:.2} %, tightness {:.3} -> {}",
+                args.model.display(),
+                report.tree.leaves().len(),
+                report.coverage * 100.0,
+                report.tightness,
+                path.display()
+            );
+        }
+        None => println!("{json}"),
+    }
+    Ok(())
+}

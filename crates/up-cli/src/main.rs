@@ -1,0 +1,66 @@
+//! `up`: headless runs, benchmarks, scene checks and exports for the UP
+//! balloon simulator. One file per subcommand; this file only dispatches.
+//!
+//! Exit codes: 0 on success; 2 on any error (a bad scene or argument, a file
+//! that cannot be read or written), with a message on standard error that
+//! starts with `error:`.
+
+mod atomic_file;
+mod bench;
+mod colliders;
+mod export_obj;
+mod fit_spheres;
+mod run;
+mod scene_arg;
+mod summary;
+mod validate;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// UP: helium balloons in a closed room, simulated headless.
+#[derive(Parser)]
+#[command(name = "up", version, about, propagate_version = true)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Simulate a scene headless; print a summary (and JSON with --json).
+    Run(run::RunArgs),
+    /// Time the UP engine alone on a scene, with per-stage counters.
+    Bench(bench::BenchArgs),
+    /// Show the default balloon's sphere tree and mass properties.
+    Colliders(colliders::CollidersArgs),
+    /// Check a scene file and print what it describes.
+    Validate(validate::ValidateArgs),
+    /// Write the balloon and room meshes (OBJ) with their materials (MTL).
+    ExportObj(export_obj::ExportObjArgs),
+    /// Fit a sphere tree to a closed OBJ mesh and write it as JSON.
+    FitSpheres(fit_spheres::FitSpheresArgs),
+}
+
+/// Exit status for every error: bad input, unreadable or unwritable files.
+const EXIT_ERROR: u8 = 2;
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Run(args) => run::run(&args),
+        Command::Bench(args) => bench::run(&args),
+        Command::Colliders(args) => colliders::run(&args),
+        Command::Validate(args) => validate::run(&args),
+        Command::ExportObj(args) => export_obj::run(&args),
+        Command::FitSpheres(args) => fit_spheres::run(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(EXIT_ERROR)
+        }
+    }
+}

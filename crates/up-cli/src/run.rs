@@ -1,0 +1,169 @@
+//! `up run`: simulate a scene headless.
+
+use std::io::{IsTerminal, Write};
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::{bail, Context, Result};
+use clap::Args;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use up_physics::World;
+use up_scene::build::build_world;
+
+use crate::atomic_file::{write_atomically, AtomicFile};
+use crate::scene_arg::{load_scene, scene_name};
+use crate::summary::{measure, print_table, RunSummary};
+
+/// Longest run `--seconds` accepts, s (one simulated day).
+const MAX_SECONDS: f64 = 86_400.0;
+
+#[derive(Args, Debug)]
+pub struct RunArgs {
+    /// Scene file (.toml or .json); the original room with 50 balloons if left out.
+    pub scene: Option<PathBuf>,
+    /// Total number of balloons, spread over the scene's groups (overrides the scene).
+    #[arg(long, value_name = "N")]
+    pub balloons: Option<u64>,
+    /// Simulated seconds; the scene's `sim.duration_s` (10 s by default) if left out.
+    #[arg(long, value_name = "S")]
+    pub seconds: Option<f64>,
+    /// Seed of the spawn layout (overrides `sim.seed`).
+    #[arg(long, value_name = "K")]
+    pub seed: Option<u64>,
+    /// Write the trajectory as CSV: `t,id,x,y,z,qx,qy,qz,qw` (s, m, unit quaternion; Y up).
+    #[arg(long, value_name = "FILE.csv")]
+    pub out: Option<PathBuf>,
+    /// Write a CSV row set every K steps (the first and last steps are always written).
+    #[arg(long, value_name = "K", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
+    pub every: u64,
+    /// End with one JSON object on the last line of standard output.
+    #[arg(long)]
+    pub json: bool,
+    /// Save the world at the end as a snapshot file.
+    #[arg(long, value_name = "FILE")]
+    pub save_state: Option<PathBuf>,
+    /// Start from a snapshot saved with --save-state instead of the scene's
+    /// spawn (the scene still gives the room for the summary).
+    #[arg(long, value_name = "FILE")]
+    pub load_state: Option<PathBuf>,
+}
+
+pub fn run(args: &RunArgs) -> Result<()> {
+    if args.load_state.is_some() && args.balloons.is_some() {
+        bail!("--balloons cannot change a world loaded with --load-state");
+    }
+    let scene = load_scene(args.scene.as_deref(), args.seed, args.balloons)?;
+    let seconds = args.seconds.unwrap_or(f64::from(scene.sim.duration_s));
+    if !(seconds.is_finite() && seconds > 0.0 && seconds <= MAX_SECONDS) {
+        bail!("--seconds: expected a number in (0, {MAX_SECONDS}], found {seconds}");
+    }
+    let mut built = build_world(&scene)?;
+    if let Some(path) = &args.load_state {
+        let bytes = std::fs::read(path)
+            .with_context(|| format!("cannot read the state file {}", path.display()))?;
+        built.world = World::restore(&bytes).with_context(|| format!("{}", path.display()))?;
+    }
+    let world = &mut built.world;
+    let dt = f64::from(world.def().dt);
+    let steps = (seconds / dt).round().max(1.0) as u64;
+
+    // Create output files first: a bad path fails before the simulation runs.
+    let mut csv = match &args.out {
+        Some(path) => {
+            let mut file = AtomicFile::create(path)?;
+            writeln!(file, "t,id,x,y,z,qx,qy,qz,qw")
+                .with_context(|| format!("cannot write {}", path.display()))?;
+            Some((file, path))
+        }
+        None => None,
+    };
+    if let Some(path) = &args.save_state {
+        // Probe the directory now rather than after a long run.
+        AtomicFile::create(path)?;
+    }
+
+    let progress = progress_bar(steps);
+    let write_rows = |world: &World, csv: &mut Option<(AtomicFile, &PathBuf)>| -> Result<()> {
+        if let Some((file, path)) = csv {
+            write_csv_rows(world, file)
+                .with_context(|| format!("cannot write {}", path.display()))?;
+        }
+        Ok(())
+    };
+    write_rows(world, &mut csv)?;
+    let mut max_penetration = 0.0f32;
+    let started = Instant::now();
+    for step in 1..=steps {
+        world.step();
+        max_penetration = max_penetration.max(world.stats().max_penetration);
+        if step % args.every == 0 || step == steps {
+            write_rows(world, &mut csv)?;
+        }
+        if let Some(bar) = &progress {
+            if step % 16 == 0 {
+                bar.set_position(step);
+            }
+        }
+    }
+    let wall = started.elapsed().as_secs_f64();
+    if let Some(bar) = progress {
+        bar.finish_and_clear();
+    }
+    if let Some((file, _)) = csv {
+        file.commit()?;
+    }
+    if let Some(path) = &args.save_state {
+        write_atomically(path, &world.snapshot())?;
+    }
+
+    let end = measure(world, &built.room);
+    let summary = RunSummary {
+        scene: scene_name(args.scene.as_ref()),
+        balloons: world.body_count(),
+        steps,
+        sim_seconds: world.time(),
+        wall_seconds: wall,
+        ms_per_step: wall * 1000.0 / steps as f64,
+        max_penetration_m: max_penetration,
+        escaped: end.escaped,
+        nan_bodies: end.nan_bodies,
+        state_hash: format!("{:016x}", world.state_hash()),
+        mean_height_m: end.mean_height_m,
+        max_tilt_deg: end.max_tilt_deg,
+        kinetic_energy_j: world.kinetic_energy(),
+        awake: world.stats().awake_count,
+    };
+    print_table("up run", &summary.rows());
+    if args.json {
+        println!("{}", serde_json::to_string(&summary)?);
+    }
+    Ok(())
+}
+
+/// One row per body: time, handle index, position, rotation.
+fn write_csv_rows(world: &World, out: &mut impl Write) -> std::io::Result<()> {
+    let t = world.time();
+    for (id, pose) in world.poses() {
+        let (p, q) = (pose.position, pose.rotation);
+        writeln!(
+            out,
+            "{t},{},{},{},{},{},{},{},{}",
+            id.index, p.x, p.y, p.z, q.x, q.y, q.z, q.w
+        )?;
+    }
+    Ok(())
+}
+
+/// A progress bar on standard error, only when it is a terminal.
+pub fn progress_bar(steps: u64) -> Option<ProgressBar> {
+    if !std::io::stderr().is_terminal() {
+        return None;
+    }
+    let bar = ProgressBar::with_draw_target(Some(steps), ProgressDrawTarget::stderr());
+    if let Ok(style) =
+        ProgressStyle::with_template("{bar:40} {pos}/{len} steps  {elapsed} (eta {eta})")
+    {
+        bar.set_style(style);
+    }
+    Some(bar)
+}

@@ -1,0 +1,99 @@
+//! `up validate`: check a scene file (parse, ranges, and a full build, so
+//! balloons that do not fit are caught) and print what it describes.
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use clap::Args;
+use up_scene::build::build_world;
+use up_scene::scene::{CeilingKind, GasKind, Scene};
+
+use crate::summary::print_table;
+
+#[derive(Args, Debug)]
+pub struct ValidateArgs {
+    /// Scene file (.toml or .json).
+    pub scene: PathBuf,
+}
+
+pub fn run(args: &ValidateArgs) -> Result<()> {
+    let scene = Scene::from_path(&args.scene)?;
+    let built = build_world(&scene)?;
+    let atmosphere = scene.air.atmosphere();
+    let air_density = atmosphere.air_density();
+    let gravity = glam::Vec3::from_array(scene.sim.gravity).length();
+
+    let room = match (&scene.room.mesh, scene.room.ceiling) {
+        (Some(mesh), _) => format!("mesh {mesh}"),
+        (None, CeilingKind::Pyramid) => format!(
+            "{} m × {} m, walls {} m, pyramid ceiling {} m above them",
+            scene.room.width, scene.room.depth, scene.room.wall_height, scene.room.apex_height
+        ),
+        (None, CeilingKind::Flat) => format!(
+            "{} m × {} m, walls {} m, flat ceiling",
+            scene.room.width, scene.room.depth, scene.room.wall_height
+        ),
+    };
+    let bounds = built.room.bounds();
+    let mut rows = vec![
+        ("room", room),
+        ("room bounds", format!("{} to {} m", bounds.min, bounds.max)),
+        (
+            "air",
+            format!(
+                "{} °C, {} kPa: air {:.4} kg/m³, helium {:.4} kg/m³",
+                scene.air.temperature_c,
+                scene.air.pressure_kpa,
+                air_density,
+                atmosphere.helium_density()
+            ),
+        ),
+        (
+            "simulation",
+            format!(
+                "seed {}, dt {} s × {} substeps, {} s by default",
+                scene.sim.seed, scene.sim.dt, scene.sim.substeps, scene.sim.duration_s
+            ),
+        ),
+        (
+            "balloons",
+            format!(
+                "{} in {} group(s)",
+                scene.total_balloons(),
+                scene.balloons.len()
+            ),
+        ),
+    ];
+    let groups: Vec<(String, String)> = scene
+        .balloons
+        .iter()
+        .zip(&built.balloon_models)
+        .enumerate()
+        .map(|(i, (group, model))| {
+            let shape = &model.shape;
+            let lift = (air_density * shape.volume - shape.mass) * gravity;
+            let gas = match group.gas {
+                GasKind::Helium => "helium",
+                GasKind::Air => "air",
+            };
+            let spawn = match &group.spawn {
+                Some(b) => format!("in {:?} to {:?} m", b.min, b.max),
+                None => "on the floor".to_string(),
+            };
+            let value = format!(
+                "{} × {:.3} m {gas}, {:.2} g, net lift {:+.4} N, {} leaves, {}; colours {}",
+                group.count,
+                group.diameter(),
+                shape.mass * 1000.0,
+                lift,
+                shape.tree.leaves().len(),
+                spawn,
+                group.colors.join(", "),
+            );
+            (format!("  group {i}"), value)
+        })
+        .collect();
+    rows.extend(groups.iter().map(|(k, v)| (k.as_str(), v.clone())));
+    print_table(&format!("{}: valid", args.scene.display()), &rows);
+    Ok(())
+}

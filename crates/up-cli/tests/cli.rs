@@ -1,0 +1,431 @@
+//! The `up` binary end to end: every subcommand, every error path, the CSV
+//! and JSON formats, and that failed runs leave no half-written files.
+//! Simulations stay short (a few balloons, at most a simulated second).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use serde_json::Value;
+
+fn up(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_up"))
+        .args(args)
+        .output()
+        .expect("the up binary runs")
+}
+
+fn stdout(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+/// Runs `up` and expects success.
+fn up_ok(args: &[&str]) -> String {
+    let out = up(args);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "up {args:?} failed:\n{}",
+        stderr(&out)
+    );
+    assert!(!stderr(&out).contains("panicked"), "{}", stderr(&out));
+    stdout(&out)
+}
+
+/// Runs `up` and expects exit code 2 with an `error:` message; returns stderr.
+fn up_err(args: &[&str]) -> String {
+    let out = up(args);
+    let err = stderr(&out);
+    assert_eq!(
+        out.status.code(),
+        Some(2),
+        "up {args:?}: stdout {}\nstderr {err}",
+        stdout(&out)
+    );
+    assert!(err.starts_with("error:"), "up {args:?}: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    err
+}
+
+/// The last line of standard output, as JSON.
+fn last_json(text: &str) -> Value {
+    let line = text.lines().last().expect("some output");
+    serde_json::from_str(line).unwrap_or_else(|e| panic!("not JSON: {line}: {e}"))
+}
+
+/// A fresh directory per test, removed when dropped.
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(name: &str) -> TempDir {
+        static COUNTER: AtomicUsize = AtomicUsize::new(0);
+        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+        let dir = std::env::temp_dir().join(format!("up-cli-{name}-{}-{n}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        TempDir(dir)
+    }
+
+    fn path(&self, name: &str) -> PathBuf {
+        self.0.join(name)
+    }
+
+    fn str(&self, name: &str) -> String {
+        self.path(name).display().to_string()
+    }
+
+    fn files(&self) -> Vec<String> {
+        let mut names: Vec<String> = std::fs::read_dir(&self.0)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        names
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn asset(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../assets/scenes")
+        .join(name)
+        .display()
+        .to_string()
+}
+
+#[test]
+fn help_is_available_everywhere() {
+    assert!(up_ok(&["--help"]).contains("run"));
+    for sub in [
+        "run",
+        "bench",
+        "colliders",
+        "validate",
+        "export-obj",
+        "fit-spheres",
+    ] {
+        let text = up_ok(&[sub, "--help"]);
+        assert!(text.contains("Usage: up"), "{sub}: {text}");
+    }
+}
+
+#[test]
+fn unknown_subcommands_and_flags_exit_2() {
+    up_err(&["fly"]);
+    up_err(&["run", "--wings", "2"]);
+    up_err(&["run", "--every", "0"]);
+    up_err(&["run", "--balloons", "many"]);
+}
+
+#[test]
+fn run_json_reports_every_field() {
+    let text = up_ok(&["run", "--balloons", "3", "--seconds", "0.5", "--json"]);
+    let j = last_json(&text);
+    for key in [
+        "balloons",
+        "steps",
+        "sim_seconds",
+        "wall_seconds",
+        "ms_per_step",
+        "max_penetration_m",
+        "escaped",
+        "nan_bodies",
+        "state_hash",
+        "mean_height_m",
+        "max_tilt_deg",
+        "kinetic_energy_j",
+    ] {
+        assert!(j.get(key).is_some(), "missing {key} in {j}");
+    }
+    assert_eq!(j["balloons"], 3);
+    assert_eq!(j["steps"], 30);
+    assert!(
+        (j["sim_seconds"].as_f64().unwrap() - 0.5).abs() < 1e-3,
+        "{j}"
+    );
+    assert_eq!(j["escaped"], 0);
+    assert_eq!(j["nan_bodies"], 0);
+    let hash = j["state_hash"].as_str().unwrap();
+    assert_eq!(hash.len(), 16);
+    assert!(hash.chars().all(|c| c.is_ascii_hexdigit()), "{hash}");
+    // Helium balloons released from the floor are rising.
+    assert!(j["mean_height_m"].as_f64().unwrap() > 0.1, "{j}");
+    // The summary table comes before the JSON line.
+    assert!(text.contains("max penetration"), "{text}");
+}
+
+#[test]
+fn runs_are_deterministic_for_a_seed() {
+    let hash = |seed: &str| {
+        let text = up_ok(&[
+            "run",
+            "--balloons",
+            "4",
+            "--seconds",
+            "0.25",
+            "--seed",
+            seed,
+            "--json",
+        ]);
+        last_json(&text)["state_hash"].as_str().unwrap().to_string()
+    };
+    assert_eq!(hash("5"), hash("5"));
+    assert_ne!(hash("5"), hash("6"));
+}
+
+#[test]
+fn run_writes_the_trajectory_csv_every_k_steps() {
+    let dir = TempDir::new("csv");
+    let csv = dir.str("traj.csv");
+    up_ok(&[
+        "run",
+        "--balloons",
+        "2",
+        "--seconds",
+        "0.25",
+        "--every",
+        "5",
+        "--out",
+        &csv,
+    ]);
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("t,id,x,y,z,qx,qy,qz,qw"));
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|f| f.parse::<f64>().unwrap()).collect())
+        .collect();
+    // 15 steps: the start, steps 5, 10, 15; two balloons each.
+    assert_eq!(rows.len(), 4 * 2, "{text}");
+    assert!(rows.iter().all(|r| r.len() == 9));
+    assert_eq!(rows[0][0], 0.0);
+    assert!((rows.last().unwrap()[0] - 0.25).abs() < 1e-3);
+    for r in &rows {
+        let q_len = (r[5] * r[5] + r[6] * r[6] + r[7] * r[7] + r[8] * r[8]).sqrt();
+        assert!((q_len - 1.0).abs() < 1e-4, "{r:?}");
+    }
+    assert_eq!(dir.files(), vec!["traj.csv"], "no temporary file remains");
+}
+
+#[test]
+fn run_with_an_output_in_a_missing_directory_fails_cleanly() {
+    let dir = TempDir::new("missing");
+    let csv = dir.path("no/such/dir/out.csv");
+    let err = up_err(&[
+        "run",
+        "--balloons",
+        "1",
+        "--seconds",
+        "0.1",
+        "--out",
+        &csv.display().to_string(),
+    ]);
+    assert!(err.contains("out.csv"), "{err}");
+    assert!(dir.files().is_empty());
+    let state = dir.path("nope/state.bin");
+    up_err(&[
+        "run",
+        "--balloons",
+        "1",
+        "--seconds",
+        "0.1",
+        "--save-state",
+        &state.display().to_string(),
+    ]);
+    assert!(dir.files().is_empty());
+}
+
+#[test]
+fn run_rejects_bad_scenes_with_file_key_and_line() {
+    let dir = TempDir::new("bad");
+    let missing = dir.str("missing.toml");
+    let err = up_err(&["run", &missing]);
+    assert!(
+        err.contains(&missing) && err.contains("cannot read the scene file"),
+        "{err}"
+    );
+
+    std::fs::write(dir.path("typo.toml"), "[room]\nwidth = 6\nwidht = 5\n").unwrap();
+    let err = up_err(&["run", &dir.str("typo.toml")]);
+    assert!(
+        err.contains("typo.toml:3: room.widht: unknown field `widht`"),
+        "{err}"
+    );
+
+    std::fs::write(dir.path("nan.toml"), "[sim]\ndt = nan\n").unwrap();
+    let err = up_err(&["run", &dir.str("nan.toml")]);
+    assert!(
+        err.contains("nan.toml:2: sim.dt: expected a finite number"),
+        "{err}"
+    );
+
+    std::fs::write(dir.path("scene.yaml"), "room: {}\n").unwrap();
+    up_err(&["run", &dir.str("scene.yaml")]);
+
+    let err = up_err(&["run", "--balloons", "1000000000"]);
+    assert!(err.contains("balloons[0].count"), "{err}");
+    let err = up_err(&["run", "--seconds=-1"]);
+    assert!(err.contains("--seconds"), "{err}");
+    let err = up_err(&["run", "--seconds", "0"]);
+    assert!(err.contains("--seconds"), "{err}");
+    up_err(&["run", "--seconds", "NaN"]);
+}
+
+#[test]
+fn saved_state_continues_exactly() {
+    let dir = TempDir::new("state");
+    let state = dir.str("half.upsnap");
+    let common = ["--balloons", "3", "--seed", "9", "--json"];
+    let whole = up_ok(&[&["run", "--seconds", "0.5"][..], &common].concat());
+    up_ok(
+        &[
+            &["run", "--seconds", "0.25", "--save-state", &state][..],
+            &common,
+        ]
+        .concat(),
+    );
+    assert_eq!(dir.files(), vec!["half.upsnap"]);
+    let resumed = up_ok(&[
+        "run",
+        "--seconds",
+        "0.25",
+        "--load-state",
+        &state,
+        "--seed",
+        "9",
+        "--json",
+    ]);
+    assert_eq!(
+        last_json(&whole)["state_hash"],
+        last_json(&resumed)["state_hash"]
+    );
+    assert_eq!(last_json(&resumed)["steps"], 15);
+
+    std::fs::write(dir.path("junk.upsnap"), b"not a snapshot").unwrap();
+    let err = up_err(&["run", "--load-state", &dir.str("junk.upsnap")]);
+    assert!(err.contains("junk.upsnap"), "{err}");
+    up_err(&["run", "--load-state", &dir.str("absent.upsnap")]);
+    up_err(&["run", "--load-state", &state, "--balloons", "2"]);
+}
+
+#[test]
+fn bench_reports_timings_and_stages() {
+    let text = up_ok(&["bench", "--balloons", "3", "--steps", "20", "--json"]);
+    let j = last_json(&text);
+    assert_eq!(j["balloons"], 3);
+    assert_eq!(j["steps"], 20);
+    for key in [
+        "ms_per_step",
+        "median_ms",
+        "p95_ms",
+        "max_ms",
+        "wall_seconds",
+        "state_hash",
+    ] {
+        assert!(j[key].is_number() || j[key].is_string(), "{key} in {j}");
+    }
+    let stages = j["stages"].as_array().unwrap();
+    assert!(stages.iter().any(|s| s["name"] == "solve"), "{j}");
+    up_err(&["bench", "--steps", "0"]);
+    up_err(&["bench", "no-such-scene.toml"]);
+}
+
+#[test]
+fn colliders_show_the_default_tree_and_mass() {
+    let text = up_ok(&["colliders"]);
+    assert!(
+        text.contains("node  0") && text.contains("mass properties"),
+        "{text}"
+    );
+    let j = last_json(&up_ok(&["colliders", "--json"]));
+    let nodes = j["nodes"].as_array().unwrap();
+    assert_eq!(nodes.iter().filter(|n| n["leaf"] == true).count(), 5, "{j}");
+    assert_eq!(nodes[0]["leaf"], false);
+    let mass = j["mass_kg"].as_f64().unwrap();
+    assert!((0.002..0.02).contains(&mass), "{mass}");
+    assert!(j["coverage"].as_f64().unwrap() > 0.99, "{j}");
+}
+
+#[test]
+fn validate_accepts_every_example_and_rejects_bad_files() {
+    for name in [
+        "default.toml",
+        "terminal-velocity.toml",
+        "party-hall.toml",
+        "thrown.toml",
+        "two-gases.json",
+    ] {
+        let text = up_ok(&["validate", &asset(name)]);
+        assert!(text.contains("valid"), "{name}: {text}");
+    }
+    let dir = TempDir::new("validate");
+    std::fs::write(
+        dir.path("crowded.toml"),
+        "[room]\nwidth = 1\ndepth = 1\nwall_height = 1\n[[balloons]]\ncount = 900\n",
+    )
+    .unwrap();
+    let err = up_err(&["validate", &dir.str("crowded.toml")]);
+    assert!(
+        err.contains("balloons[0].count") && err.contains("do not fit"),
+        "{err}"
+    );
+    std::fs::write(dir.path("bad.json"), "{\"sim\": {\"substeps\": 100}}").unwrap();
+    let err = up_err(&["validate", &dir.str("bad.json")]);
+    assert!(err.contains("bad.json:1: sim.substeps"), "{err}");
+    up_err(&["validate", &dir.str("absent.toml")]);
+    up_err(&["validate"]);
+}
+
+#[test]
+fn export_obj_writes_meshes_and_fit_spheres_reads_them_back() {
+    let dir = TempDir::new("export");
+    let out = dir.path("assets");
+    let listed = up_ok(&["export-obj", &out.display().to_string()]);
+    let balloon = out.join("balloon.obj");
+    assert!(balloon.exists(), "{listed}");
+    let written: Vec<&str> = listed.lines().collect();
+    assert!(written.iter().any(|l| l.ends_with(".mtl")), "{listed}");
+    assert!(written.iter().all(|l| Path::new(l).exists()), "{listed}");
+
+    let json = dir.str("fit.json");
+    up_ok(&[
+        "fit-spheres",
+        &balloon.display().to_string(),
+        "--leaves",
+        "5",
+        "--out",
+        &json,
+    ]);
+    let fit: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert!(fit["coverage"].as_f64().unwrap() > 0.99, "{fit}");
+    assert!(fit["tree"].is_object(), "{fit}");
+    // Without --out the JSON goes to standard output.
+    let printed: Value =
+        serde_json::from_str(&up_ok(&["fit-spheres", &balloon.display().to_string()])).unwrap();
+    assert_eq!(printed["coverage"], fit["coverage"]);
+
+    up_err(&["fit-spheres", &dir.str("absent.obj")]);
+    up_err(&[
+        "fit-spheres",
+        &balloon.display().to_string(),
+        "--leaves",
+        "0",
+    ]);
+    std::fs::write(dir.path("open.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    up_err(&["fit-spheres", &dir.str("open.obj")]);
+    let before = dir.files();
+    up_err(&[
+        "fit-spheres",
+        &balloon.display().to_string(),
+        "--out",
+        &dir.str("no/dir/fit.json"),
+    ]);
+    assert_eq!(dir.files(), before);
+}

@@ -1,0 +1,279 @@
+//! Building a scene into a `World`: the room, one balloon model per group,
+//! and every balloon placed without overlap, deterministically from `sim.seed`.
+//!
+//! Each body's `user_data` packs its group and colour:
+//! `group << 16 | colour`, where `colour` indexes `BuiltScene::colors`
+//! (see `user_data_for`, `color_index`, `group_index`).
+
+use glam::{Quat, Vec3};
+use up_geom::Pose;
+use up_physics::{BodyDef, BodyId, World, WorldDef};
+
+use crate::balloon::{build_balloon, BalloonModel, BalloonSpec, Gas};
+use crate::error::SceneError;
+use crate::room::{box_room, room_from_obj, Ceiling, RoomMesh};
+use crate::scene::{parse_color, CeilingKind, GasKind, Scene};
+
+#[path = "build_rng.rs"]
+pub mod rng;
+#[path = "build_spawn.rs"]
+pub mod spawn;
+
+use rng::SplitMix64;
+use spawn::{place_spheres, Occupancy, SpawnRegion};
+
+/// Most groups a scene may have (the group index lives in 16 bits of `user_data`).
+pub const MAX_GROUPS: usize = 1 << 16;
+/// Most distinct colours over a scene (the colour index lives in the low 16 bits).
+pub const MAX_COLORS: usize = 1 << 16;
+/// Spawn regions keep this far from the room's surfaces, m.
+const ROOM_MARGIN: f32 = 0.01;
+
+/// A scene built and ready to step.
+pub struct BuiltScene {
+    pub world: World,
+    pub room: RoomMesh,
+    /// One per balloon group, in the scene's order.
+    pub balloon_models: Vec<BalloonModel>,
+    /// RGB in 0–1, indexed by `color_index(user_data)`.
+    pub colors: Vec<[f32; 3]>,
+    /// The names the colours were given in the scene, parallel to `colors`.
+    pub color_names: Vec<String>,
+    /// The bodies of each group, in creation order.
+    pub group_bodies: Vec<Vec<BodyId>>,
+}
+
+/// `user_data` of a body of `group` with palette colour `color`.
+pub fn user_data_for(group: usize, color: usize) -> u32 {
+    ((group as u32) << 16) | (color as u32 & 0xFFFF)
+}
+
+/// Palette index (into `BuiltScene::colors`) from a body's `user_data`.
+pub fn color_index(user_data: u32) -> usize {
+    (user_data & 0xFFFF) as usize
+}
+
+/// Balloon group index from a body's `user_data`.
+pub fn group_index(user_data: u32) -> usize {
+    (user_data >> 16) as usize
+}
+
+/// The `WorldDef` a scene asks for, without the room.
+pub fn world_def(scene: &Scene) -> WorldDef {
+    let sim = &scene.sim;
+    WorldDef {
+        gravity: Vec3::from_array(sim.gravity),
+        atmosphere: scene.air.atmosphere(),
+        dt: sim.dt,
+        substeps: sim.substeps,
+        contact_hertz: sim.contact_hertz,
+        contact_damping_ratio: sim.contact_damping_ratio,
+        friction: sim.friction,
+        restitution: sim.restitution,
+        drag_coefficient: sim.drag_coefficient,
+        added_mass_coefficient: sim.added_mass_coefficient,
+        angular_damping: sim.angular_damping,
+        enable_sleep: sim.sleep,
+        enable_continuous: sim.continuous,
+        ..WorldDef::default()
+    }
+}
+
+/// The room a scene describes: its OBJ mesh, or the box.
+pub fn build_room(scene: &Scene) -> Result<RoomMesh, SceneError> {
+    match scene.room_mesh_path() {
+        Some(path) => room_from_obj(&path).map_err(|e| SceneError::Room {
+            at: scene.locate("room.mesh"),
+            message: format!("{}: {e}", path.display()),
+        }),
+        None => {
+            let room = &scene.room;
+            let ceiling = match room.ceiling {
+                CeilingKind::Pyramid => Ceiling::Pyramid {
+                    apex_height: room.apex_height,
+                },
+                CeilingKind::Flat => Ceiling::Flat,
+            };
+            box_room(room.width, room.depth, room.wall_height, ceiling).map_err(|e| {
+                SceneError::Room {
+                    at: scene.locate("room"),
+                    message: e.to_string(),
+                }
+            })
+        }
+    }
+}
+
+/// The balloon model of group `i`.
+pub fn build_group_model(scene: &Scene, i: usize) -> Result<BalloonModel, SceneError> {
+    let group = &scene.balloons[i];
+    let spec = BalloonSpec {
+        diameter_m: group.diameter(),
+        envelope_mass_kg: group.envelope_mass_kg(),
+        knot_mass_kg: group.knot_mass_kg(),
+        gas: match group.gas {
+            GasKind::Helium => Gas::Helium,
+            GasKind::Air => Gas::Air,
+        },
+    };
+    build_balloon(&spec, &scene.air.atmosphere(), group.leaves as usize).map_err(|e| {
+        SceneError::Balloon {
+            at: scene.locate(&format!("balloons[{i}]")),
+            message: e.to_string(),
+        }
+    })
+}
+
+/// Builds the world: validates, makes the room and the balloon models, and
+/// places every balloon.
+pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
+    scene.validate()?;
+    if scene.balloons.len() > MAX_GROUPS {
+        return Err(SceneError::Invalid {
+            at: scene.locate("balloons"),
+            expected: format!("at most {MAX_GROUPS} balloon groups"),
+            found: scene.balloons.len().to_string(),
+        });
+    }
+    let room = build_room(scene)?;
+    let physics = |source| SceneError::Physics {
+        file: scene.source.name.clone(),
+        source,
+    };
+    let mut def = world_def(scene);
+    def.room = Some(room.to_trimesh());
+    let mut world = World::new(def).map_err(physics)?;
+
+    let (colors, color_names, group_palette) = palette(scene)?;
+    let bounds = room.bounds();
+    let inside = |p: Vec3| room.contains_point(p);
+    let mut occupied = Occupancy::default();
+    let mut rng = SplitMix64::new(scene.sim.seed);
+    let mut balloon_models = Vec::with_capacity(scene.balloons.len());
+    let mut group_bodies = Vec::with_capacity(scene.balloons.len());
+
+    for (i, group) in scene.balloons.iter().enumerate() {
+        let model = build_group_model(scene, i)?;
+        let shape_id = world.add_shape(model.shape.clone()).map_err(physics)?;
+        let root = model.shape.tree.root().sphere();
+        let region = spawn_region(scene, i, &bounds.min, &bounds.max)?;
+        let count = group.count as usize;
+        let centres = place_spheres(
+            count,
+            root.radius,
+            &region,
+            &inside,
+            &mut occupied,
+            &mut rng,
+        );
+        if centres.len() < count {
+            return Err(SceneError::DoesNotFit {
+                at: scene.locate(&format!("balloons[{i}].count")),
+                requested: group.count,
+                placed: centres.len() as u64,
+            });
+        }
+        let mut bodies = Vec::with_capacity(count);
+        for (k, centre) in centres.into_iter().enumerate() {
+            let rotation = random_upright(&mut rng, group.tilt_deg, group.yaw_deg);
+            // The bounding sphere's centre goes where the layout put it.
+            let position = centre - rotation * root.center;
+            let mut body = BodyDef::new(shape_id, Pose::new(position, rotation));
+            body.linear_velocity = Vec3::from_array(group.velocity);
+            body.angular_velocity = Vec3::from_array(group.angular_velocity);
+            let palette = &group_palette[i];
+            body.user_data = user_data_for(i, palette[k % palette.len()]);
+            bodies.push(world.add_body(&body).map_err(physics)?);
+        }
+        balloon_models.push(model);
+        group_bodies.push(bodies);
+    }
+    Ok(BuiltScene {
+        world,
+        room,
+        balloon_models,
+        colors,
+        color_names,
+        group_bodies,
+    })
+}
+
+/// Distinct colours over the scene, and each group's colours as palette indices.
+type Palette = (Vec<[f32; 3]>, Vec<String>, Vec<Vec<usize>>);
+
+fn palette(scene: &Scene) -> Result<Palette, SceneError> {
+    let mut colors = Vec::new();
+    let mut names: Vec<String> = Vec::new();
+    let mut per_group = Vec::with_capacity(scene.balloons.len());
+    for (i, group) in scene.balloons.iter().enumerate() {
+        let mut indices = Vec::with_capacity(group.colors.len());
+        for (j, name) in group.colors.iter().enumerate() {
+            let index = match names.iter().position(|n| n == name) {
+                Some(index) => index,
+                None => {
+                    let key = format!("balloons[{i}].colors[{j}]");
+                    let rgb = parse_color(name).ok_or_else(|| SceneError::Invalid {
+                        at: scene.locate(&key),
+                        expected: "a colour name or \"#rrggbb\"".into(),
+                        found: format!("{name:?}"),
+                    })?;
+                    if names.len() >= MAX_COLORS {
+                        return Err(SceneError::Invalid {
+                            at: scene.locate(&key),
+                            expected: format!("at most {MAX_COLORS} distinct colours"),
+                            found: "more".into(),
+                        });
+                    }
+                    colors.push(rgb);
+                    names.push(name.clone());
+                    names.len() - 1
+                }
+            };
+            indices.push(index);
+        }
+        per_group.push(indices);
+    }
+    Ok((colors, names, per_group))
+}
+
+/// The region group `i` fills: its spawn box, or the whole floor.
+fn spawn_region(scene: &Scene, i: usize, lo: &Vec3, hi: &Vec3) -> Result<SpawnRegion, SceneError> {
+    let margin = Vec3::splat(ROOM_MARGIN);
+    let (lo, hi) = (*lo + margin, *hi - margin);
+    let Some(spawn) = &scene.balloons[i].spawn else {
+        return Ok(SpawnRegion {
+            min: lo,
+            max: Vec3::new(hi.x, lo.y, hi.z),
+            top: hi.y,
+        });
+    };
+    let (min, max) = (Vec3::from_array(spawn.min), Vec3::from_array(spawn.max));
+    // A box room is checked in validation; a mesh room only now that its bounds are known.
+    if min.cmplt(lo - margin).any() || max.cmpgt(hi + margin).any() {
+        return Err(SceneError::Invalid {
+            at: scene.locate(&format!("balloons[{i}].spawn")),
+            expected: format!("a region inside the room's bounds, from {lo} to {hi} m"),
+            found: format!("from {min} to {max}"),
+        });
+    }
+    Ok(SpawnRegion {
+        min: min.max(lo),
+        max: max.min(hi),
+        top: hi.y,
+    })
+}
+
+/// Upright, tilted by up to `tilt_deg` about a random horizontal axis, and
+/// turned by up to ±`yaw_deg` about the vertical.
+fn random_upright(rng: &mut SplitMix64, tilt_deg: f32, yaw_deg: f32) -> Quat {
+    let yaw = rng.range(-yaw_deg, yaw_deg).to_radians();
+    let tilt = rng.range(0.0, tilt_deg).to_radians();
+    let heading = rng.range(0.0, std::f32::consts::TAU);
+    // A horizontal axis at a random heading (glam's trig goes through libm).
+    let axis = Quat::from_rotation_y(heading) * Vec3::X;
+    (Quat::from_axis_angle(axis, tilt) * Quat::from_rotation_y(yaw)).normalize()
+}
+
+#[cfg(test)]
+#[path = "build_tests.rs"]
+mod tests;
