@@ -8,7 +8,7 @@ use up_scene::room::RoomMesh;
 /// The last line of `up run --json`. Units in the names; SI throughout.
 #[derive(Clone, Debug, Serialize)]
 pub struct RunSummary {
-    /// The scene file, or `default`.
+    /// The scene file, or `default (the original room)`.
     pub scene: String,
     pub balloons: usize,
     pub steps: u64,
