@@ -56,6 +56,7 @@ describe("scene link", () => {
     };
     expect(error("")).toMatch(/empty/);
     expect(error("not*base64")).toMatch(/not base64url/);
+    expect(error("%%%garbage")).toMatch(/not base64url/);
     expect(error(toBase64Url(new Uint8Array([0xff, 0xfe, 0x00])))).toMatch(/not UTF-8/);
     expect(error(b64("{room: 1"))).toMatch(/not valid JSON/);
     expect(error(b64("[1, 2]"))).toMatch(/expected a JSON object/);

@@ -70,7 +70,13 @@ export function decodeSceneParam(value: string): DecodeResult {
   if (value.length > MAX_LINK_CHARS) {
     return { ok: false, error: `${where}: the scene is ${value.length} characters long, expected at most ${MAX_LINK_CHARS}` };
   }
-  const bytes = fromBase64Url(decodeURIComponent(value));
+  let text: string;
+  try {
+    text = decodeURIComponent(value);
+  } catch {
+    return { ok: false, error: `${where}: the scene is not base64url text (bad % escape)` };
+  }
+  const bytes = fromBase64Url(text);
   if (!bytes) return { ok: false, error: `${where}: the scene is not base64url text` };
   let json: string;
   try {

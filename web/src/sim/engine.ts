@@ -70,10 +70,8 @@ interface Exports {
   up_model_tree(model: number): number;
   up_tree_ptr(): number;
   up_tree_node_count(): number;
-  up_write_contacts(): number;
-  up_contacts_ptr(): number;
-  up_contact_count(): number;
   up_stats_json(): number;
+  up_world_info_json(): number;
   up_state_hash(): bigint;
 }
 
@@ -93,6 +91,18 @@ export interface RoomMesh {
   triangles: Uint32Array;
 }
 
+/** What a built world holds besides its bodies. */
+export interface WorldSummary {
+  /** Linear RGB 0–1 of each colour index. */
+  colors: [number, number, number][];
+  /** Names of the colours as written in the scene (`red`, `#10a0ff`). */
+  color_names: string[];
+  /** Diameter of each balloon model, m. */
+  diameters: number[];
+  /** s per step. */
+  dt: number;
+}
+
 export interface EngineStats {
   /** Stage name to milliseconds for the last step, in step order ("total" last). */
   stages: [string, number][];
@@ -106,8 +116,6 @@ export interface EngineStats {
 
 /** Floats per pose: x, y, z, qx, qy, qz, qw of the balloon's mesh frame. */
 export const POSE_FLOATS = 7;
-/** Floats per contact in the debug view: x, y, z, nx, ny, nz. */
-export const CONTACT_FLOATS = 6;
 
 export class Engine {
   private constructor(private readonly x: Exports) {}
@@ -284,10 +292,9 @@ export class Engine {
     return nodes;
   }
 
-  /** Contact points of the last step (x, y, z, nx, ny, nz each): a view, valid until the next call. */
-  contacts(): Float32Array {
-    this.check(this.x.up_write_contacts());
-    return new Float32Array(this.x.memory.buffer, this.x.up_contacts_ptr(), this.x.up_contact_count() * CONTACT_FLOATS);
+  worldInfo(): WorldSummary {
+    this.check(this.x.up_world_info_json());
+    return JSON.parse(this.output()) as WorldSummary;
   }
 
   stats(): EngineStats {

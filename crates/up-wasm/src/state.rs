@@ -1,0 +1,396 @@
+//! The world the exports act on, and everything the page reads from it:
+//! poses, colours, the room, the balloon models' sphere trees, stats. Safe
+//! Rust with `Result`s, tested natively; `lib.rs` only marshals.
+
+use glam::{Quat, Vec3};
+use up_geom::Pose;
+use up_physics::{BodyDef, BodyId, ShapeId, World};
+use up_scene::build::{build_world, color_index, group_index, user_data_for, BuiltScene};
+use up_scene::scene::Scene;
+
+use crate::status::{finite, WasmError};
+
+/// Most balloons a page may hold: what a browser can draw and step (the
+/// engine itself takes millions). Adding past this is `Full`.
+pub const CAPACITY: usize = 50_000;
+/// Floats per pose: x, y, z, qx, qy, qz, qw.
+pub const POSE_FLOATS: usize = 7;
+/// Floats per sphere-tree node for the page: cx, cy, cz, radius, depth, leaf.
+pub const TREE_FLOATS: usize = 6;
+/// Gap left between a placed balloon and the floor, m.
+const FLOOR_GAP: f32 = 0.005;
+/// Name of scenes that come from the page.
+const WEB_SOURCE: &str = "scene";
+
+/// A built world plus what the page needs to draw it.
+pub struct Loaded {
+    pub scene: Scene,
+    pub built: BuiltScene,
+    /// Shape of each balloon model (one per group), in group order.
+    pub shapes: Vec<ShapeId>,
+}
+
+/// Everything that lives between calls.
+#[derive(Default)]
+pub struct State {
+    pub loaded: Option<Loaded>,
+    pub poses: Vec<f32>,
+    pub colors: Vec<u32>,
+    pub models: Vec<u32>,
+    pub tree: Vec<f32>,
+    pub room_vertices: Vec<f32>,
+    pub room_triangles: Vec<u32>,
+    /// Text handed to the page (scene JSON, stats JSON).
+    pub output: String,
+}
+
+fn json_string(s: &str) -> String {
+    let mut out = String::with_capacity(s.len() + 2);
+    out.push('"');
+    for c in s.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            c if (c as u32) < 0x20 => out.push_str(&format!("\\u{:04x}", c as u32)),
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
+}
+
+/// A number as JSON (non-finite values become `null`, which JSON lacks otherwise).
+fn json_number(x: f64) -> String {
+    if x.is_finite() {
+        format!("{x}")
+    } else {
+        "null".to_string()
+    }
+}
+
+impl State {
+    fn loaded(&self) -> Result<&Loaded, WasmError> {
+        self.loaded.as_ref().ok_or(WasmError::NoWorld)
+    }
+
+    fn loaded_mut(&mut self) -> Result<&mut Loaded, WasmError> {
+        self.loaded.as_mut().ok_or(WasmError::NoWorld)
+    }
+
+    pub fn world(&self) -> Result<&World, WasmError> {
+        Ok(&self.loaded()?.built.world)
+    }
+
+    fn world_mut(&mut self) -> Result<&mut World, WasmError> {
+        Ok(&mut self.loaded_mut()?.built.world)
+    }
+
+    /// Builds `scene` and makes it the world. On error the old world stays.
+    pub fn load(&mut self, scene: Scene) -> Result<(), WasmError> {
+        let total = scene.total_balloons();
+        if total > CAPACITY as u64 {
+            return Err(WasmError::Full(format!(
+                "{}: {total} balloons: the browser holds at most {CAPACITY} (the CLI takes more)",
+                scene.source.name
+            )));
+        }
+        if scene.room.mesh.is_some() {
+            return Err(WasmError::Scene(format!(
+                "{}: room.mesh: a mesh room cannot be read in the browser; expected a box room",
+                scene.source.name
+            )));
+        }
+        let built = build_world(&scene)?;
+        // Models were added as shapes in group order, one each, before any other.
+        let shapes = (0..built.balloon_models.len() as u32)
+            .map(ShapeId)
+            .collect();
+        self.room_vertices = built
+            .room
+            .vertices()
+            .iter()
+            .flat_map(|v| v.to_array())
+            .collect();
+        self.room_triangles = built.room.triangles().iter().flatten().copied().collect();
+        self.loaded = Some(Loaded {
+            scene,
+            built,
+            shapes,
+        });
+        Ok(())
+    }
+
+    pub fn load_json(&mut self, text: &str) -> Result<(), WasmError> {
+        self.load(Scene::from_json_str(text, WEB_SOURCE)?)
+    }
+
+    pub fn load_toml(&mut self, text: &str) -> Result<(), WasmError> {
+        self.load(Scene::from_toml_str(text, WEB_SOURCE)?)
+    }
+
+    pub fn load_default(&mut self) -> Result<(), WasmError> {
+        self.load(Scene::default())
+    }
+
+    pub fn scene_json(&mut self) -> Result<(), WasmError> {
+        self.output = self.loaded()?.scene.to_json_string()?;
+        Ok(())
+    }
+
+    pub fn default_scene_json(&mut self) -> Result<(), WasmError> {
+        self.output = Scene::default().to_json_string()?;
+        Ok(())
+    }
+
+    pub fn step(&mut self, n: u32) -> Result<(), WasmError> {
+        if n > 10_000 {
+            return Err(WasmError::BadArgument(format!(
+                "up_step: {n} steps at once: expected at most 10000"
+            )));
+        }
+        let world = self.world_mut()?;
+        for _ in 0..n {
+            world.step();
+        }
+        Ok(())
+    }
+
+    pub fn body_count(&self) -> usize {
+        self.loaded
+            .as_ref()
+            .map_or(0, |l| l.built.world.body_count())
+    }
+
+    fn body_at(&self, index: u32) -> Result<BodyId, WasmError> {
+        let ids = self.world()?.body_ids();
+        ids.get(index as usize).copied().ok_or_else(|| {
+            WasmError::OutOfRange(format!(
+                "body index {index}: there are {} bodies",
+                ids.len()
+            ))
+        })
+    }
+
+    pub fn write_poses(&mut self) -> Result<(), WasmError> {
+        let n = self.body_count();
+        self.poses.resize(n * POSE_FLOATS, 0.0);
+        let loaded = self.loaded.as_ref().ok_or(WasmError::NoWorld)?;
+        loaded.built.world.write_poses(&mut self.poses);
+        Ok(())
+    }
+
+    /// Colour index (into the palette) and model index (the group) of every body.
+    pub fn write_user_data(&mut self) -> Result<(), WasmError> {
+        let loaded = self.loaded.as_ref().ok_or(WasmError::NoWorld)?;
+        let world = &loaded.built.world;
+        self.colors.clear();
+        self.models.clear();
+        for &id in world.body_ids() {
+            let user = world.user_data(id).unwrap_or(0);
+            self.colors.push(color_index(user) as u32);
+            self.models.push(group_index(user) as u32);
+        }
+        Ok(())
+    }
+
+    /// Adds a balloon of model `model` with its mesh frame at `position`, upright.
+    pub fn add_balloon(&mut self, position: Vec3, color: u32, model: u32) -> Result<(), WasmError> {
+        finite("balloon position", &position.to_array())?;
+        if self.body_count() >= CAPACITY {
+            return Err(WasmError::Full(format!(
+                "the room is full: at most {CAPACITY} balloons in the browser"
+            )));
+        }
+        let loaded = self.loaded_mut()?;
+        let shape = *loaded.shapes.get(model as usize).ok_or_else(|| {
+            WasmError::OutOfRange(format!(
+                "balloon model {model}: the scene has {} models",
+                loaded.shapes.len()
+            ))
+        })?;
+        if color as usize >= loaded.built.colors.len() {
+            return Err(WasmError::OutOfRange(format!(
+                "colour {color}: the palette has {} colours",
+                loaded.built.colors.len()
+            )));
+        }
+        let mut def = BodyDef::new(shape, Pose::new(position, Quat::IDENTITY));
+        def.user_data = user_data_for(model as usize, color as usize);
+        loaded.built.world.add_body(&def)?;
+        Ok(())
+    }
+
+    /// Adds a balloon of the first model standing on the floor (y = 0) at (x, z).
+    pub fn add_balloon_on_floor(&mut self, x: f32, z: f32, color: u32) -> Result<(), WasmError> {
+        finite("floor point", &[x, z])?;
+        let loaded = self.loaded()?;
+        let model = loaded.built.balloon_models.first().ok_or_else(|| {
+            WasmError::OutOfRange("the scene has no balloon model to add".to_string())
+        })?;
+        // Lowest point of the collision spheres, mesh frame, upright.
+        let bottom = model
+            .shape
+            .tree
+            .leaf_spheres()
+            .map(|s| s.center.y - s.radius)
+            .fold(f32::INFINITY, f32::min);
+        let bounds = loaded.built.room.bounds();
+        let inside = x > bounds.min.x && x < bounds.max.x && z > bounds.min.z && z < bounds.max.z;
+        if !inside {
+            return Err(WasmError::OutOfRange(format!(
+                "floor point ({x}, {z}) lies outside the room ({} to {} m along x, {} to {} along z)",
+                bounds.min.x, bounds.max.x, bounds.min.z, bounds.max.z
+            )));
+        }
+        let y = bounds.min.y - bottom + FLOOR_GAP;
+        self.add_balloon(Vec3::new(x, y, z), color, 0)
+    }
+
+    pub fn remove(&mut self, index: u32) -> Result<(), WasmError> {
+        let id = self.body_at(index)?;
+        self.world_mut()?.remove_body(id)?;
+        Ok(())
+    }
+
+    pub fn apply_impulse(
+        &mut self,
+        index: u32,
+        impulse: Vec3,
+        point: Vec3,
+    ) -> Result<(), WasmError> {
+        finite("impulse", &impulse.to_array())?;
+        finite("impulse point", &point.to_array())?;
+        let id = self.body_at(index)?;
+        self.world_mut()?
+            .apply_impulse_at_point(id, impulse, point)?;
+        Ok(())
+    }
+
+    pub fn set_velocity(
+        &mut self,
+        index: u32,
+        linear: Vec3,
+        angular: Vec3,
+    ) -> Result<(), WasmError> {
+        finite("linear velocity", &linear.to_array())?;
+        finite("angular velocity", &angular.to_array())?;
+        let id = self.body_at(index)?;
+        self.world_mut()?.set_velocity(id, linear, angular)?;
+        Ok(())
+    }
+
+    pub fn grab(&mut self, index: u32, point: Vec3) -> Result<(), WasmError> {
+        finite("grab point", &point.to_array())?;
+        let id = self.body_at(index)?;
+        self.world_mut()?.grab(id, point)?;
+        Ok(())
+    }
+
+    pub fn drag_to(&mut self, target: Vec3) -> Result<(), WasmError> {
+        finite("grab target", &target.to_array())?;
+        self.world_mut()?.set_grab_target(target)?;
+        Ok(())
+    }
+
+    pub fn release(&mut self) -> Result<(), WasmError> {
+        self.world_mut()?.release_grab();
+        Ok(())
+    }
+
+    /// Writes model `model`'s sphere tree (root first) into `tree`; returns the node count.
+    pub fn write_tree(&mut self, model: u32) -> Result<usize, WasmError> {
+        let loaded = self.loaded.as_ref().ok_or(WasmError::NoWorld)?;
+        let m = loaded
+            .built
+            .balloon_models
+            .get(model as usize)
+            .ok_or_else(|| {
+                WasmError::OutOfRange(format!(
+                    "balloon model {model}: the scene has {} models",
+                    loaded.built.balloon_models.len()
+                ))
+            })?;
+        let nodes = m.shape.tree.nodes();
+        // Depth of each node: children come after their parent, so one pass fills it.
+        let mut depth = vec![0u32; nodes.len()];
+        for (i, n) in nodes.iter().enumerate() {
+            let child_depth = depth[i] + 1;
+            for c in n.children() {
+                if let Some(d) = depth.get_mut(c) {
+                    *d = child_depth;
+                }
+            }
+        }
+        self.tree.clear();
+        for (n, d) in nodes.iter().zip(&depth) {
+            let leaf = if n.is_leaf() { 1.0 } else { 0.0 };
+            self.tree.extend_from_slice(&[
+                n.center.x, n.center.y, n.center.z, n.radius, *d as f32, leaf,
+            ]);
+        }
+        Ok(nodes.len())
+    }
+
+    pub fn model_count(&self) -> usize {
+        self.loaded
+            .as_ref()
+            .map_or(0, |l| l.built.balloon_models.len())
+    }
+
+    /// Palette, colour names, model diameters and the time step, as JSON.
+    pub fn world_info_json(&mut self) -> Result<(), WasmError> {
+        let loaded = self.loaded()?;
+        let colors: Vec<String> = loaded
+            .built
+            .colors
+            .iter()
+            .map(|c| format!("[{},{},{}]", c[0], c[1], c[2]))
+            .collect();
+        let names: Vec<String> = loaded
+            .built
+            .color_names
+            .iter()
+            .map(|n| json_string(n))
+            .collect();
+        let diameters: Vec<String> = loaded
+            .scene
+            .balloons
+            .iter()
+            .map(|g| json_number(f64::from(g.diameter())))
+            .collect();
+        self.output = format!(
+            "{{\"colors\":[{}],\"color_names\":[{}],\"diameters\":[{}],\"dt\":{}}}",
+            colors.join(","),
+            names.join(","),
+            diameters.join(","),
+            json_number(f64::from(loaded.built.world.def().dt)),
+        );
+        Ok(())
+    }
+
+    /// Per-stage milliseconds of the last step and the step's counts, as JSON.
+    pub fn stats_json(&mut self) -> Result<(), WasmError> {
+        let world = self.world()?;
+        let stages: Vec<String> = world
+            .counters()
+            .stages()
+            .iter()
+            .map(|(name, ms)| format!("[{},{}]", json_string(name), json_number(*ms)))
+            .collect();
+        let s = world.stats();
+        self.output = format!(
+            "{{\"stages\":[{}],\"bodies\":{},\"awake\":{},\"pairs\":{},\"contacts\":{},\"max_penetration\":{}}}",
+            stages.join(","),
+            world.body_count(),
+            s.awake_count,
+            s.pair_count,
+            s.contact_count,
+            json_number(f64::from(s.max_penetration)),
+        );
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+#[path = "state_tests.rs"]
+mod tests;

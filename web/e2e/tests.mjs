@@ -1,0 +1,202 @@
+// The end-to-end tests, run by run.mjs against the built app. Each gets a
+// fresh page and returns normally on success; `check` throws on failure.
+
+import assert from "node:assert/strict";
+import { join } from "node:path";
+
+const DEFAULT_BALLOONS = 50;
+
+/** Opens the app (with `hash`) and waits until it has drawn balloons. */
+async function open(page, url, hash = "") {
+  await page.goto(url + hash);
+  await page.waitForFunction(() => window.__up?.ready(), null, { timeout: 60_000 });
+}
+
+const up = (page, expr, arg) => page.evaluate(expr, arg);
+const count = (page) => up(page, () => window.__up.balloonCount());
+const meanY = (page) =>
+  up(page, () => {
+    const p = window.__up.poses();
+    let sum = 0;
+    for (let i = 1; i < p.length; i += 7) sum += p[i];
+    return sum / Math.max(1, p.length / 7);
+  });
+
+async function pause(page) {
+  await page.keyboard.press(" ");
+  await page.waitForFunction(() => window.__up.paused());
+  // Let OrbitControls' damping settle and the last frame arrive.
+  await page.waitForTimeout(600);
+}
+
+function base64url(text) {
+  return Buffer.from(text, "utf8").toString("base64").replace(/\+/g, "-").replace(/\//g, "_").replace(/=+$/, "");
+}
+
+export const tests = [
+  {
+    name: "page loads with no console errors",
+    async run({ page, url, consoleErrors }) {
+      await open(page, url);
+      await page.waitForTimeout(1500);
+      assert.deepEqual(consoleErrors, []);
+      assert.equal(await page.locator("#fatal").isHidden(), true, "no fatal message");
+      assert.equal(await page.locator("#message").isHidden(), true, "no error banner");
+      assert.match(await page.locator("#hud-count").textContent(), /^Balloons: 50$/);
+      await page.waitForFunction(() => /Physics: \d/.test(document.querySelector("#hud-physics").textContent));
+      assert.match(await page.locator("#hud-fps").textContent(), /^FPS: \d+/);
+    },
+  },
+  {
+    name: "canvas is not blank and shows balloons",
+    async run({ page, url, out }) {
+      await open(page, url);
+      await page.waitForTimeout(2500);
+      const withBalloons = await up(page, () => window.__up.pixelStats(false));
+      const without = await up(page, () => window.__up.pixelStats(true));
+      await page.screenshot({ path: join(out, "default-view.png") });
+      assert.ok(withBalloons.std > 12, `the picture varies (std ${withBalloons.std.toFixed(1)})`);
+      assert.ok(withBalloons.saturatedFraction > 0.004, `balloon colours on screen (${(withBalloons.saturatedFraction * 100).toFixed(2)} %)`);
+      assert.ok(
+        withBalloons.saturatedFraction > without.saturatedFraction * 2 + 0.002,
+        `hiding the balloons removes the colour (${withBalloons.saturatedFraction} vs ${without.saturatedFraction})`,
+      );
+    },
+  },
+  {
+    name: "balloons rise over time",
+    async run({ page, url }) {
+      await open(page, url);
+      const before = await meanY(page);
+      const stepsBefore = await up(page, () => window.__up.steps());
+      await page.waitForTimeout(2500);
+      const after = await meanY(page);
+      const steps = (await up(page, () => window.__up.steps())) - stepsBefore;
+      assert.ok(steps > 20, `the simulation runs (${steps} steps)`);
+      assert.ok(after > before + 0.3, `mean height rose from ${before.toFixed(2)} to ${after.toFixed(2)} m`);
+    },
+  },
+  {
+    name: "arrow keys orbit the view at constant distance",
+    async run({ page, url }) {
+      await open(page, url);
+      await pause(page);
+      // The HUD's FPS changes on its own: compare the 3D view only.
+      await page.addStyleTag({ content: "#hud, #help { visibility: hidden !important; }" });
+      const still1 = await page.screenshot();
+      const still2 = await page.screenshot();
+      assert.ok(still1.equals(still2), "paused, the view is still");
+      const cam0 = await up(page, () => window.__up.camera());
+      await page.keyboard.down("ArrowLeft");
+      await page.waitForTimeout(500);
+      await page.keyboard.up("ArrowLeft");
+      await page.keyboard.down("ArrowUp");
+      await page.waitForTimeout(300);
+      await page.keyboard.up("ArrowUp");
+      await page.waitForTimeout(200);
+      const cam1 = await up(page, () => window.__up.camera());
+      const moved = await page.screenshot();
+      assert.ok(!moved.equals(still2), "the screenshots differ");
+      const dist = (c) => Math.hypot(...c.position.map((x, i) => x - c.target[i]));
+      assert.ok(Math.abs(dist(cam1) - dist(cam0)) < 1e-3, `distance kept: ${dist(cam0)} → ${dist(cam1)}`);
+      assert.ok(cam1.position[1] > cam0.position[1], "up raised the camera");
+      const az = (c) => Math.atan2(c.position[0] - c.target[0], c.position[2] - c.target[2]);
+      assert.ok(az(cam1) < az(cam0) - 0.1, `left turned the azimuth: ${az(cam0)} → ${az(cam1)}`);
+    },
+  },
+  {
+    name: "CTRL then a click adds exactly one balloon at the clicked spot",
+    async run({ page, url, out }) {
+      await open(page, url);
+      await page.keyboard.press("Control");
+      await page.waitForFunction(() => window.__up.placement() && window.__up.paused());
+      await page.waitForTimeout(300);
+      await page.screenshot({ path: join(out, "placement-mode.png") });
+      const n = await count(page);
+      const target = { x: 1.2, z: -0.9 };
+      const pixel = await up(page, (t) => window.__up.project(t.x, 0, t.z), target);
+      await page.mouse.click(pixel.x, pixel.y);
+      await page.waitForFunction((m) => window.__up.balloonCount() === m, n + 1);
+      await page.waitForTimeout(700);
+      assert.equal(await count(page), n + 1, "exactly one balloon added");
+      const pose = await up(page, () => window.__up.poses().slice(-7));
+      assert.ok(Math.hypot(pose[0] - target.x, pose[2] - target.z) < 0.05, `placed at (${pose[0].toFixed(3)}, ${pose[2].toFixed(3)})`);
+      assert.ok(pose[1] < 0.5, `on the floor (y = ${pose[1].toFixed(3)})`);
+      await page.keyboard.press("Control");
+      await page.waitForFunction(() => !window.__up.placement() && !window.__up.paused());
+    },
+  },
+  {
+    name: "a change in the panel takes effect",
+    async run({ page, url }) {
+      await open(page, url);
+      const input = page.locator('[data-key="count"] input').first();
+      await input.fill("12");
+      await input.press("Enter");
+      await page.waitForFunction(() => window.__up.balloonCount() === 12, null, { timeout: 30_000 });
+      await page.waitForFunction(() => document.querySelector("#hud-count").textContent === "Balloons: 12");
+      assert.match(page.url(), /#scene=/, "the scene is in the link");
+      const scene = JSON.parse(await up(page, () => window.__up.sceneJson()));
+      assert.equal(scene.balloons.reduce((s, g) => s + g.count, 0), 12);
+    },
+  },
+  {
+    name: "a shared link loads its scene",
+    async run({ page, url }) {
+      const scene = { room: { width: 4, depth: 4, wall_height: 2.5, ceiling: "flat" }, balloons: [{ count: 9, colors: ["blue", "#ff8800"] }] };
+      await open(page, url, `#scene=${base64url(JSON.stringify(scene))}`);
+      assert.equal(await count(page), 9);
+      assert.equal(await page.locator("#message").isHidden(), true);
+    },
+  },
+  {
+    name: "a malformed shared link shows an error and the default scene",
+    async run({ page, url, out }) {
+      await open(page, url, "#scene=%%%this-is-not-a-scene");
+      await page.locator("#message").waitFor({ state: "visible" });
+      assert.match(await page.locator("#message").textContent(), /shared link.*default scene/);
+      assert.equal(await count(page), DEFAULT_BALLOONS);
+      await page.screenshot({ path: join(out, "malformed-link.png") });
+      // A fresh document: a hash-only change would not reload the app.
+      await page.goto("about:blank");
+
+      await open(page, url, `#scene=${base64url(JSON.stringify({ room: { width: -1 } }))}`);
+      await page.locator("#message").waitFor({ state: "visible" });
+      assert.match(await page.locator("#message").textContent(), /room\.width/);
+      assert.equal(await count(page), DEFAULT_BALLOONS);
+    },
+  },
+  {
+    name: "a balloon can be grabbed, dragged and popped",
+    async run({ page, url }) {
+      await open(page, url, `#scene=${base64url(JSON.stringify({ balloons: [{ count: 3 }], sim: { gravity: [0, -9.81, 0] } }))}`);
+      await page.waitForTimeout(3000); // let them reach the ceiling and settle a little
+      const target = await up(page, () => {
+        const c = window.__up.balloonCenter(0);
+        return { ...window.__up.project(c[0], c[1], c[2]), c };
+      });
+      await page.mouse.move(target.x, target.y);
+      await page.mouse.down();
+      for (let i = 1; i <= 10; i++) {
+        await page.mouse.move(target.x + 12 * i, target.y + 15 * i);
+        await page.waitForTimeout(60);
+      }
+      await page.waitForTimeout(600);
+      const held = await up(page, () => window.__up.balloonCenter(0));
+      await page.mouse.up();
+      const moved = Math.hypot(held[0] - target.c[0], held[1] - target.c[1], held[2] - target.c[2]);
+      assert.ok(moved > 0.3, `the grabbed balloon followed the mouse (${moved.toFixed(2)} m)`);
+
+      await pause(page);
+      const n = await count(page);
+      const c = await up(page, () => {
+        const p = window.__up.balloonCenter(0);
+        return window.__up.project(p[0], p[1], p[2]);
+      });
+      await page.keyboard.down("Shift");
+      await page.mouse.click(c.x, c.y);
+      await page.keyboard.up("Shift");
+      await page.waitForFunction((m) => window.__up.balloonCount() === m, n - 1);
+    },
+  },
+];

@@ -1,0 +1,84 @@
+// Debug view: every balloon's sphere tree (the report's Figure 2), drawn as
+// wireframe spheres coloured by depth.
+
+import * as THREE from "three";
+import type { TreeNode } from "../sim/engine";
+import { POSE_STRIDE } from "./poseMath";
+
+const DEPTH_COLORS = [0xffe066, 0x4dd2ff, 0x7cff6b, 0xff7ad9, 0xffffff];
+
+export class DebugView {
+  readonly group = new THREE.Group();
+  private spheres: THREE.InstancedMesh;
+  private capacity = 0;
+  private trees: TreeNode[][] = [];
+  private readonly sphereGeometry = new THREE.IcosahedronGeometry(1, 2);
+  private readonly sphereMaterial = new THREE.MeshBasicMaterial({ wireframe: true, transparent: true, opacity: 0.55, depthWrite: false });
+  private readonly matrix = new THREE.Matrix4();
+  private readonly position = new THREE.Vector3();
+  private readonly quaternion = new THREE.Quaternion();
+  private readonly scale = new THREE.Vector3();
+  private readonly color = new THREE.Color();
+
+  constructor() {
+    this.group.name = "debug";
+    this.group.visible = false;
+    this.spheres = this.makeSpheres(1024);
+  }
+
+  private makeSpheres(capacity: number): THREE.InstancedMesh {
+    if (this.spheres) {
+      this.group.remove(this.spheres);
+      this.spheres.dispose();
+    }
+    const mesh = new THREE.InstancedMesh(this.sphereGeometry, this.sphereMaterial, capacity);
+    mesh.frustumCulled = false;
+    mesh.count = 0;
+    mesh.setColorAt(0, this.color.set(1, 1, 1));
+    this.capacity = capacity;
+    this.spheres = mesh;
+    this.group.add(mesh);
+    return mesh;
+  }
+
+  setTrees(trees: TreeNode[][]): void {
+    this.trees = trees;
+  }
+
+  get visible(): boolean {
+    return this.group.visible;
+  }
+
+  set visible(on: boolean) {
+    this.group.visible = on;
+  }
+
+  /** Places every node of every balloon's tree (current poses, no interpolation: it is a debug view). */
+  update(poses: Float32Array, offset: number, count: number, models: Uint32Array | null): void {
+    if (!this.group.visible) return;
+    let needed = 0;
+    for (let i = 0; i < count; i++) needed += this.trees[models ? models[i] : 0]?.length ?? 0;
+    if (needed > this.capacity) this.makeSpheres(Math.max(needed, this.capacity * 2));
+    let k = 0;
+    for (let i = 0; i < count; i++) {
+      const tree = this.trees[models ? models[i] : 0];
+      if (!tree) continue;
+      const o = offset + i * POSE_STRIDE;
+      this.quaternion.set(poses[o + 3], poses[o + 4], poses[o + 5], poses[o + 6]);
+      for (const node of tree) {
+        this.position.set(node.center[0], node.center[1], node.center[2]).applyQuaternion(this.quaternion);
+        this.position.x += poses[o];
+        this.position.y += poses[o + 1];
+        this.position.z += poses[o + 2];
+        this.scale.setScalar(node.radius);
+        this.matrix.compose(this.position, this.quaternion, this.scale);
+        this.spheres.setMatrixAt(k, this.matrix);
+        this.spheres.setColorAt(k, this.color.setHex(DEPTH_COLORS[Math.min(node.depth, DEPTH_COLORS.length - 1)]));
+        k++;
+      }
+    }
+    this.spheres.count = k;
+    this.spheres.instanceMatrix.needsUpdate = true;
+    if (this.spheres.instanceColor) this.spheres.instanceColor.needsUpdate = true;
+  }
+}

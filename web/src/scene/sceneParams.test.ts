@@ -1,0 +1,50 @@
+import { describe, expect, it } from "vitest";
+import { applyParams, paramsFromScene, splitCount } from "./sceneParams";
+import { validateScene } from "./sceneSchema";
+
+const scene = {
+  room: { width: 6, depth: 5, wall_height: 3, ceiling: "pyramid", apex_height: 1.5 },
+  balloons: [
+    { count: 30, colors: ["red"], size_in: 11, spawn: { min: [-1, 0, -1], max: [1, 1, 1] } },
+    { count: 20, colors: ["blue"], size_in: 11, gas: "helium" },
+  ],
+  air: { temperature_c: 20, pressure_kpa: 101.325 },
+  sim: { seed: 3, substeps: 4, friction: 0.5, restitution: 0.4, drag_coefficient: 0.95 },
+};
+
+describe("panel parameters", () => {
+  it("reads the parameters from a scene, with defaults for missing keys", () => {
+    const p = paramsFromScene(scene);
+    expect(p).toMatchObject({ count: 50, sizeIn: 11, helium: true, width: 6, depth: 5, ceiling: "pyramid", substeps: 4 });
+    expect(paramsFromScene({})).toMatchObject({ count: 0, sizeIn: 11, width: 6, depth: 6, wallHeight: 3, drag: 0.95 });
+  });
+
+  it("writes them back, keeping the other keys, and the result is valid", () => {
+    const p = { ...paramsFromScene(scene), count: 7, sizeIn: 16, helium: false, ceiling: "flat" as const, friction: 0.2 };
+    const out = applyParams(scene, p);
+    const groups = out.balloons as Record<string, unknown>[];
+    expect(groups.map((g) => g.count)).toEqual([4, 3]);
+    expect(groups[0].diameter_m).toBeCloseTo(0.4064, 4);
+    expect(groups[0].size_in).toBeUndefined();
+    expect(groups[0].spawn).toBeUndefined();
+    expect(groups[1].gas).toBe("air");
+    expect(groups[0].colors).toEqual(["red"]);
+    expect((out.sim as Record<string, unknown>).seed).toBe(3);
+    expect((out.sim as Record<string, unknown>).friction).toBe(0.2);
+    expect((out.room as Record<string, unknown>).ceiling).toBe("flat");
+    expect(validateScene(out)).toEqual([]);
+    // The input is untouched.
+    expect(scene.balloons[0].count).toBe(30);
+  });
+
+  it("round-trips: reading what was written gives the same parameters", () => {
+    const p = { ...paramsFromScene(scene), count: 123, width: 8, apexHeight: 2 };
+    expect(paramsFromScene(applyParams(scene, p))).toEqual(p);
+  });
+
+  it("splits a total over groups like the CLI", () => {
+    expect(splitCount(10, 3)).toEqual([4, 3, 3]);
+    expect(splitCount(2, 3)).toEqual([1, 1, 0]);
+    expect(splitCount(5, 0)).toEqual([5]);
+  });
+});

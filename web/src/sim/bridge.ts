@@ -1,0 +1,109 @@
+// Main-thread side of the physics worker: sends commands, keeps the newest
+// frame of poses, hands the previous buffer back (ping-pong), and tells how
+// far between the two steps of a frame the display is (interpolation).
+
+import type { EngineStats } from "./engine";
+import type { Frame, FromWorker, ToWorker, Vec3Tuple, WorldInfo } from "./protocol";
+import { POSE_STRIDE } from "../render/poseMath";
+
+export interface BridgeEvents {
+  ready(info: WorldInfo): void;
+  frame(frame: Frame): void;
+  stats(stats: EngineStats, stepsPerSecond: number): void;
+  error(message: string, fatal: boolean): void;
+}
+
+export class SimBridge {
+  private readonly worker: Worker;
+  /** The newest frame, drawn every animation frame until the next one arrives. */
+  current: Frame | null = null;
+  prev = new Float32Array(0);
+  curr = new Float32Array(0);
+  colors: Uint32Array = new Uint32Array(0);
+  models: Uint32Array = new Uint32Array(0);
+  info: WorldInfo | null = null;
+  paused = false;
+
+  constructor(private readonly events: BridgeEvents) {
+    this.worker = new Worker(new URL("./worker.ts", import.meta.url), { type: "module" });
+    this.worker.onmessage = (e: MessageEvent<FromWorker>) => this.receive(e.data);
+    this.worker.onerror = (e) => events.error(`the physics worker failed: ${e.message || "unknown error"}`, true);
+  }
+
+  private send(msg: ToWorker, transfer: Transferable[] = []): void {
+    this.worker.postMessage(msg, transfer);
+  }
+
+  private receive(msg: FromWorker): void {
+    switch (msg.type) {
+      case "ready":
+        this.info = msg.info;
+        this.events.ready(msg.info);
+        break;
+      case "frame": {
+        const old = this.current;
+        this.current = msg;
+        const floats = msg.count * POSE_STRIDE;
+        this.prev = new Float32Array(msg.buffer, 0, floats);
+        this.curr = new Float32Array(msg.buffer, floats * 4, floats);
+        if (msg.colors) this.colors = msg.colors;
+        if (msg.models) this.models = msg.models;
+        this.paused = msg.paused;
+        this.events.frame(msg);
+        // The previous frame's buffer goes back to the worker for refilling.
+        if (old) this.send({ type: "return", buffer: old.buffer }, [old.buffer]);
+        break;
+      }
+      case "stats":
+        this.events.stats(msg.stats, msg.stepsPerSecond);
+        break;
+      case "error":
+        this.events.error(msg.message, msg.fatal);
+        break;
+    }
+  }
+
+  /** Display position between the frame's two steps, 0–1. */
+  alpha(nowAbs: number): number {
+    const f = this.current;
+    if (!f || f.paused || !this.info) return 1;
+    return Math.min(1, Math.max(0, (nowAbs - f.stepTime) / (this.info.dt * 1000)));
+  }
+
+  init(wasmUrl: string, sceneJson: string | null): void {
+    this.send({ type: "init", wasmUrl, sceneJson });
+  }
+
+  load(sceneJson: string | null): void {
+    this.send({ type: "load", sceneJson });
+  }
+
+  setPaused(paused: boolean): void {
+    this.paused = paused;
+    this.send({ type: "pause", paused });
+  }
+
+  singleStep(): void {
+    this.send({ type: "step" });
+  }
+
+  addOnFloor(x: number, z: number): void {
+    this.send({ type: "addOnFloor", x, z });
+  }
+
+  pop(index: number): void {
+    if (this.current) this.send({ type: "pop", index, version: this.current.version });
+  }
+
+  grab(index: number, point: Vec3Tuple): void {
+    if (this.current) this.send({ type: "grab", index, version: this.current.version, point });
+  }
+
+  dragTo(point: Vec3Tuple): void {
+    this.send({ type: "dragTo", point });
+  }
+
+  release(): void {
+    this.send({ type: "release" });
+  }
+}

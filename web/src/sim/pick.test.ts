@@ -1,0 +1,36 @@
+import { describe, expect, it } from "vitest";
+import { pickBalloon, rayHorizontalPlane, raySphere } from "./pick";
+
+const ray = (origin: [number, number, number], direction: [number, number, number]) => {
+  const l = Math.hypot(...direction);
+  return { origin, direction: direction.map((d) => d / l) as [number, number, number] };
+};
+
+describe("picking", () => {
+  it("intersects a ray with a sphere", () => {
+    expect(raySphere(ray([0, 0, -5], [0, 0, 1]), 0, 0, 0, 1)).toBeCloseTo(4, 6);
+    expect(raySphere(ray([0, 2, -5], [0, 0, 1]), 0, 0, 0, 1)).toBe(Infinity);
+    expect(raySphere(ray([0, 0, 5], [0, 0, 1]), 0, 0, 0, 1)).toBe(Infinity);
+    expect(raySphere(ray([0, 0, 0.5], [0, 0, 1]), 0, 0, 0, 1)).toBe(0);
+  });
+
+  it("picks the nearest balloon through its leaves, not its root", () => {
+    // Two balloons on the z axis; the root is large, the single leaf sits 0.5 m up.
+    const poses = new Float32Array([0, 0, 0, 0, 0, 0, 1, 0, 0, 3, 0, 0, 0, 1]);
+    const roots = [{ center: [0, 0.2, 0] as [number, number, number], radius: 1 }];
+    const leaves = [[{ center: [0, 0.5, 0] as [number, number, number], radius: 0.3 }]];
+    const hit = pickBalloon(ray([0, 0.5, 10], [0, 0, -1]), poses, 2, roots, leaves, null);
+    expect(hit?.index).toBe(1);
+    expect(hit?.distance).toBeCloseTo(6.7, 5);
+    expect(hit?.point[2]).toBeCloseTo(3.3, 5);
+    // Through the root but below the leaf: no hit.
+    expect(pickBalloon(ray([0, -0.5, 10], [0, 0, -1]), poses, 2, roots, leaves, null)).toBeNull();
+  });
+
+  it("finds the floor point under a ray", () => {
+    const p = rayHorizontalPlane(ray([1, 5, 1], [1, -1, 0]), 0);
+    expect(p).toEqual([6, 0, 1]);
+    expect(rayHorizontalPlane(ray([0, 5, 0], [1, 0, 0]), 0)).toBeNull();
+    expect(rayHorizontalPlane(ray([0, 5, 0], [0, 1, 0]), 0)).toBeNull();
+  });
+});

@@ -1,0 +1,86 @@
+// Picking a balloon under the pointer: a ray against each balloon's root
+// sphere, then against the leaves of those it passes through (the same sphere
+// tree the engine collides with). Pure maths over the pose array.
+
+import { POSE_STRIDE, transformPoint } from "../render/poseMath";
+
+export interface Ray {
+  origin: [number, number, number];
+  /** Unit length. */
+  direction: [number, number, number];
+}
+
+/** A sphere in a balloon's body frame. */
+export interface BodySphere {
+  center: [number, number, number];
+  radius: number;
+}
+
+export interface Hit {
+  /** Dense body index. */
+  index: number;
+  /** Distance along the ray, m. */
+  distance: number;
+  point: [number, number, number];
+}
+
+/** Distance along `ray` to the sphere's surface, or `Infinity` when missed (0 when inside). */
+export function raySphere(ray: Ray, cx: number, cy: number, cz: number, r: number): number {
+  const ox = ray.origin[0] - cx;
+  const oy = ray.origin[1] - cy;
+  const oz = ray.origin[2] - cz;
+  const [dx, dy, dz] = ray.direction;
+  const b = ox * dx + oy * dy + oz * dz;
+  const c = ox * ox + oy * oy + oz * oz - r * r;
+  if (c <= 0) return 0;
+  if (b > 0) return Infinity;
+  const disc = b * b - c;
+  if (disc < 0) return Infinity;
+  return -b - Math.sqrt(disc);
+}
+
+/**
+ * The nearest balloon hit by `ray`, or `null`. `roots[m]` and `leaves[m]` are
+ * model m's root and leaf spheres; `models[i]` is body i's model (0 when null).
+ */
+export function pickBalloon(
+  ray: Ray,
+  poses: Float32Array,
+  count: number,
+  roots: BodySphere[],
+  leaves: BodySphere[][],
+  models: Uint32Array | null,
+): Hit | null {
+  let best: Hit | null = null;
+  const c = [0, 0, 0];
+  for (let i = 0; i < count; i++) {
+    const m = models ? models[i] : 0;
+    const root = roots[m];
+    if (!root) continue;
+    const o = i * POSE_STRIDE;
+    transformPoint(poses, o, root.center[0], root.center[1], root.center[2], c);
+    const tRoot = raySphere(ray, c[0], c[1], c[2], root.radius);
+    if (tRoot === Infinity || (best && tRoot > best.distance)) continue;
+    for (const leaf of leaves[m] ?? [root]) {
+      transformPoint(poses, o, leaf.center[0], leaf.center[1], leaf.center[2], c);
+      const t = raySphere(ray, c[0], c[1], c[2], leaf.radius);
+      if (t < (best ? best.distance : Infinity)) {
+        best = {
+          index: i,
+          distance: t,
+          point: [ray.origin[0] + ray.direction[0] * t, ray.origin[1] + ray.direction[1] * t, ray.origin[2] + ray.direction[2] * t],
+        };
+      }
+    }
+  }
+  return best;
+}
+
+/** Where `ray` meets the horizontal plane y = `height`, or `null` when parallel or behind. */
+export function rayHorizontalPlane(ray: Ray, height: number): [number, number, number] | null {
+  const dy = ray.direction[1];
+  if (Math.abs(dy) < 1e-9) return null;
+  const t = (height - ray.origin[1]) / dy;
+  if (t < 0) return null;
+  return [ray.origin[0] + ray.direction[0] * t, height, ray.origin[2] + ray.direction[2] * t];
+}

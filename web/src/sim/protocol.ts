@@ -1,0 +1,64 @@
+// Messages between the main thread and the physics worker.
+//
+// Poses travel in ping-pong buffers: the worker fills a buffer it owns and
+// transfers it; the main thread keeps the newest frame and hands the previous
+// buffer back. No typed array is allocated per frame on either side.
+
+import type { EngineStats, RoomMesh, TreeNode } from "./engine";
+
+export type Vec3Tuple = [number, number, number];
+
+export type ToWorker =
+  | { type: "init"; wasmUrl: string; sceneJson: string | null }
+  | { type: "load"; sceneJson: string | null }
+  | { type: "pause"; paused: boolean }
+  | { type: "step" }
+  | { type: "addOnFloor"; x: number; z: number }
+  | { type: "pop"; index: number; version: number }
+  | { type: "grab"; index: number; version: number; point: Vec3Tuple }
+  | { type: "dragTo"; point: Vec3Tuple }
+  | { type: "release" }
+  | { type: "return"; buffer: ArrayBuffer };
+
+/** What the main thread needs to draw a freshly built world. */
+export interface WorldInfo {
+  /** The scene as the engine read it, every default written out. */
+  sceneJson: string;
+  defaultSceneJson: string;
+  room: RoomMesh;
+  /** Sphere tree of each balloon model, root first (debug view, picking). */
+  trees: TreeNode[][];
+  /** Linear RGB 0–1 of each colour index. */
+  palette: Vec3Tuple[];
+  /** Names of the colours (`red`, `#10a0ff`), by colour index. */
+  colorNames: string[];
+  /** Diameter of each balloon model, m. */
+  diameters: number[];
+  /** s per step. */
+  dt: number;
+  capacity: number;
+}
+
+export interface Frame {
+  type: "frame";
+  /** `[previous step poses | current step poses]`, 7 floats per body each. */
+  buffer: ArrayBuffer;
+  count: number;
+  /** Changes whenever bodies are added or removed (dense order may change). */
+  version: number;
+  /** Colour and model index per body; sent only when `version` changed. */
+  colors?: Uint32Array;
+  models?: Uint32Array;
+  /** Absolute time (timeOrigin + now) the current step was taken, ms. */
+  stepTime: number;
+  /** Simulated seconds since the world was built. */
+  simTime: number;
+  steps: number;
+  paused: boolean;
+}
+
+export type FromWorker =
+  | { type: "ready"; info: WorldInfo }
+  | Frame
+  | { type: "stats"; stats: EngineStats; stepsPerSecond: number }
+  | { type: "error"; message: string; fatal: boolean };

@@ -1,0 +1,61 @@
+// The heads-up display: balloon count, frames per second, and milliseconds
+// per physics step by stage.
+
+import type { EngineStats } from "../sim/engine";
+
+export class Hud {
+  private readonly count: HTMLElement;
+  private readonly fps: HTMLElement;
+  private readonly physics: HTMLElement;
+  private readonly stages: HTMLElement;
+  private readonly mode: HTMLElement;
+  private frames = 0;
+  private since = performance.now();
+  private lastCount = -1;
+
+  constructor(root: HTMLElement) {
+    root.innerHTML = `
+      <div id="hud-count" class="hud-big">Balloons: 0</div>
+      <div id="hud-fps">FPS: –</div>
+      <div id="hud-physics">Physics: – ms/step</div>
+      <table id="hud-stages"></table>
+      <div id="hud-mode"></div>`;
+    this.count = root.querySelector("#hud-count")!;
+    this.fps = root.querySelector("#hud-fps")!;
+    this.physics = root.querySelector("#hud-physics")!;
+    this.stages = root.querySelector("#hud-stages")!;
+    this.mode = root.querySelector("#hud-mode")!;
+  }
+
+  /** Call once per drawn frame. */
+  frame(now: number): void {
+    this.frames++;
+    const elapsed = now - this.since;
+    if (elapsed >= 500) {
+      this.fps.textContent = `FPS: ${((this.frames * 1000) / elapsed).toFixed(0)}`;
+      this.frames = 0;
+      this.since = now;
+    }
+  }
+
+  setCount(n: number): void {
+    if (n === this.lastCount) return;
+    this.lastCount = n;
+    this.count.textContent = `Balloons: ${n}`;
+  }
+
+  setStats(stats: EngineStats, stepsPerSecond: number): void {
+    const total = stats.stages.find(([name]) => name === "total")?.[1] ?? 0;
+    this.physics.textContent = `Physics: ${total.toFixed(2)} ms/step · ${stepsPerSecond.toFixed(0)} steps/s · ${stats.contacts} contacts`;
+    const rows = stats.stages
+      .filter(([name]) => name !== "total")
+      .map(([name, ms]) => `<tr><td>${name}</td><td>${ms.toFixed(2)}</td></tr>`)
+      .join("");
+    this.stages.innerHTML = rows;
+  }
+
+  setMode(text: string): void {
+    this.mode.textContent = text;
+    this.mode.style.display = text ? "block" : "none";
+  }
+}

@@ -1,0 +1,88 @@
+// The lil-gui panel: the scene's parameters (any change rebuilds the world
+// from the edited scene), reset, pause / single step, the debug view, a
+// screenshot and the share link.
+
+import GUI from "lil-gui";
+import type { PanelParams } from "../scene/sceneParams";
+
+export interface PanelActions {
+  /** A scene parameter changed (on finish: release of a slider, Enter in a box). */
+  change(params: PanelParams): void;
+  reset(): void;
+  togglePause(): void;
+  step(): void;
+  debugTrees(on: boolean): void;
+  screenshot(): void;
+  share(): void;
+}
+
+export class Panel {
+  readonly gui: GUI;
+  private readonly params: PanelParams;
+  private readonly view = { trees: false };
+  private readonly pauseButton: ReturnType<GUI["add"]>;
+  private readonly buttons = {
+    pause: () => this.actions.togglePause(),
+    step: () => this.actions.step(),
+    reset: () => this.actions.reset(),
+    screenshot: () => this.actions.screenshot(),
+    share: () => this.actions.share(),
+  };
+
+  constructor(
+    initial: PanelParams,
+    private readonly actions: PanelActions,
+    maxBalloons: number,
+  ) {
+    this.params = { ...initial };
+    this.gui = new GUI({ title: "UP — scene" });
+    const p = this.params;
+    const changed = () => actions.change({ ...p });
+    // Stable handles for the end-to-end tests: data-key="<parameter>".
+    const tag = <T extends { domElement: HTMLElement }>(c: T, key: string): T => {
+      c.domElement.dataset.key = key;
+      return c;
+    };
+
+    const balloons = this.gui.addFolder("Balloons");
+    tag(balloons.add(p, "count", 0, maxBalloons, 1), "count").name("balloons").onFinishChange(changed);
+    balloons.add(p, "sizeIn", 5, 36, 0.5).name("size (inches)").onFinishChange(changed);
+    balloons.add(p, "helium").name("helium (else air)").onFinishChange(changed);
+
+    const physics = this.gui.addFolder("Physics");
+    physics.add(p, "drag", 0, 3, 0.01).name("drag coefficient").onFinishChange(changed);
+    physics.add(p, "restitution", 0, 1, 0.01).onFinishChange(changed);
+    physics.add(p, "friction", 0, 2, 0.01).onFinishChange(changed);
+    physics.add(p, "substeps", 1, 16, 1).onFinishChange(changed);
+
+    const room = this.gui.addFolder("Room");
+    room.add(p, "width", 1, 40, 0.1).name("width (m)").onFinishChange(changed);
+    room.add(p, "depth", 1, 40, 0.1).name("depth (m)").onFinishChange(changed);
+    room.add(p, "wallHeight", 1, 20, 0.1).name("wall height (m)").onFinishChange(changed);
+    room.add(p, "ceiling", ["pyramid", "flat"]).onFinishChange(changed);
+    room.add(p, "apexHeight", 0.1, 10, 0.1).name("apex height (m)").onFinishChange(changed);
+
+    const sim = this.gui.addFolder("Simulation");
+    this.pauseButton = sim.add(this.buttons, "pause").name("pause (space)");
+    sim.add(this.buttons, "step").name("single step (N)");
+    sim.add(this.buttons, "reset").name("reset scene");
+    sim.add(this.view, "trees").name("sphere trees (D)").onChange((on: boolean) => actions.debugTrees(on));
+    sim.add(this.buttons, "screenshot").name("screenshot (S)");
+    sim.add(this.buttons, "share").name("copy share link");
+  }
+
+  /** Shows `params` (after a reset or a loaded link) without firing changes. */
+  set(params: PanelParams): void {
+    Object.assign(this.params, params);
+    for (const c of this.gui.controllersRecursive()) c.updateDisplay();
+  }
+
+  setPaused(paused: boolean): void {
+    this.pauseButton.name(paused ? "resume (space)" : "pause (space)");
+  }
+
+  setDebugTrees(on: boolean): void {
+    this.view.trees = on;
+    for (const c of this.gui.controllersRecursive()) c.updateDisplay();
+  }
+}
