@@ -51,7 +51,13 @@ pub struct BodyDef {
 
 impl BodyDef {
     pub fn new(shape: ShapeId, pose: Pose) -> Self {
-        Self { shape, pose, linear_velocity: Vec3::ZERO, angular_velocity: Vec3::ZERO, user_data: 0 }
+        Self {
+            shape,
+            pose,
+            linear_velocity: Vec3::ZERO,
+            angular_velocity: Vec3::ZERO,
+            user_data: 0,
+        }
     }
 }
 
@@ -102,7 +108,17 @@ impl Bodies {
         self.id.len()
     }
 
-    pub fn push(&mut self, id: BodyId, shape: u32, user_data: u32, center: Vec3, rotation: Quat, v: Vec3, w: Vec3) {
+    #[allow(clippy::too_many_arguments)] // one argument per array
+    pub fn push(
+        &mut self,
+        id: BodyId,
+        shape: u32,
+        user_data: u32,
+        center: Vec3,
+        rotation: Quat,
+        v: Vec3,
+        w: Vec3,
+    ) {
         self.id.push(id);
         self.shape.push(shape);
         self.user_data.push(user_data);
@@ -146,10 +162,16 @@ impl HandleMap {
         if let Some(index) = self.free.pop() {
             let slot = &mut self.slots[index as usize];
             slot.1 = dense;
-            BodyId { index, generation: slot.0 }
+            BodyId {
+                index,
+                generation: slot.0,
+            }
         } else {
             self.slots.push((0, dense));
-            BodyId { index: self.slots.len() as u32 - 1, generation: 0 }
+            BodyId {
+                index: self.slots.len() as u32 - 1,
+                generation: 0,
+            }
         }
     }
 

@@ -49,7 +49,8 @@ impl BroadPhase {
 
         // Counting sort of ordinary bodies into hashed buckets, in body order.
         self.cell_of.clear();
-        self.cell_of.extend(center.iter().map(|&c| cell_coords(c, inv_cell)));
+        self.cell_of
+            .extend(center.iter().map(|&c| cell_coords(c, inv_cell)));
         self.start.clear();
         self.start.resize(mask + 2, 0);
         for i in 0..n {
@@ -190,11 +191,19 @@ mod tests {
         };
         for round in 0..20 {
             let n = 50 + round * 20;
-            let center: Vec<Vec3> =
-                (0..n).map(|_| Vec3::new(rnd() * 3.0, rnd() * 3.0, rnd() * 3.0)).collect();
+            let center: Vec<Vec3> = (0..n)
+                .map(|_| Vec3::new(rnd() * 3.0, rnd() * 3.0, rnd() * 3.0))
+                .collect();
             // A few large (fast) bodies among ordinary ones.
-            let radius: Vec<f32> =
-                (0..n).map(|i| if i % 17 == 0 { 0.2 + rnd() } else { 0.05 + 0.15 * rnd() }).collect();
+            let radius: Vec<f32> = (0..n)
+                .map(|i| {
+                    if i % 17 == 0 {
+                        0.2 + rnd()
+                    } else {
+                        0.05 + 0.15 * rnd()
+                    }
+                })
+                .collect();
             let awake: Vec<bool> = (0..n).map(|i| i % 5 != 0).collect();
             let mut bp = BroadPhase::default();
             bp.update(&center, &radius, &awake, 0.2);

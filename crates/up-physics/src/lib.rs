@@ -25,4 +25,4 @@ pub use counters::Counters;
 pub use forces::atmosphere::Atmosphere;
 pub use snapshot::SnapshotError;
 pub use up_geom;
-pub use world::{PhysicsError, StepStats, World, WorldDef};
+pub use world::{ContactInfo, PhysicsError, StepStats, World, WorldDef, MAX_BODIES};

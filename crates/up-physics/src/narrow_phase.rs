@@ -28,7 +28,10 @@ impl NarrowInput<'_> {
     fn placed(&self, i: usize) -> PlacedTree<'_> {
         let tree = &self.shapes[self.shape[i] as usize].tree;
         let start = self.node_start[i] as usize;
-        PlacedTree { tree, centers: &self.node_centers[start..start + tree.nodes().len()] }
+        PlacedTree {
+            tree,
+            centers: &self.node_centers[start..start + tree.nodes().len()],
+        }
     }
 }
 
@@ -49,22 +52,8 @@ impl NarrowPhase {
         self.runs.clear();
         self.max_penetration = 0.0;
 
-        for &(i, j) in pairs {
-            // Order each pair by handle index: the warm-start key must not
-            // depend on dense order, which removal changes.
-            let (a, b) = if input.handle[i as usize] < input.handle[j as usize] { (i, j) } else { (j, i) };
-            let margin = input.margin[a as usize] + input.margin[b as usize];
-            self.scratch.clear();
-            contact_tree_tree(
-                input.placed(a as usize),
-                input.placed(b as usize),
-                margin,
-                &mut self.scratch,
-            );
-            let key = pair_key(input.handle[a as usize], input.handle[b as usize]);
-            self.push_run(key, a, b);
-        }
-
+        // The room first: it anchors the pile, and Gauss-Seidel converges
+        // fastest from the anchor outwards.
         if let Some(room) = room {
             for a in 0..input.awake.len() {
                 if !input.awake[a] {
@@ -75,6 +64,26 @@ impl NarrowPhase {
                 let key = pair_key(input.handle[a], STATIC_BODY);
                 self.push_run(key, a as u32, STATIC_BODY);
             }
+        }
+
+        for &(i, j) in pairs {
+            // Order each pair by handle index: the warm-start key must not
+            // depend on dense order, which removal changes.
+            let (a, b) = if input.handle[i as usize] < input.handle[j as usize] {
+                (i, j)
+            } else {
+                (j, i)
+            };
+            let margin = input.margin[a as usize] + input.margin[b as usize];
+            self.scratch.clear();
+            contact_tree_tree(
+                input.placed(a as usize),
+                input.placed(b as usize),
+                margin,
+                &mut self.scratch,
+            );
+            let key = pair_key(input.handle[a as usize], input.handle[b as usize]);
+            self.push_run(key, a, b);
         }
     }
 

@@ -49,7 +49,10 @@ pub(crate) fn decode(bytes: &[u8]) -> Result<World, SnapshotError> {
         return Err(SnapshotError::BadMagic);
     }
     if bytes.len() < HEADER {
-        return Err(SnapshotError::Truncated { expected: HEADER, found: bytes.len() });
+        return Err(SnapshotError::Truncated {
+            expected: HEADER,
+            found: bytes.len(),
+        });
     }
     let version = u16::from_le_bytes([bytes[6], bytes[7]]);
     if version != VERSION {

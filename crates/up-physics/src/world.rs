@@ -35,7 +35,17 @@ pub struct WorldDef {
     pub dt: f32,
     /// Solver substeps per step; 4.
     pub substeps: u32,
-    /// Contact stiffness, Hz; 30 (clamped to a quarter of the substep rate).
+    /// Gauss-Seidel passes over the contacts per substep; 1. More converge
+    /// chains of balloons (pile → ceiling) faster, at a proportional cost.
+    pub solve_iterations: u32,
+    /// Overlap the position pass leaves alone, m; 0.0005. Deeper overlap is removed
+    /// after each step, so balloons never sink into each other.
+    pub stabilization_slop: f32,
+    /// Passes of the position pass per step; 2 (0 turns it off).
+    pub stabilization_iterations: u32,
+    /// Contact stiffness, Hz; 60, a quarter of the substep rate at 4 substeps of a
+    /// 60 Hz step (higher is clamped to that). Box2D and Rapier use 30; balloons
+    /// pressed up by a crowd need the stiffer contact to stay within 1 mm.
     pub contact_hertz: f32,
     /// Contact damping ratio, dimensionless; 10 (heavily damped, as Box2D and Rapier).
     pub contact_damping_ratio: f32,
@@ -76,7 +86,10 @@ impl Default for WorldDef {
             atmosphere: Atmosphere::default(),
             dt: 1.0 / 60.0,
             substeps: 4,
-            contact_hertz: 30.0,
+            solve_iterations: 1,
+            stabilization_slop: 0.0005,
+            stabilization_iterations: 2,
+            contact_hertz: 60.0,
             contact_damping_ratio: 10.0,
             max_push_out: 1.0,
             friction: 0.5,
@@ -99,7 +112,11 @@ impl Default for WorldDef {
 #[derive(Debug, Error, PartialEq)]
 pub enum PhysicsError {
     #[error("invalid world parameter `{key}` = {value}: expected {expected}")]
-    BadParameter { key: &'static str, value: f32, expected: &'static str },
+    BadParameter {
+        key: &'static str,
+        value: f32,
+        expected: &'static str,
+    },
     #[error("invalid balloon shape: {0}")]
     BadShape(String),
     #[error("unknown shape {0}")]
@@ -160,11 +177,20 @@ pub struct World {
     scratch: Scratch,
 }
 
-fn check(ok: bool, key: &'static str, value: f32, expected: &'static str) -> Result<(), PhysicsError> {
+fn check(
+    ok: bool,
+    key: &'static str,
+    value: f32,
+    expected: &'static str,
+) -> Result<(), PhysicsError> {
     if ok && value.is_finite() {
         Ok(())
     } else {
-        Err(PhysicsError::BadParameter { key, value, expected })
+        Err(PhysicsError::BadParameter {
+            key,
+            value,
+            expected,
+        })
     }
 }
 
@@ -175,15 +201,61 @@ impl WorldDef {
             return Err(PhysicsError::NonFinite { what: "gravity" });
         }
         let a = &self.atmosphere;
-        check(a.temperature_k > 0.0, "atmosphere.temperature_k", a.temperature_k, "> 0 K")?;
-        check(a.pressure_pa > 0.0, "atmosphere.pressure_pa", a.pressure_pa, "> 0 Pa")?;
-        check(self.dt > 0.0 && self.dt <= 0.1, "dt", self.dt, "0 < dt ≤ 0.1 s")?;
+        check(
+            a.temperature_k > 0.0,
+            "atmosphere.temperature_k",
+            a.temperature_k,
+            "> 0 K",
+        )?;
+        check(
+            a.pressure_pa > 0.0,
+            "atmosphere.pressure_pa",
+            a.pressure_pa,
+            "> 0 Pa",
+        )?;
+        check(
+            self.dt > 0.0 && self.dt <= 0.1,
+            "dt",
+            self.dt,
+            "0 < dt ≤ 0.1 s",
+        )?;
         let substeps = self.substeps as f32;
-        check((1..=64).contains(&self.substeps), "substeps", substeps, "1 to 64")?;
-        check(self.contact_hertz >= 0.0, "contact_hertz", self.contact_hertz, "≥ 0 Hz")?;
+        check(
+            (1..=64).contains(&self.substeps),
+            "substeps",
+            substeps,
+            "1 to 64",
+        )?;
+        let slop = self.stabilization_slop;
+        check(slop >= 0.0, "stabilization_slop", slop, "≥ 0 m")?;
+        let passes = self.stabilization_iterations as f32;
+        check(
+            self.stabilization_iterations <= 32,
+            "stabilization_iterations",
+            passes,
+            "0 to 32",
+        )?;
+        let iterations = self.solve_iterations as f32;
+        check(
+            (1..=32).contains(&self.solve_iterations),
+            "solve_iterations",
+            iterations,
+            "1 to 32",
+        )?;
+        check(
+            self.contact_hertz >= 0.0,
+            "contact_hertz",
+            self.contact_hertz,
+            "≥ 0 Hz",
+        )?;
         let zeta = self.contact_damping_ratio;
         check(zeta >= 0.0, "contact_damping_ratio", zeta, "≥ 0")?;
-        check(self.max_push_out > 0.0, "max_push_out", self.max_push_out, "> 0 m/s")?;
+        check(
+            self.max_push_out > 0.0,
+            "max_push_out",
+            self.max_push_out,
+            "> 0 m/s",
+        )?;
         check(self.friction >= 0.0, "friction", self.friction, "≥ 0")?;
         let e = self.restitution;
         check((0.0..=1.0).contains(&e), "restitution", e, "0 to 1")?;
@@ -250,13 +322,14 @@ impl World {
             return bad("inertia must be finite and positive definite");
         }
         let air = self.def.atmosphere.air_density();
-        let added_mass =
-            added_mass(self.def.added_mass_coefficient, air, shape.volume);
+        let added_mass = added_mass(self.def.added_mass_coefficient, air, shape.volume);
         let tree = shape.tree.translated(-shape.center_of_mass);
         let root = *tree.root();
         let bound_radius = root.center.length() + root.radius;
-        let min_leaf_radius =
-            tree.leaf_spheres().map(|s| s.radius).fold(f32::INFINITY, f32::min);
+        let min_leaf_radius = tree
+            .leaf_spheres()
+            .map(|s| s.radius)
+            .fold(f32::INFINITY, f32::min);
         let data = ShapeData {
             inv_mass_translational: 1.0 / (shape.mass + added_mass),
             inv_inertia_local: inertia.inverse(),
@@ -289,7 +362,9 @@ impl World {
             return Err(PhysicsError::NonFinite { what: "pose" });
         }
         if def.pose.rotation.length_squared() < 1e-6 {
-            return Err(PhysicsError::NonFinite { what: "rotation (zero quaternion)" });
+            return Err(PhysicsError::NonFinite {
+                what: "rotation (zero quaternion)",
+            });
         }
         if !def.linear_velocity.is_finite() || !def.angular_velocity.is_finite() {
             return Err(PhysicsError::NonFinite { what: "velocity" });
@@ -323,6 +398,9 @@ impl World {
         if self.grab.is_some_and(|g| g.body == id) {
             self.grab = None;
         }
+        // Dense indices shift: last step's contacts no longer describe this world.
+        self.scratch.narrow.contacts.clear();
+        self.scratch.narrow.runs.clear();
         let last = self.bodies.len() - 1;
         self.bodies.swap_remove(i);
         self.handles.release(id);
@@ -357,7 +435,9 @@ impl World {
 
     fn pose_at(&self, i: usize) -> Pose {
         let q = self.bodies.rotation[i];
-        let com = self.shapes[self.bodies.shape[i] as usize].def.center_of_mass;
+        let com = self.shapes[self.bodies.shape[i] as usize]
+            .def
+            .center_of_mass;
         Pose::new(self.bodies.center[i] - q * com, q)
     }
 
@@ -388,11 +468,15 @@ impl World {
     }
 
     pub fn linear_velocity(&self, id: BodyId) -> Option<Vec3> {
-        self.handles.dense(id).map(|i| self.bodies.linear_velocity[i])
+        self.handles
+            .dense(id)
+            .map(|i| self.bodies.linear_velocity[i])
     }
 
     pub fn angular_velocity(&self, id: BodyId) -> Option<Vec3> {
-        self.handles.dense(id).map(|i| self.bodies.angular_velocity[i])
+        self.handles
+            .dense(id)
+            .map(|i| self.bodies.angular_velocity[i])
     }
 
     pub fn user_data(&self, id: BodyId) -> Option<u32> {
@@ -400,7 +484,9 @@ impl World {
     }
 
     pub fn shape_of(&self, id: BodyId) -> Option<ShapeId> {
-        self.handles.dense(id).map(|i| ShapeId(self.bodies.shape[i]))
+        self.handles
+            .dense(id)
+            .map(|i| ShapeId(self.bodies.shape[i]))
     }
 
     pub fn is_awake(&self, id: BodyId) -> Option<bool> {
@@ -430,7 +516,12 @@ impl World {
         Ok(())
     }
 
-    pub fn set_velocity(&mut self, id: BodyId, linear: Vec3, angular: Vec3) -> Result<(), PhysicsError> {
+    pub fn set_velocity(
+        &mut self,
+        id: BodyId,
+        linear: Vec3,
+        angular: Vec3,
+    ) -> Result<(), PhysicsError> {
         if !linear.is_finite() || !angular.is_finite() {
             return Err(PhysicsError::NonFinite { what: "velocity" });
         }
@@ -442,7 +533,12 @@ impl World {
     }
 
     /// An instantaneous impulse (N·s) at a world point; wakes the body.
-    pub fn apply_impulse_at_point(&mut self, id: BodyId, impulse: Vec3, point: Vec3) -> Result<(), PhysicsError> {
+    pub fn apply_impulse_at_point(
+        &mut self,
+        id: BodyId,
+        impulse: Vec3,
+        point: Vec3,
+    ) -> Result<(), PhysicsError> {
         if !impulse.is_finite() || !point.is_finite() {
             return Err(PhysicsError::NonFinite { what: "impulse" });
         }
@@ -457,7 +553,12 @@ impl World {
     }
 
     /// A force (N) at a world point, held for the next step only; wakes the body.
-    pub fn apply_force_at_point(&mut self, id: BodyId, force: Vec3, point: Vec3) -> Result<(), PhysicsError> {
+    pub fn apply_force_at_point(
+        &mut self,
+        id: BodyId,
+        force: Vec3,
+        point: Vec3,
+    ) -> Result<(), PhysicsError> {
         if !force.is_finite() || !point.is_finite() {
             return Err(PhysicsError::NonFinite { what: "force" });
         }
@@ -476,14 +577,20 @@ impl World {
         self.wake(id)?;
         let i = self.dense(id)?;
         let anchor = self.bodies.rotation[i].inverse() * (point - self.bodies.center[i]);
-        self.grab = Some(Grab { body: id, anchor, target: point });
+        self.grab = Some(Grab {
+            body: id,
+            anchor,
+            target: point,
+        });
         Ok(())
     }
 
     /// Moves the point the grabbed body is pulled toward, m.
     pub fn set_grab_target(&mut self, target: Vec3) -> Result<(), PhysicsError> {
         if !target.is_finite() {
-            return Err(PhysicsError::NonFinite { what: "grab target" });
+            return Err(PhysicsError::NonFinite {
+                what: "grab target",
+            });
         }
         if let Some(g) = &mut self.grab {
             g.target = target;
@@ -572,7 +679,10 @@ impl World {
 
     pub fn restore(bytes: &[u8]) -> Result<World, SnapshotError> {
         let mut world: World = snapshot::decode(bytes)?;
-        world.def.validate().map_err(|e| SnapshotError::Invalid(e.to_string()))?;
+        world
+            .def
+            .validate()
+            .map_err(|e| SnapshotError::Invalid(e.to_string()))?;
         world.check_consistency().map_err(SnapshotError::Invalid)?;
         world.warm.index();
         Ok(world)
@@ -651,6 +761,7 @@ impl World {
         let params = SolveParams {
             dt: self.def.dt,
             substeps: self.def.substeps,
+            iterations: self.def.solve_iterations,
             contact_hertz: self.def.contact_hertz,
             contact_damping_ratio: self.def.contact_damping_ratio,
             max_push_out: self.def.max_push_out,
@@ -660,8 +771,15 @@ impl World {
         self.scratch.solver.solve(&params, grab.as_ref());
         counters.solve_ms = clock.lap();
 
-        self.scratch.solver.restitution(params.restitution_threshold);
+        self.scratch
+            .solver
+            .restitution(params.restitution_threshold);
         self.store_impulses();
+        let (slop, passes) = (
+            self.def.stabilization_slop,
+            self.def.stabilization_iterations,
+        );
+        self.scratch.solver.stabilize(slop, passes);
         self.finish_motion();
         counters.restitution_ms = clock.lap();
 
@@ -697,7 +815,10 @@ impl World {
         let mut total = 0u32;
         for i in 0..n {
             s.node_start.push(total);
-            total += self.shapes[self.bodies.shape[i] as usize].tree.nodes().len() as u32;
+            total += self.shapes[self.bodies.shape[i] as usize]
+                .tree
+                .nodes()
+                .len() as u32;
         }
         s.node_centers.resize(total as usize, Vec3::ZERO);
         let dt = self.def.dt;
@@ -706,7 +827,9 @@ impl World {
             let pose = Pose::new(self.bodies.center[i], self.bodies.rotation[i]);
             let start = s.node_start[i] as usize;
             let nodes = shape.tree.nodes().len();
-            shape.tree.place(&pose, &mut s.node_centers[start..start + nodes]);
+            shape
+                .tree
+                .place(&pose, &mut s.node_centers[start..start + nodes]);
             let motion = if at_rest || !self.bodies.awake[i] {
                 0.0
             } else {
@@ -724,14 +847,23 @@ impl World {
 
     /// Cell radius: the largest root sphere plus its margin at a brisk ascent.
     fn cell_radius(&self) -> f32 {
-        let largest = self.shapes.iter().map(|s| s.tree.root().radius).fold(0.0, f32::max);
+        let largest = self
+            .shapes
+            .iter()
+            .map(|s| s.tree.root().radius)
+            .fold(0.0, f32::max);
         largest + self.def.speculative_distance + 3.0 * self.def.dt
     }
 
     fn find_pairs(&mut self) {
         let cell_radius = self.cell_radius();
         let s = &mut self.scratch;
-        s.broad.update(&s.bound_center, &s.bound_radius, &self.bodies.awake, cell_radius);
+        s.broad.update(
+            &s.bound_center,
+            &s.bound_radius,
+            &self.bodies.awake,
+            cell_radius,
+        );
     }
 
     /// Wakes every sleeping island that an awake body's bounding sphere reaches.
@@ -747,8 +879,14 @@ impl World {
             }
             let (awake, asleep) = if self.bodies.awake[a] { (a, b) } else { (b, a) };
             // Touching, not merely within the speculative margin: root spheres overlap.
-            let ra = self.shapes[self.bodies.shape[awake] as usize].tree.root().radius;
-            let rb = self.shapes[self.bodies.shape[asleep] as usize].tree.root().radius;
+            let ra = self.shapes[self.bodies.shape[awake] as usize]
+                .tree
+                .root()
+                .radius;
+            let rb = self.shapes[self.bodies.shape[asleep] as usize]
+                .tree
+                .root()
+                .radius;
             let d = self.scratch.bound_center[awake].distance(self.scratch.bound_center[asleep]);
             if d < ra + rb && self.bodies.sleep_time[awake] < self.def.time_to_sleep {
                 self.wake_island(self.bodies.island[asleep]);
@@ -799,7 +937,11 @@ impl World {
             // Every pair, awake or not (a measurement, not a step).
             let every = vec![true; self.bodies.len()];
             s.broad.update(&s.bound_center, &s.bound_radius, &every, {
-                let largest = self.shapes.iter().map(|s| s.tree.root().radius).fold(0.0, f32::max);
+                let largest = self
+                    .shapes
+                    .iter()
+                    .map(|s| s.tree.root().radius)
+                    .fold(0.0, f32::max);
                 largest + self.def.speculative_distance + 3.0 * self.def.dt
             });
             let input = NarrowInput {
@@ -811,7 +953,8 @@ impl World {
                 awake: &every,
                 margin: &s.margin,
             };
-            s.narrow.update(&input, &s.broad.pairs, self.def.room.as_ref());
+            s.narrow
+                .update(&input, &s.broad.pairs, self.def.room.as_ref());
             return;
         }
         let input = NarrowInput {
@@ -823,7 +966,8 @@ impl World {
             awake: &self.bodies.awake,
             margin: &s.margin,
         };
-        s.narrow.update(&input, &s.broad.pairs, self.def.room.as_ref());
+        s.narrow
+            .update(&input, &s.broad.pairs, self.def.room.as_ref());
         self.stats = StepStats {
             max_penetration: s.narrow.max_penetration,
             pair_count: s.broad.pairs.len() as u32,
@@ -876,20 +1020,32 @@ impl World {
 
         solver.constraints.clear();
         let narrow = &self.scratch.narrow;
+        let nodes = &self.scratch.node_centers;
         let material = (self.def.friction, self.def.restitution);
         for &(key, start, count) in &narrow.runs {
             let previous = self.warm.find(key);
             for c in &narrow.contacts[start as usize..(start + count) as usize] {
                 let a = c.body_a;
-                let b = if c.body_b == STATIC_BODY { room_state } else { c.body_b };
-                let center_b =
-                    if c.body_b == STATIC_BODY { c.point_b } else { self.bodies.center[b as usize] };
+                let b = if c.body_b == STATIC_BODY {
+                    room_state
+                } else {
+                    c.body_b
+                };
+                let (leaf_a, leaf_b) = ((c.feature >> 32) as usize, (c.feature as u32) as usize);
+                let sphere_a = nodes[self.scratch.node_start[a as usize] as usize + leaf_a];
+                let (center_b, sphere_b) = if c.body_b == STATIC_BODY {
+                    (c.point_b, c.point_b)
+                } else {
+                    let start = self.scratch.node_start[b as usize] as usize;
+                    (self.bodies.center[b as usize], nodes[start + leaf_b])
+                };
                 solver.constraints.push(contact_constraint::prepare(
                     c,
                     a,
                     b,
                     &solver.states,
                     (self.bodies.center[a as usize], center_b),
+                    (sphere_a, sphere_b),
                     material,
                     previous,
                 ));
@@ -920,7 +1076,9 @@ impl World {
         let narrow = &self.scratch.narrow;
         let constraints = &self.scratch.solver.constraints;
         for &(key, start, count) in &narrow.runs {
-            self.warm.runs.push((key, self.warm.impulses.len() as u32, count));
+            self.warm
+                .runs
+                .push((key, self.warm.impulses.len() as u32, count));
             for c in &constraints[start as usize..(start + count) as usize] {
                 self.warm.impulses.push(contact_constraint::stored(c));
             }
@@ -937,9 +1095,19 @@ impl World {
             self.bodies.center[i] += s.dp;
             self.bodies.rotation[i] = s.q;
             self.bodies.linear_velocity[i] = s.v;
-            self.bodies.angular_velocity[i] = s.w;
+            // Keep angular momentum L = I·ω across the rotation (the gyroscopic
+            // effect): the solve used the inertia at the step's start.
+            let shape = &self.shapes[self.bodies.shape[i] as usize];
+            let momentum = s.inv_inertia.inverse() * s.w;
+            let w = world_inverse_inertia(s.q, shape.inv_inertia_local) * momentum;
+            self.bodies.angular_velocity[i] = if w.is_finite() { w } else { s.w };
         }
-        for f in self.bodies.force.iter_mut().chain(self.bodies.torque.iter_mut()) {
+        for f in self
+            .bodies
+            .force
+            .iter_mut()
+            .chain(self.bodies.torque.iter_mut())
+        {
             *f = Vec3::ZERO;
         }
     }
@@ -948,7 +1116,9 @@ impl World {
     /// has the core of each leaf swept along its path; on a hit it is moved
     /// back to the time of impact and loses its velocity into the wall.
     fn sweep_fast_bodies(&mut self) {
-        let Some(room) = self.def.room.as_ref() else { return };
+        let Some(room) = self.def.room.as_ref() else {
+            return;
+        };
         let solver = &self.scratch.solver;
         for &i in &solver.awake {
             let i = i as usize;
@@ -978,7 +1148,8 @@ impl World {
                 let v = self.bodies.linear_velocity[i];
                 let into = v.dot(normal);
                 if into > 0.0 {
-                    self.bodies.linear_velocity[i] = v - (1.0 + self.def.restitution) * into * normal;
+                    self.bodies.linear_velocity[i] =
+                        v - (1.0 + self.def.restitution) * into * normal;
                 }
             }
         }
@@ -1061,5 +1232,40 @@ impl World {
         }
         s.margin = min_rest;
         s.wake = roots_to_sleep;
+    }
+}
+
+/// A contact point found by the last step (for debug views and tests).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactInfo {
+    pub body_a: BodyId,
+    /// `None` for the room.
+    pub body_b: Option<BodyId>,
+    /// Midpoint of the two surface points, world frame, m.
+    pub point: Vec3,
+    /// Unit, from A to B.
+    pub normal: Vec3,
+    /// Negative when overlapping, m.
+    pub separation: f32,
+}
+
+impl World {
+    /// The contact points of the last step (empty after a body was removed since).
+    pub fn contact_points(&self) -> impl Iterator<Item = ContactInfo> + '_ {
+        let n = self.bodies.len();
+        let contacts = &self.scratch.narrow.contacts;
+        let valid = contacts.iter().all(|c| {
+            (c.body_a as usize) < n && (c.body_b == STATIC_BODY || (c.body_b as usize) < n)
+        });
+        contacts
+            .iter()
+            .take(if valid { contacts.len() } else { 0 })
+            .map(move |c| ContactInfo {
+                body_a: self.bodies.id[c.body_a as usize],
+                body_b: (c.body_b != STATIC_BODY).then(|| self.bodies.id[c.body_b as usize]),
+                point: 0.5 * (c.point_a + c.point_b),
+                normal: c.normal,
+                separation: c.separation,
+            })
     }
 }

@@ -18,7 +18,10 @@ pub struct Atmosphere {
 
 impl Default for Atmosphere {
     fn default() -> Self {
-        Self { temperature_k: 293.15, pressure_pa: 101_325.0 }
+        Self {
+            temperature_k: 293.15,
+            pressure_pa: 101_325.0,
+        }
     }
 }
 
@@ -42,7 +45,15 @@ mod tests {
     #[test]
     fn densities_match_the_reference_at_20_celsius() {
         let a = Atmosphere::default();
-        assert!((a.air_density() - 1.204).abs() < 0.002, "{}", a.air_density());
-        assert!((a.helium_density() - 0.166).abs() < 0.001, "{}", a.helium_density());
+        assert!(
+            (a.air_density() - 1.204).abs() < 0.002,
+            "{}",
+            a.air_density()
+        );
+        assert!(
+            (a.helium_density() - 0.166).abs() < 0.001,
+            "{}",
+            a.helium_density()
+        );
     }
 }

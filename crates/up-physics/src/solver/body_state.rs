@@ -58,7 +58,12 @@ impl BodyState {
 
 #[inline]
 fn add_scaled(q: Quat, dq: Quat, s: f32) -> Quat {
-    Quat::from_xyzw(q.x + s * dq.x, q.y + s * dq.y, q.z + s * dq.z, q.w + s * dq.w)
+    Quat::from_xyzw(
+        q.x + s * dq.x,
+        q.y + s * dq.y,
+        q.z + s * dq.z,
+        q.w + s * dq.w,
+    )
 }
 
 /// World inverse inertia R·I⁻¹·Rᵀ.

@@ -5,7 +5,8 @@
 //! 2. per substep: integrate velocities (forces), warm start, solve (soft
 //!    push-out of overlap), integrate positions, relax (no push-out, so the
 //!    push-out's velocity does not linger as jitter);
-//! 3. restitution (bounces), and store impulses for the next step.
+//! 3. restitution (bounces), and store impulses for the next step;
+//! 4. stabilise: overlap beyond a slop is removed from the positions directly.
 
 pub(crate) mod body_state;
 pub(crate) mod contact_constraint;
@@ -31,6 +32,7 @@ pub(crate) struct Solver {
 pub(crate) struct SolveParams {
     pub dt: f32,
     pub substeps: u32,
+    pub iterations: u32,
     pub contact_hertz: f32,
     pub contact_damping_ratio: f32,
     pub max_push_out: f32,
@@ -56,14 +58,16 @@ impl Solver {
                 h,
             );
             contact_constraint::warm_start(&self.constraints, &mut self.states);
-            contact_constraint::solve(
-                &mut self.constraints,
-                &mut self.states,
-                soft,
-                inv_h,
-                p.max_push_out,
-                true,
-            );
+            for _ in 0..p.iterations {
+                contact_constraint::solve(
+                    &mut self.constraints,
+                    &mut self.states,
+                    soft,
+                    inv_h,
+                    p.max_push_out,
+                    true,
+                );
+            }
             for &i in &self.awake {
                 self.states[i as usize].integrate_position(h);
             }
@@ -80,5 +84,12 @@ impl Solver {
 
     pub fn restitution(&mut self, threshold: f32) {
         contact_constraint::apply_restitution(&mut self.constraints, &mut self.states, threshold);
+    }
+
+    /// Removes overlap deeper than `slop` from the positions, `iterations` passes.
+    pub fn stabilize(&mut self, slop: f32, iterations: u32) {
+        for _ in 0..iterations {
+            contact_constraint::stabilize(&self.constraints, &mut self.states, slop);
+        }
     }
 }

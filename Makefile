@@ -1,0 +1,79 @@
+# UP — one entry point for building, running and testing.
+#   make run    set up, build everything, serve the app on http://localhost:$(PORT)
+#   make test   set up, lint, run every test (Rust, web unit, browser end-to-end)
+#   make bench  benchmarks (see docs/benchmarks.md)
+# Every target installs what it needs, idempotently.
+
+SHELL := /bin/bash
+.SHELLFLAGS := -eu -o pipefail -c
+PORT ?= 8080
+CARGO ?= cargo
+WASM_TARGET := wasm32-unknown-unknown
+WASM_OUT := web/public/wasm/up_wasm.wasm
+RUST_SOURCES := $(shell find crates -name '*.rs' -o -name Cargo.toml) Cargo.toml Cargo.lock
+WEB_SOURCES := $(shell find web/src web/index.html web/vite.config.* web/tsconfig*.json web/scripts -type f 2>/dev/null) $(shell find assets -type f 2>/dev/null)
+
+.PHONY: run build test lint test-rust test-web test-e2e bench setup setup-rust setup-web setup-browser serve clean
+
+run: build
+	@echo "UP is being served on http://localhost:$(PORT)  (Ctrl-C stops it)"
+	cd web && npm run --silent serve -- --port $(PORT)
+
+build: setup $(WASM_OUT) web/dist/index.html
+	$(CARGO) build --release -p up-cli
+
+setup: setup-rust setup-web
+
+setup-rust:
+	@rustup target list --installed 2>/dev/null | grep -qx $(WASM_TARGET) || rustup target add $(WASM_TARGET)
+	@rustup component list --installed 2>/dev/null | grep -q '^clippy' || rustup component add clippy
+	@rustup component list --installed 2>/dev/null | grep -q '^rustfmt' || rustup component add rustfmt
+
+# npm ci only when the lock file changed since the last install.
+setup-web: web/node_modules/.installed
+
+web/node_modules/.installed: web/package.json web/package-lock.json
+	cd web && npm ci --no-audit --no-fund
+	touch $@
+
+# Debian's chromium for the browser tests (never a browser download).
+setup-browser:
+	@command -v chromium >/dev/null 2>&1 || { \
+	  echo "Installing Debian's chromium for the browser tests"; \
+	  SUDO=$$( [ "$$(id -u)" = 0 ] || echo sudo ); \
+	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq chromium >/dev/null; }
+
+$(WASM_OUT): $(RUST_SOURCES) | setup-rust
+	$(CARGO) build --release -p up-wasm --target $(WASM_TARGET)
+	mkdir -p $(dir $@)
+	cp target/$(WASM_TARGET)/release/up_wasm.wasm $@
+
+web/dist/index.html: $(WASM_OUT) $(WEB_SOURCES) web/node_modules/.installed
+	cd web && npm run --silent build
+
+serve:
+	cd web && npm run --silent serve -- --port $(PORT)
+
+lint: setup-rust
+	$(CARGO) fmt --all -- --check
+	$(CARGO) clippy --workspace --all-targets --release -- -D warnings
+
+test-rust:
+	$(CARGO) test --workspace --release
+
+test-web: setup-web
+	cd web && npm test
+
+test-e2e: setup-browser build
+	cd web && npm run e2e
+
+test: lint test-rust test-web test-e2e
+	@echo "make test: all suites passed"
+
+bench: setup
+	@echo "(benchmarks: see docs/benchmarks.md)"
+	$(CARGO) run --release -p up-cli -- bench --balloons 1000 --steps 300
+
+clean:
+	$(CARGO) clean
+	rm -rf web/dist web/node_modules $(WASM_OUT)
