@@ -42,6 +42,10 @@ pub struct State {
     pub room_triangles: Vec<u32>,
     /// Text handed to the page (scene JSON, stats JSON).
     pub output: String,
+    /// Stage milliseconds summed over the steps since the last `stats_json`:
+    /// browsers coarsen `performance.now()`, so one step's timings are noisy.
+    stage_sums: Vec<(&'static str, f64)>,
+    steps_summed: u32,
 }
 
 fn json_string(s: &str) -> String {
@@ -148,9 +152,18 @@ impl State {
                 "up_step: {n} steps at once: expected at most 10000"
             )));
         }
-        let world = self.world_mut()?;
+        let loaded = self.loaded.as_mut().ok_or(WasmError::NoWorld)?;
         for _ in 0..n {
-            world.step();
+            loaded.built.world.step();
+            let stages = loaded.built.world.counters().stages();
+            if self.stage_sums.len() != stages.len() {
+                self.stage_sums = stages.iter().map(|&(name, _)| (name, 0.0)).collect();
+                self.steps_summed = 0;
+            }
+            for (sum, (_, ms)) in self.stage_sums.iter_mut().zip(&stages) {
+                sum.1 += ms;
+            }
+            self.steps_summed += 1;
         }
         Ok(())
     }
@@ -368,15 +381,27 @@ impl State {
         Ok(())
     }
 
-    /// Per-stage milliseconds of the last step and the step's counts, as JSON.
+    /// Per-stage milliseconds per step, averaged over the steps since the last
+    /// call (the last step's when none), and the last step's counts, as JSON.
     pub fn stats_json(&mut self) -> Result<(), WasmError> {
+        let last = *self.world()?.counters();
+        let stages: Vec<String> = if self.steps_summed > 0 {
+            let n = f64::from(self.steps_summed);
+            self.stage_sums
+                .iter()
+                .map(|&(name, sum)| (name, sum / n))
+                .collect::<Vec<_>>()
+        } else {
+            last.stages()
+        }
+        .iter()
+        .map(|(name, ms)| format!("[{},{}]", json_string(name), json_number(*ms)))
+        .collect();
+        for sum in &mut self.stage_sums {
+            sum.1 = 0.0;
+        }
+        self.steps_summed = 0;
         let world = self.world()?;
-        let stages: Vec<String> = world
-            .counters()
-            .stages()
-            .iter()
-            .map(|(name, ms)| format!("[{},{}]", json_string(name), json_number(*ms)))
-            .collect();
         let s = world.stats();
         self.output = format!(
             "{{\"stages\":[{}],\"bodies\":{},\"awake\":{},\"pairs\":{},\"contacts\":{},\"max_penetration\":{}}}",

@@ -187,10 +187,23 @@ fn trees_room_and_stats_are_readable() {
         s.tree.chunks(TREE_FLOATS).any(|n| n[5] == 1.0),
         "some node is a leaf"
     );
-    assert!(!s.room_vertices.is_empty() && s.room_triangles.len() % 3 == 0);
+    assert!(!s.room_vertices.is_empty() && s.room_triangles.len().is_multiple_of(3));
     let nv = (s.room_vertices.len() / 3) as u32;
     assert!(s.room_triangles.iter().all(|&i| i < nv));
     s.step(1).unwrap();
     s.stats_json().unwrap();
     assert!(s.output.contains("[\"total\","), "{}", s.output);
+}
+
+#[test]
+fn stage_times_are_averaged_over_the_steps_since_the_last_read() {
+    let mut s = default_state();
+    s.step(5).unwrap();
+    s.stats_json().unwrap();
+    let first = s.output.clone();
+    assert!(first.contains("[\"solve\","), "{first}");
+    assert_eq!(s.steps_summed, 0, "reading resets the sums");
+    // No step since: the last step's own times are reported.
+    s.stats_json().unwrap();
+    assert!(s.output.contains("\"bodies\":50"), "{}", s.output);
 }

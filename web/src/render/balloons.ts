@@ -78,15 +78,16 @@ export class Balloons {
   constructor(private readonly assets: BalloonAssets) {
     this.material = new THREE.MeshPhysicalMaterial({
       color: 0xffffff,
-      roughness: 0.32,
+      roughness: 0.38,
       metalness: 0,
-      clearcoat: 1,
-      clearcoatRoughness: 0.12,
-      sheen: 0.35,
-      sheenRoughness: 0.45,
+      // Latex: a glossy film over a soft, slightly velvety body.
+      clearcoat: 0.9,
+      clearcoatRoughness: 0.08,
+      sheen: 0.12,
+      sheenRoughness: 0.5,
       sheenColor: new THREE.Color(0xffffff),
-      specularIntensity: 0.6,
-      envMapIntensity: 1.1,
+      specularIntensity: 0.5,
+      envMapIntensity: 0.9,
     });
     this.mesh = this.makeMesh(256);
   }
@@ -117,7 +118,8 @@ export class Balloons {
     this.palette = palette.map((rgb, i) => {
       const fromMtl = this.assets.mtlColors.get(colorNames[i]?.toLowerCase() ?? "");
       const [r, g, b] = fromMtl ?? rgb;
-      return new THREE.Color().setRGB(r, g, b, THREE.LinearSRGBColorSpace);
+      // MTL Kd (and the engine's palette) are display sRGB, as three's MTLLoader reads them.
+      return new THREE.Color().setRGB(r, g, b, THREE.SRGBColorSpace);
     });
     this.modelScale = diameters.map((d) => d / this.assets.diameter);
   }

@@ -64,7 +64,7 @@ export class Controls {
 
   /** The centre of the room, which the arrow keys orbit. */
   center(): THREE.Vector3 {
-    return new THREE.Vector3(0, this.room.top / 2, 0);
+    return new THREE.Vector3(0, this.room.top * 0.55, 0);
   }
 
   /** A new world: its room and the balloon models' sphere trees (for picking). */
@@ -78,8 +78,9 @@ export class Controls {
   /** The default view: outside the room, a little above, looking at its centre. */
   homeView(): void {
     const size = Math.max(this.room.halfWidth * 2, this.room.halfDepth * 2, this.room.top);
-    const distance = size * 1.75 + 1.5;
-    const p = orbitPosition(this.center(), { azimuth: 0.55, elevation: 0.3, distance });
+    const distance = size * 1.3 + 1;
+    // Just below the top of the walls: the ceiling, where the balloons gather, shows from inside.
+    const p = orbitPosition(this.center(), { azimuth: 0.6, elevation: 0.03, distance });
     this.camera.up.set(0, 1, 0);
     this.camera.position.set(p.x, p.y, p.z);
     this.orbit.target.copy(this.center());
