@@ -44,7 +44,8 @@ setup-browser:
 	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq chromium >/dev/null; }
 
 $(WASM_OUT): $(RUST_SOURCES) | setup-rust
-	$(CARGO) build --release -p up-wasm --target $(WASM_TARGET)
+	# No debug info in the wasm (10.7 MB with it, 0.9 MB without).
+	CARGO_PROFILE_RELEASE_DEBUG=0 $(CARGO) build --release -p up-wasm --target $(WASM_TARGET)
 	mkdir -p $(dir $@)
 	cp target/$(WASM_TARGET)/release/up_wasm.wasm $@
 

@@ -1,8 +1,8 @@
 //! The balloon model: the procedural mesh, its fitted sphere tree and its
 //! mass properties, packed into the `BalloonShape` the physics world takes.
 //!
-//! Mass comes from the parts (see `balloon_mass`): the latex envelope spread
-//! over the mesh's surface, the knot as a small ball at the bottom of the
+//! Mass comes from the parts (see `balloon_mass`): the latex envelope over
+//! the mesh's surface, thicker where it is stretched less, the knot as a small ball at the bottom of the
 //! neck, and the gas filling the mesh's volume at the room's temperature and
 //! pressure. Buoyancy acts at the centroid of the volume; the knot pulls the
 //! centre of mass below it, so a balloon floats upright.
@@ -27,6 +27,12 @@ use up_physics::{Atmosphere, BalloonShape};
 use crate::balloon_mesh::{BalloonMesh, BalloonMeshError};
 use balloon_mass::Moments;
 pub use balloon_report::{CollidersReport, NodeReport};
+
+/// Radius of a deflated balloon's latex tube as a share of the inflated
+/// diameter: ≈ 2.5 cm for an 11″ (28 cm) balloon, whose flat deflated body is
+/// about 8 cm wide (an estimate). Sets how much thinner the stretched top is
+/// than the neck; see `Moments::stretched_shell`.
+pub const UNSTRETCHED_RADIUS_FRACTION: f32 = 0.09;
 
 /// Density of natural rubber latex, kg/m³ (0.92–0.96 g/cm³): used only to
 /// report the envelope thickness its mass implies.
@@ -207,18 +213,23 @@ pub fn build_balloon(
     };
 
     let mesh = BalloonMesh::new(d)?;
+    let solid = solid_integrals(&mesh.positions, &mesh.indices);
+    let shell = shell_integrals(&mesh.positions, &mesh.indices);
+    let knot = mesh.dimensions.knot_center;
+    let gas = Moments::solid(&solid, gas_density);
+    let latex = Moments::stretched_shell(
+        &mesh.positions,
+        &mesh.indices,
+        e,
+        UNSTRETCHED_RADIUS_FRACTION * d,
+    );
+    let moments = latex + Moments::ball(knot, mesh.dimensions.knot_radius, k) + gas;
+    let mass = moments.properties();
     let fit = fit_sphere_tree(
         &mesh.positions,
         &mesh.indices,
         &FitOptions::with_leaves(leaves),
     )?;
-    let solid = solid_integrals(&mesh.positions, &mesh.indices);
-    let shell = shell_integrals(&mesh.positions, &mesh.indices);
-    let knot = mesh.dimensions.knot_center;
-    let gas = Moments::solid(&solid, gas_density);
-    let moments =
-        Moments::shell(&shell, e) + Moments::ball(knot, mesh.dimensions.knot_radius, k) + gas;
-    let mass = moments.properties();
     // Frontal area for drag: the largest horizontal cross-section, π r_max².
     let r_max = mesh
         .positions

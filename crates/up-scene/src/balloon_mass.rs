@@ -42,6 +42,47 @@ impl Moments {
         }
     }
 
+    /// A latex envelope of total `mass` (kg) over a surface of revolution about
+    /// +Y, thinner where it is stretched more. Rubber keeps its volume as it
+    /// stretches, so its mass per area falls as 1/(area stretch). Stretch is
+    /// taken as circumferential, r / r₀ in both directions, where `r` is the
+    /// distance from the axis and `r₀` (m) the radius of the deflated
+    /// balloon's tube (no stretch where r ≤ r₀: the neck). The neck and the
+    /// lower body so hold far more latex per area than the thin top, which
+    /// puts the centre of mass well below the centre of buoyancy: what keeps a
+    /// real balloon knot-down, even when pressed against a ceiling.
+    pub fn stretched_shell(
+        vertices: &[Vec3],
+        triangles: &[[u32; 3]],
+        mass: f32,
+        unstretched_radius: f32,
+    ) -> Self {
+        let r0 = f64::from(unstretched_radius).max(1e-6);
+        let mut weight = 0.0f64;
+        let mut first = DVec3::ZERO;
+        let mut second = DMat3::ZERO;
+        for t in triangles {
+            let [a, b, c] = t.map(|i| vertices[i as usize].as_dvec3());
+            let area = 0.5 * (b - a).cross(c - a).length();
+            let s = a + b + c;
+            let centroid = s / 3.0;
+            let r = (centroid.x * centroid.x + centroid.z * centroid.z).sqrt();
+            let stretch = (r / r0).max(1.0);
+            let w = area / (stretch * stretch);
+            weight += w;
+            first += centroid * w;
+            // ∫ x xᵀ dA over a triangle = A/12 · (Σ vᵢ vᵢᵀ + s sᵀ).
+            let m = outer(a, a) + outer(b, b) + outer(c, c) + outer(s, s);
+            second += m * (w / 12.0);
+        }
+        let scale = f64::from(mass) / weight.max(f64::MIN_POSITIVE);
+        Self {
+            mass: f64::from(mass),
+            first: first * scale,
+            second: second * scale,
+        }
+    }
+
     /// A uniform solid of `density` (kg/m³) filling a closed volume.
     pub fn solid(solid: &SolidIntegrals, density: f32) -> Self {
         let mass = f64::from(solid.volume) * f64::from(density);

@@ -29,10 +29,10 @@ fn cos_sin(a: f32) -> (f32, f32) {
 /// Vertices around each ring.
 pub const SEGMENTS: u32 = 36;
 /// Head height above the widest circle, in units of R.
-const HEAD_HEIGHT: f32 = 1.0;
+const HEAD_HEIGHT: f32 = 0.85;
 /// Body length below the widest circle down to the neck, in units of R
 /// (tuned so the 11″ balloon holds about 14 L).
-const BODY_LENGTH: f32 = 1.52;
+const BODY_LENGTH: f32 = 1.70;
 /// Neck radius and length, in units of R.
 const NECK_RADIUS: f32 = 0.045;
 const NECK_LENGTH: f32 = 0.1;

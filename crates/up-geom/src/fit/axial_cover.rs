@@ -181,7 +181,7 @@ pub fn fit_axial_spheres(surface: &AxialSurface, count: usize) -> Vec<AxialSpher
     // Starting cuts: a head slab of some share of the length at the high end,
     // the rest shared out evenly (fillers, then the neck at the low end).
     let mut best: Option<(f64, Vec<AxialSphere>)> = None;
-    for head_share in [0.35, 0.5, 0.65] {
+    for head_share in [0.2, 0.275, 0.35, 0.425, 0.5, 0.575, 0.65] {
         let cuts: Vec<f64> = (0..=count)
             .map(|i| match i {
                 i if i == count => t1,
