@@ -1,7 +1,7 @@
 # UP — one entry point for building, running and testing.
 #   make run    set up, build everything, serve the app on http://localhost:$(PORT)
 #   make test   set up, lint, run every test (Rust, web unit, browser end-to-end)
-#   make bench  benchmarks (see docs/benchmarks.md)
+#   make bench  time the engine (up bench) on the original scene
 # Every target installs what it needs, idempotently.
 
 SHELL := /bin/bash
@@ -71,9 +71,8 @@ test-e2e: setup-browser build
 test: lint test-rust test-web test-e2e
 	@echo "make test: all suites passed"
 
-bench: setup
-	@echo "(benchmarks: see docs/benchmarks.md)"
-	$(CARGO) run --release -p up-cli -- bench --balloons 1000 --steps 300
+bench: setup-rust
+	$(CARGO) run --release -p up-cli -- bench --balloons 1000 --steps 600
 
 clean:
 	$(CARGO) clean
