@@ -932,18 +932,13 @@ impl World {
     }
 
     fn find_contacts(&mut self, all: bool) {
+        let cell_radius = self.cell_radius();
         let s = &mut self.scratch;
         if all {
             // Every pair, awake or not (a measurement, not a step).
             let every = vec![true; self.bodies.len()];
-            s.broad.update(&s.bound_center, &s.bound_radius, &every, {
-                let largest = self
-                    .shapes
-                    .iter()
-                    .map(|s| s.tree.root().radius)
-                    .fold(0.0, f32::max);
-                largest + self.def.speculative_distance + 3.0 * self.def.dt
-            });
+            s.broad
+                .update(&s.bound_center, &s.bound_radius, &every, cell_radius);
             let input = NarrowInput {
                 shapes: &self.shapes,
                 shape: &self.bodies.shape,
