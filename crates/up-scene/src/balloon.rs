@@ -21,7 +21,7 @@ use glam::Vec3;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 use up_geom::fit::mesh_integrals::{shell_integrals, solid_integrals};
-use up_geom::fit::{fit_sphere_tree, FitError, FitOptions, FitReport, MAX_LEAVES};
+use up_geom::fit::{fit_sphere_tree, FitError, FitOptions, FitReport, LeafRole, MAX_LEAVES};
 use up_physics::{Atmosphere, BalloonShape};
 
 use crate::balloon_mesh::{BalloonMesh, BalloonMeshError};
@@ -143,6 +143,32 @@ impl BalloonModel {
             return 0.0;
         }
         (2.0 * gravity * lift.abs() / denominator).sqrt() * lift.signum()
+    }
+
+    /// m, body frame: where the net lift acts — buoyancy `ρ_air·V` at the
+    /// centre of buoyancy and the weight `m` at the centre of mass, combined
+    /// into one upward force. None when the balloon does not rise.
+    pub fn lift_centre(&self) -> Option<Vec3> {
+        let buoyancy = self.displaced_air_kg();
+        let lift = self.free_lift_kg();
+        (lift > 0.0).then(|| {
+            (self.shape.center_of_buoyancy * buoyancy - self.shape.center_of_mass * self.shape.mass)
+                / lift
+        })
+    }
+
+    /// m: how far the lift centre lies above the centre of the head sphere
+    /// (−0.008 for the default 11″ balloon). Pressed against a flat ceiling,
+    /// a balloon rocks on its head sphere like a weeble turned over: the
+    /// contact force acts through the sphere's centre and the lift through the
+    /// lift centre, so upright is stable only when this margin is positive.
+    /// Free in the air the balloon always rights itself; this is the much
+    /// weaker preference left once the ceiling carries the lift.
+    pub fn ceiling_upright_margin_m(&self) -> Option<f32> {
+        let head = self.fit.roles.iter().position(|&r| r == LeafRole::Head)?;
+        let leaf = self.shape.tree.leaves()[head] as usize;
+        let head_centre = self.shape.tree.nodes()[leaf].center;
+        Some(self.lift_centre()?.y - head_centre.y)
     }
 
     /// The sphere tree and mass properties, for `up colliders`.

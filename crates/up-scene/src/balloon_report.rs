@@ -58,6 +58,12 @@ pub struct CollidersReport {
     pub displaced_air_kg: f32,
     /// kg: displaced air − mass.
     pub free_lift_kg: f32,
+    /// m: where the net lift acts (`BalloonModel::lift_centre`); none if it sinks.
+    pub lift_centre: Option<[f32; 3]>,
+    /// m: lift centre above the head sphere's centre; pressed against a flat
+    /// ceiling the balloon stays upright only if positive
+    /// (`BalloonModel::ceiling_upright_margin_m`).
+    pub ceiling_upright_margin_m: Option<f32>,
 }
 
 impl CollidersReport {
@@ -100,6 +106,8 @@ impl CollidersReport {
             envelope_area_m2: model.envelope_area_m2,
             displaced_air_kg: model.displaced_air_kg(),
             free_lift_kg: model.free_lift_kg(),
+            lift_centre: model.lift_centre().map(|c| c.to_array()),
+            ceiling_upright_margin_m: model.ceiling_upright_margin_m(),
         }
     }
 }
@@ -173,7 +181,24 @@ impl fmt::Display for CollidersReport {
             "  displaced air {:.3} g, free lift {:.3} g",
             self.displaced_air_kg * 1e3,
             self.free_lift_kg * 1e3
-        )
+        )?;
+        if let Some(centre) = self.lift_centre {
+            write!(f, "\n  net lift acts at {} m", vec3(centre))?;
+        }
+        if let Some(margin) = self.ceiling_upright_margin_m {
+            let verdict = if margin > 0.0 {
+                "stays upright"
+            } else {
+                "tips over"
+            };
+            write!(
+                f,
+                "\n  against a flat ceiling: lift centre {:+.1} mm above the head sphere's centre \
+                 ({verdict} when nudged; see docs/physics.md)",
+                margin * 1e3
+            )?;
+        }
+        Ok(())
     }
 }
 
