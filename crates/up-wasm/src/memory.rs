@@ -7,6 +7,9 @@ use crate::status::WasmError;
 
 /// Largest single buffer, bytes (a scene text larger than this is not a scene).
 pub const MAX_ALLOC: usize = 64 << 20;
+/// Most bytes held in live buffers at once: a host that forgets `up_free`
+/// gets an error, not an out-of-memory trap.
+pub const MAX_LIVE: usize = 128 << 20;
 
 #[derive(Default)]
 pub struct Allocations {
@@ -22,7 +25,20 @@ impl Allocations {
                 "cannot allocate {len} bytes: at most {MAX_ALLOC} at a time"
             )));
         }
-        let mut buffer = vec![0u8; len.max(1)].into_boxed_slice();
+        let live: usize = self.live.iter().map(|b| b.len()).sum();
+        if live + len > MAX_LIVE {
+            return Err(WasmError::Alloc(format!(
+                "cannot allocate {len} bytes: {live} bytes are still held \
+                 (at most {MAX_LIVE} at once; free buffers with up_free)"
+            )));
+        }
+        // `try_reserve_exact` turns an out-of-memory into an error instead of an abort.
+        let mut bytes = Vec::new();
+        bytes
+            .try_reserve_exact(len.max(1))
+            .map_err(|e| WasmError::Alloc(format!("cannot allocate {len} bytes: {e}")))?;
+        bytes.resize(len.max(1), 0u8);
+        let mut buffer = bytes.into_boxed_slice();
         let ptr = buffer.as_mut_ptr();
         self.live.push(buffer);
         Ok(ptr)
@@ -88,6 +104,16 @@ mod tests {
     fn refuses_huge_buffers_and_bad_utf8() {
         let mut a = Allocations::default();
         assert!(matches!(a.alloc(MAX_ALLOC + 1), Err(WasmError::Alloc(_))));
+        let held: Vec<_> = (0..MAX_LIVE / MAX_ALLOC)
+            .map(|_| a.alloc(MAX_ALLOC).unwrap())
+            .collect();
+        assert!(
+            matches!(a.alloc(1), Err(WasmError::Alloc(_))),
+            "past MAX_LIVE in all"
+        );
+        for p in held {
+            a.free(p).unwrap();
+        }
         let p = a.alloc(2).unwrap();
         // SAFETY: p points at 2 bytes this table owns.
         unsafe { p.copy_from([0xff, 0xfe].as_ptr(), 2) };

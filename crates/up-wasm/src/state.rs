@@ -8,6 +8,7 @@ use up_physics::{BodyDef, BodyId, ShapeId, World};
 use up_scene::build::{build_world, color_index, group_index, user_data_for, BuiltScene};
 use up_scene::scene::Scene;
 
+use crate::contacts::write_contacts;
 use crate::status::{finite, WasmError};
 
 /// Most balloons a page may hold: what a browser can draw and step (the
@@ -17,6 +18,14 @@ pub const CAPACITY: usize = 50_000;
 pub const POSE_FLOATS: usize = 7;
 /// Floats per sphere-tree node for the page: cx, cy, cz, radius, depth, leaf.
 pub const TREE_FLOATS: usize = 6;
+/// Fastest a balloon may be set moving, m/s: far beyond any throw (a hard
+/// throw is 10 to 30 m/s) yet small enough that one step cannot tunnel far.
+pub const MAX_SPEED: f32 = 100.0;
+/// Fastest a balloon may be set spinning, rad/s (a flicked balloon: about 20).
+pub const MAX_SPIN: f32 = 500.0;
+/// How far from a balloon's bounding sphere a grab point may lie, as a
+/// fraction of its radius: the picked point is on the surface, give or take.
+const GRAB_SLACK: f32 = 0.5;
 /// Gap left between a placed balloon and the floor, m.
 const FLOOR_GAP: f32 = 0.005;
 /// Name of scenes that come from the page.
@@ -40,6 +49,10 @@ pub struct State {
     pub tree: Vec<f32>,
     pub room_vertices: Vec<f32>,
     pub room_triangles: Vec<u32>,
+    /// Contacts of the last step for the debug view (`contacts.rs` layout).
+    pub contacts: Vec<f32>,
+    /// How many contacts the last step had, written or not.
+    pub contact_total: usize,
     /// Text handed to the page (scene JSON, stats JSON).
     pub output: String,
     /// Stage milliseconds summed over the steps since the last `stats_json`:
@@ -61,6 +74,23 @@ fn json_string(s: &str) -> String {
     }
     out.push('"');
     out
+}
+
+/// `Ok` when a velocity stays within `MAX_SPEED` and `MAX_SPIN`, else why not.
+fn speed_limits(linear: Vec3, angular: Vec3) -> Result<(), String> {
+    if linear.length() > MAX_SPEED {
+        return Err(format!(
+            "speed {} m/s: expected at most {MAX_SPEED} m/s",
+            linear.length()
+        ));
+    }
+    if angular.length() > MAX_SPIN {
+        return Err(format!(
+            "spin {} rad/s: expected at most {MAX_SPIN} rad/s",
+            angular.length()
+        ));
+    }
+    Ok(())
 }
 
 /// A number as JSON (non-finite values become `null`, which JSON lacks otherwise).
@@ -149,7 +179,7 @@ impl State {
     pub fn step(&mut self, n: u32) -> Result<(), WasmError> {
         if n > 10_000 {
             return Err(WasmError::BadArgument(format!(
-                "up_step: {n} steps at once: expected at most 10000"
+                "{n} steps at once: expected at most 10000"
             )));
         }
         let loaded = self.loaded.as_mut().ok_or(WasmError::NoWorld)?;
@@ -192,6 +222,13 @@ impl State {
         Ok(())
     }
 
+    /// The last step's contacts, at most `max` of them, for the debug view.
+    pub fn write_contacts(&mut self, max: u32) -> Result<(), WasmError> {
+        let loaded = self.loaded.as_ref().ok_or(WasmError::NoWorld)?;
+        self.contact_total = write_contacts(&loaded.built.world, max as usize, &mut self.contacts);
+        Ok(())
+    }
+
     /// Colour index (into the palette) and model index (the group) of every body.
     pub fn write_user_data(&mut self) -> Result<(), WasmError> {
         let loaded = self.loaded.as_ref().ok_or(WasmError::NoWorld)?;
@@ -215,6 +252,13 @@ impl State {
             )));
         }
         let loaded = self.loaded_mut()?;
+        let bounds = loaded.built.room.bounds();
+        if position.cmplt(bounds.min).any() || position.cmpgt(bounds.max).any() {
+            return Err(WasmError::OutOfRange(format!(
+                "balloon position {position}: expected a point inside the room, from {} to {} m",
+                bounds.min, bounds.max
+            )));
+        }
         let shape = *loaded.shapes.get(model as usize).ok_or_else(|| {
             WasmError::OutOfRange(format!(
                 "balloon model {model}: the scene has {} models",
@@ -265,6 +309,8 @@ impl State {
         Ok(())
     }
 
+    /// Applies `impulse` (N·s) at `point` (m); refused, with nothing changed,
+    /// when it would leave the body faster than `MAX_SPEED` or `MAX_SPIN`.
     pub fn apply_impulse(
         &mut self,
         index: u32,
@@ -274,8 +320,18 @@ impl State {
         finite("impulse", &impulse.to_array())?;
         finite("impulse point", &point.to_array())?;
         let id = self.body_at(index)?;
-        self.world_mut()?
-            .apply_impulse_at_point(id, impulse, point)?;
+        let world = self.world_mut()?;
+        let before = (world.linear_velocity(id), world.angular_velocity(id));
+        world.apply_impulse_at_point(id, impulse, point)?;
+        let after = (world.linear_velocity(id), world.angular_velocity(id));
+        if let ((Some(v0), Some(w0)), (Some(v), Some(w))) = (before, after) {
+            if let Err(e) = speed_limits(v, w) {
+                world.set_velocity(id, v0, w0)?;
+                return Err(WasmError::BadArgument(format!(
+                    "impulse {impulse} N·s at {point}: {e}"
+                )));
+            }
+        }
         Ok(())
     }
 
@@ -287,20 +343,46 @@ impl State {
     ) -> Result<(), WasmError> {
         finite("linear velocity", &linear.to_array())?;
         finite("angular velocity", &angular.to_array())?;
+        speed_limits(linear, angular).map_err(WasmError::BadArgument)?;
         let id = self.body_at(index)?;
         self.world_mut()?.set_velocity(id, linear, angular)?;
         Ok(())
     }
 
+    /// Holds the body at `index` by `point`, which must lie on it (within its
+    /// bounding sphere, give or take `GRAB_SLACK`).
     pub fn grab(&mut self, index: u32, point: Vec3) -> Result<(), WasmError> {
         finite("grab point", &point.to_array())?;
         let id = self.body_at(index)?;
+        let loaded = self.loaded()?;
+        let world = &loaded.built.world;
+        let model = world.user_data(id).map_or(0, group_index);
+        let root = loaded
+            .built
+            .balloon_models
+            .get(model)
+            .map(|m| *m.shape.tree.root());
+        if let (Some(root), Some(pose)) = (root, world.pose(id)) {
+            let center = pose.position + pose.rotation * root.center;
+            let reach = root.radius * (1.0 + GRAB_SLACK);
+            let distance = point.distance(center);
+            if distance > reach {
+                return Err(WasmError::OutOfRange(format!(
+                    "grab point {point} is {distance:.3} m from the centre of balloon {index}: \
+                     expected a point on it (within {reach:.3} m)"
+                )));
+            }
+        }
         self.world_mut()?.grab(id, point)?;
         Ok(())
     }
 
+    /// Moves the grab target, clamped into the room: the balloon cannot
+    /// leave it, and a ray that grazes the drag plane lands far away.
     pub fn drag_to(&mut self, target: Vec3) -> Result<(), WasmError> {
         finite("grab target", &target.to_array())?;
+        let bounds = self.loaded()?.built.room.bounds();
+        let target = target.clamp(bounds.min, bounds.max);
         self.world_mut()?.set_grab_target(target)?;
         Ok(())
     }
