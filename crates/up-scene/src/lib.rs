@@ -10,6 +10,7 @@ pub mod obj;
 pub mod room;
 
 // Scene files and building a world from them.
+pub mod bench_scene;
 pub mod build;
 pub mod error;
 pub mod scene;

@@ -1,0 +1,240 @@
+//! `up-bench`: UP against Rapier on the benchmark scene.
+//!
+//!   up-bench --balloons 1000 --steps 600 --json        both engines, JSON lines
+//!   up-bench --balloons 1000 --print-scene > s.json    the scene for web/bench
+//!   up-bench measure --balloons 1000 --poses p.f32     overlap of poses from Node
+//!   up-bench report                                    the sweep → docs/benchmarks.md
+
+use std::path::PathBuf;
+
+use anyhow::{bail, Context, Result};
+use clap::{Args, Parser, Subcommand};
+use up_bench::engine::EngineKind;
+use up_bench::output::{json_lines, ratio, EngineResult};
+use up_bench::rapier_engine::RapierShape;
+use up_bench::report::{self, ReportOptions};
+use up_bench::run::{default_steps, rss_probe, run, RunOptions};
+use up_bench::scene_data::SceneData;
+use up_bench::scene_export::{export, measure, read_poses};
+use up_scene::bench_scene::bench_scene;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "up-bench",
+    version,
+    about = "UP against Rapier on the same balloon scene"
+)]
+#[command(args_conflicts_with_subcommands = true)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Cmd>,
+    #[command(flatten)]
+    run: RunArgs,
+    /// Print the scene (and Rapier's matched parameters) as JSON for web/bench, and exit.
+    #[arg(long)]
+    print_scene: bool,
+}
+
+#[derive(Subcommand, Debug)]
+enum Cmd {
+    /// Run the sweep and write docs/benchmarks.md and docs/benchmarks.svg.
+    Report(ReportArgs),
+    /// Measure overlap and escapes of poses recorded elsewhere (web/bench).
+    Measure(MeasureArgs),
+    /// (internal) Run one engine alone and print its peak memory.
+    #[command(hide = true)]
+    RssProbe(ProbeArgs),
+}
+
+#[derive(Args, Debug, Clone)]
+struct SceneArgs {
+    /// Balloons in the benchmark scene (the room scales with them).
+    #[arg(long, value_name = "N", default_value_t = 1000)]
+    balloons: u64,
+    /// Seed of the spawn layout.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+}
+
+#[derive(Args, Debug, Clone)]
+struct RunArgs {
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// Steps to time; by default twice the rise to the apex plus 2 s (at least 600).
+    #[arg(long, value_name = "K")]
+    steps: Option<u64>,
+    /// Threads for UP (Rapier runs on one).
+    #[arg(long, value_name = "T", default_value_t = 1)]
+    threads: usize,
+    /// One JSON line per engine, then the ratio.
+    #[arg(long)]
+    json: bool,
+    /// Engines to compare, comma-separated: up, rapier.
+    #[arg(long, value_delimiter = ',', default_value = "up,rapier")]
+    engines: Vec<String>,
+    /// How Rapier holds a balloon's spheres: one compound collider, or one ball collider each.
+    #[arg(long, default_value = "compound")]
+    rapier_shape: String,
+    /// Skip the peak-memory child processes (they take as long as the run).
+    #[arg(long)]
+    no_rss: bool,
+}
+
+#[derive(Args, Debug)]
+struct MeasureArgs {
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// Little-endian f32 file: frames of N poses (x, y, z, qx, qy, qz, qw).
+    #[arg(long)]
+    poses: PathBuf,
+}
+
+#[derive(Args, Debug)]
+struct ProbeArgs {
+    #[command(flatten)]
+    run: RunArgs,
+    #[arg(long)]
+    engine: String,
+}
+
+#[derive(Args, Debug)]
+struct ReportArgs {
+    /// Sizes both engines run at.
+    #[arg(long, value_delimiter = ',', default_value = "1000,10000")]
+    sizes: Vec<u64>,
+    /// Sizes UP runs at alone.
+    #[arg(long, value_delimiter = ',', default_value = "100000")]
+    up_only_sizes: Vec<u64>,
+    /// Steps at every size (default: each size's own, see `--steps` of a run).
+    #[arg(long)]
+    steps: Option<u64>,
+    /// Threads for UP.
+    #[arg(long, default_value_t = 1)]
+    threads: usize,
+    /// Also run web/bench (node) at the sizes both engines run at.
+    #[arg(long)]
+    node: bool,
+    /// web/bench/bench.mjs.
+    #[arg(long, default_value = "web/bench/bench.mjs")]
+    node_script: PathBuf,
+    #[arg(long, default_value = "docs/benchmarks.md")]
+    markdown: PathBuf,
+    #[arg(long, default_value = "docs/benchmarks.svg")]
+    svg: PathBuf,
+}
+
+fn run_options(args: &RunArgs) -> Result<RunOptions> {
+    let engines = args
+        .engines
+        .iter()
+        .map(|name| {
+            EngineKind::parse(name)
+                .with_context(|| format!("--engines: expected up or rapier, found {name:?}"))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let rapier_shape = RapierShape::parse(&args.rapier_shape).with_context(|| {
+        format!(
+            "--rapier-shape: expected compound or balls, found {:?}",
+            args.rapier_shape
+        )
+    })?;
+    let steps = match args.steps {
+        Some(steps) => steps,
+        None => {
+            let (scene, layout) = bench_scene(args.scene.balloons, args.scene.seed)?;
+            default_steps(layout.wall_height_m + layout.apex_height_m, scene.sim.dt)
+        }
+    };
+    Ok(RunOptions {
+        balloons: args.scene.balloons,
+        steps,
+        seed: args.scene.seed,
+        threads: args.threads,
+        engines,
+        rapier_shape,
+        rss: !args.no_rss,
+    })
+}
+
+fn print_table(results: &[EngineResult]) {
+    println!(
+        "{:<8} {:>9} {:>6} {:>10} {:>10} {:>10} {:>12} {:>8} {:>7} {:>9}",
+        "engine",
+        "balloons",
+        "steps",
+        "median ms",
+        "p95 ms",
+        "settled",
+        "max pen. mm",
+        "escaped",
+        "awake",
+        "peak MB"
+    );
+    for r in results {
+        let rss = r
+            .peak_rss_mb
+            .map_or("-".to_string(), |mb| format!("{mb:.1}"));
+        println!(
+            "{:<8} {:>9} {:>6} {:>10.3} {:>10.3} {:>10.3} {:>12.3} {:>8} {:>7} {:>9}",
+            r.engine,
+            r.balloons,
+            r.steps,
+            r.ms_per_step_median,
+            r.ms_per_step_p95,
+            r.settled_ms_per_step_median,
+            r.max_penetration_m * 1e3,
+            r.escaped,
+            r.awake_at_end,
+            rss
+        );
+    }
+    if let Some(ratio) = ratio(results) {
+        println!("Rapier / UP (median ms per step): {ratio:.2}");
+    }
+}
+
+fn main() -> Result<()> {
+    let cli = Cli::parse();
+    match cli.command {
+        Some(Cmd::Report(args)) => report::report(&ReportOptions {
+            sizes: args.sizes,
+            up_only_sizes: args.up_only_sizes,
+            steps: args.steps,
+            threads: args.threads,
+            node: args.node.then_some(args.node_script),
+            markdown: args.markdown,
+            svg: args.svg,
+        }),
+        Some(Cmd::Measure(args)) => {
+            let (data, _) = SceneData::build(args.scene.balloons, args.scene.seed)?;
+            let frames = read_poses(&args.poses, data.start_poses.len())?;
+            println!("{}", serde_json::to_string(&measure(&data, &frames)?)?);
+            Ok(())
+        }
+        Some(Cmd::RssProbe(args)) => {
+            let Some(kind) = EngineKind::parse(&args.engine) else {
+                bail!("--engine: expected up or rapier, found {:?}", args.engine);
+            };
+            let probe = rss_probe(kind, &run_options(&args.run)?)?;
+            println!("{}", serde_json::to_string(&probe)?);
+            Ok(())
+        }
+        None if cli.print_scene => {
+            let (data, _) = SceneData::build(cli.run.scene.balloons, cli.run.scene.seed)?;
+            let exported = export(&data, cli.run.scene.balloons, cli.run.scene.seed)?;
+            println!("{}", serde_json::to_string(&exported)?);
+            Ok(())
+        }
+        None => {
+            let results = run(&run_options(&cli.run)?)?;
+            if cli.run.json {
+                for line in json_lines(&results)? {
+                    println!("{line}");
+                }
+            } else {
+                print_table(&results);
+            }
+            Ok(())
+        }
+    }
+}

@@ -1,0 +1,130 @@
+//! The JSON lines `up-bench --json` prints: one per engine, then the ratio.
+
+use serde::{Deserialize, Serialize};
+
+/// One engine's result over a run. Times are wall-clock ms per step.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct EngineResult {
+    /// `"up"` or `"rapier"`.
+    pub engine: String,
+    /// `"native"`, or `"wasm-node"` for web/bench.
+    pub runtime: String,
+    pub balloons: u64,
+    pub steps: u64,
+    /// Threads the engine ran on (Rapier: always 1).
+    pub threads: usize,
+    pub ms_per_step_median: f64,
+    pub ms_per_step_p95: f64,
+    pub ms_per_step_mean: f64,
+    /// Median over the last third of the steps.
+    pub settled_ms_per_step_median: f64,
+    /// m: deepest overlap over the periodic checkpoints and the end (UP's geometry on the poses).
+    pub max_penetration_m: f32,
+    /// m: the same at the last step.
+    pub final_penetration_m: f32,
+    /// Balloons whose centre of mass ended outside the room.
+    pub escaped: usize,
+    /// Balloons awake after the last step.
+    pub awake_at_end: usize,
+    /// MB: peak resident set of a child process running this engine alone for the same steps.
+    pub peak_rss_mb: Option<f64>,
+    /// Bytes per balloon: that peak less the child's peak before the scene was built, over N.
+    pub rss_bytes_per_balloon: Option<f64>,
+    /// m: the benchmark room's side.
+    pub room_width_m: f32,
+    /// Rapier only: `"compound"` or `"balls"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rapier_shape: Option<String>,
+}
+
+/// The last line: Rapier's whole-run median over UP's.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RatioLine {
+    pub ratio_rapier_over_up: f64,
+}
+
+/// Rapier's median over UP's, when both ran.
+pub fn ratio(results: &[EngineResult]) -> Option<f64> {
+    let median = |name: &str| {
+        results
+            .iter()
+            .find(|r| r.engine == name)
+            .map(|r| r.ms_per_step_median)
+    };
+    Some(median("rapier")? / median("up")?)
+}
+
+/// The lines to print: one JSON object per engine, then the ratio when both ran.
+pub fn json_lines(results: &[EngineResult]) -> Result<Vec<String>, serde_json::Error> {
+    let mut lines = results
+        .iter()
+        .map(serde_json::to_string)
+        .collect::<Result<Vec<_>, _>>()?;
+    if let Some(r) = ratio(results) {
+        lines.push(serde_json::to_string(&RatioLine {
+            ratio_rapier_over_up: r,
+        })?);
+    }
+    Ok(lines)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn result(engine: &str, median: f64) -> EngineResult {
+        EngineResult {
+            engine: engine.into(),
+            runtime: "native".into(),
+            balloons: 1000,
+            steps: 600,
+            threads: 1,
+            ms_per_step_median: median,
+            ms_per_step_p95: median * 1.5,
+            ms_per_step_mean: median,
+            settled_ms_per_step_median: median * 0.5,
+            max_penetration_m: 0.001,
+            final_penetration_m: 0.0005,
+            escaped: 0,
+            awake_at_end: 10,
+            peak_rss_mb: Some(12.5),
+            rss_bytes_per_balloon: Some(900.0),
+            room_width_m: 5.3,
+            rapier_shape: None,
+        }
+    }
+
+    #[test]
+    fn one_line_per_engine_with_the_required_keys_then_the_ratio() {
+        let lines = json_lines(&[result("up", 2.0), result("rapier", 7.0)]).unwrap();
+        assert_eq!(lines.len(), 3);
+        for line in &lines[..2] {
+            let v: serde_json::Value = serde_json::from_str(line).unwrap();
+            for key in [
+                "engine",
+                "balloons",
+                "steps",
+                "ms_per_step_median",
+                "ms_per_step_p95",
+                "settled_ms_per_step_median",
+                "max_penetration_m",
+                "escaped",
+                "peak_rss_mb",
+            ] {
+                assert!(v.get(key).is_some(), "{key} missing from {line}");
+            }
+            assert!(!line.contains('\n'));
+        }
+        let ratio: RatioLine = serde_json::from_str(&lines[2]).unwrap();
+        assert_eq!(ratio.ratio_rapier_over_up, 3.5);
+        assert_eq!(lines[2], r#"{"ratio_rapier_over_up":3.5}"#);
+        // A line reads back as it was written.
+        let back: EngineResult = serde_json::from_str(&lines[0]).unwrap();
+        assert_eq!(back, result("up", 2.0));
+    }
+
+    #[test]
+    fn no_ratio_for_one_engine() {
+        assert_eq!(json_lines(&[result("up", 2.0)]).unwrap().len(), 1);
+    }
+}

@@ -1,0 +1,216 @@
+//! A comparison run: build the scene in each engine, step them alternately
+//! (UP then Rapier on even steps, Rapier then UP on odd ones, so neither
+//! always runs with the other's data in cache), time every step, measure
+//! overlap and escapes from the poses at checkpoints, and take each engine's
+//! peak memory from a child process that runs it alone.
+
+use std::process::Command;
+use std::time::Instant;
+
+use anyhow::{bail, Context, Result};
+use serde::{Deserialize, Serialize};
+use up_geom::Pose;
+
+use crate::engine::{Engine, EngineKind};
+use crate::measure::{escaped, max_penetration};
+use crate::output::EngineResult;
+use crate::rapier_engine::{RapierEngine, RapierShape};
+use crate::rss::peak_rss_mb;
+use crate::scene_data::SceneData;
+use crate::stats::{mean, median, quantile, settled};
+use crate::up_engine::UpEngine;
+
+/// Most steps a run takes.
+pub const MAX_STEPS: u64 = 1_000_000;
+/// Checkpoints (pose measurements) over a run, the last step included.
+pub const CHECKPOINTS: u64 = 10;
+
+#[derive(Clone, Debug)]
+pub struct RunOptions {
+    pub balloons: u64,
+    pub steps: u64,
+    pub seed: u64,
+    /// Threads for UP (Rapier always runs on one).
+    pub threads: usize,
+    pub engines: Vec<EngineKind>,
+    pub rapier_shape: RapierShape,
+    /// Measure peak memory in child processes (doubles the run time).
+    pub rss: bool,
+}
+
+/// What a memory probe child prints.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize)]
+pub struct RssProbe {
+    /// MB: the child's peak resident set before the scene was built.
+    pub baseline_rss_mb: f64,
+    /// MB: its peak at the end.
+    pub peak_rss_mb: f64,
+}
+
+/// Steps the benchmark takes by default for a room whose walls and apex are
+/// `wall_height + apex_height` m high: twice the time a balloon takes to rise
+/// that far at its terminal speed (≈ 1.7 m/s), plus 2 s, and at least 600.
+pub fn default_steps(top_m: f32, dt: f32) -> u64 {
+    const TERMINAL_SPEED: f32 = 1.7;
+    let seconds = 2.0 * top_m / TERMINAL_SPEED + 2.0;
+    ((seconds / dt).ceil() as u64).max(600)
+}
+
+fn build_engine(
+    kind: EngineKind,
+    data: &SceneData,
+    up_world: &mut Option<up_physics::World>,
+    opts: &RunOptions,
+) -> Result<Box<dyn Engine>> {
+    Ok(match kind {
+        EngineKind::Up => {
+            let world = up_world
+                .take()
+                .context("UP may appear only once in --engines")?;
+            Box::new(UpEngine::new(world, opts.threads)?)
+        }
+        EngineKind::Rapier => Box::new(RapierEngine::new(data, opts.rapier_shape)?),
+    })
+}
+
+fn check(opts: &RunOptions) -> Result<()> {
+    if opts.steps == 0 || opts.steps > MAX_STEPS {
+        bail!("--steps: expected 1 to {MAX_STEPS}, found {}", opts.steps);
+    }
+    if opts.threads == 0 || opts.threads > 1024 {
+        bail!("--threads: expected 1 to 1024, found {}", opts.threads);
+    }
+    if opts.engines.is_empty() {
+        bail!("--engines: expected up, rapier or both");
+    }
+    Ok(())
+}
+
+/// Runs the comparison; one result per engine, in the order of `opts.engines`.
+pub fn run(opts: &RunOptions) -> Result<Vec<EngineResult>> {
+    check(opts)?;
+    let (data, built) = SceneData::build(opts.balloons, opts.seed)?;
+    let mut up_world = Some(built.world);
+    let mut engines = opts
+        .engines
+        .iter()
+        .map(|&kind| build_engine(kind, &data, &mut up_world, opts))
+        .collect::<Result<Vec<_>>>()?;
+    drop(up_world);
+
+    let steps = opts.steps as usize;
+    let every = opts.steps.div_ceil(CHECKPOINTS).max(1);
+    let mut times: Vec<Vec<f64>> = vec![Vec::with_capacity(steps); engines.len()];
+    let mut deepest = vec![0.0f32; engines.len()];
+    let mut poses: Vec<Pose> = Vec::new();
+    let order: Vec<usize> = (0..engines.len()).collect();
+    for step in 1..=opts.steps {
+        // Alternate who goes first.
+        let forward = step % 2 == 1;
+        for k in 0..engines.len() {
+            let i = if forward {
+                order[k]
+            } else {
+                order[engines.len() - 1 - k]
+            };
+            let started = Instant::now();
+            engines[i].step();
+            times[i].push(started.elapsed().as_secs_f64() * 1e3);
+        }
+        if step % every == 0 || step == opts.steps {
+            for (i, engine) in engines.iter().enumerate() {
+                engine.poses(&mut poses);
+                deepest[i] = deepest[i].max(max_penetration(&data, &poses)?);
+            }
+        }
+    }
+
+    let mut results = Vec::with_capacity(engines.len());
+    for (i, engine) in engines.iter().enumerate() {
+        engine.poses(&mut poses);
+        let kind = opts.engines[i];
+        let rss = if opts.rss {
+            Some(probe_in_child(kind, opts)?)
+        } else {
+            None
+        };
+        let t = &times[i];
+        results.push(EngineResult {
+            engine: engine.name().to_string(),
+            runtime: "native".to_string(),
+            balloons: opts.balloons,
+            steps: opts.steps,
+            threads: if kind == EngineKind::Up {
+                opts.threads
+            } else {
+                1
+            },
+            ms_per_step_median: median(t),
+            ms_per_step_p95: quantile(t, 0.95),
+            ms_per_step_mean: mean(t),
+            settled_ms_per_step_median: median(settled(t)),
+            max_penetration_m: deepest[i],
+            final_penetration_m: max_penetration(&data, &poses)?,
+            escaped: escaped(&data, &poses),
+            awake_at_end: engine.awake_count(),
+            peak_rss_mb: rss.map(|r| r.peak_rss_mb),
+            rss_bytes_per_balloon: rss
+                .map(|r| (r.peak_rss_mb - r.baseline_rss_mb) * 1e6 / opts.balloons as f64),
+            room_width_m: data.layout.room_width_m,
+            rapier_shape: (kind == EngineKind::Rapier).then(|| opts.rapier_shape.name().into()),
+        });
+    }
+    Ok(results)
+}
+
+/// The memory probe, run in a child: builds the scene and `kind` alone, takes
+/// the steps, and reports the peak resident set.
+pub fn rss_probe(kind: EngineKind, opts: &RunOptions) -> Result<RssProbe> {
+    check(opts)?;
+    let baseline_rss_mb = peak_rss_mb().context("reading /proc/self/status")?;
+    let (data, built) = SceneData::build(opts.balloons, opts.seed)?;
+    let mut engine: Box<dyn Engine> = match kind {
+        EngineKind::Up => Box::new(UpEngine::new(built.world, opts.threads)?),
+        EngineKind::Rapier => {
+            // UP's world is not kept while Rapier runs.
+            drop(built);
+            Box::new(RapierEngine::new(&data, opts.rapier_shape)?)
+        }
+    };
+    for _ in 0..opts.steps {
+        engine.step();
+    }
+    Ok(RssProbe {
+        baseline_rss_mb,
+        peak_rss_mb: peak_rss_mb().context("reading /proc/self/status")?,
+    })
+}
+
+fn probe_in_child(kind: EngineKind, opts: &RunOptions) -> Result<RssProbe> {
+    let exe = std::env::current_exe().context("finding the up-bench executable")?;
+    let output = Command::new(&exe)
+        .arg("rss-probe")
+        .args(["--engine", kind.name()])
+        .args(["--balloons", &opts.balloons.to_string()])
+        .args(["--steps", &opts.steps.to_string()])
+        .args(["--seed", &opts.seed.to_string()])
+        .args(["--threads", &opts.threads.to_string()])
+        .args(["--rapier-shape", opts.rapier_shape.name()])
+        .output()
+        .with_context(|| format!("running {}", exe.display()))?;
+    if !output.status.success() {
+        bail!(
+            "memory probe for {} failed: {}",
+            kind.name(),
+            String::from_utf8_lossy(&output.stderr).trim()
+        );
+    }
+    let text = String::from_utf8_lossy(&output.stdout);
+    let line = text.lines().last().unwrap_or_default();
+    serde_json::from_str(line).with_context(|| {
+        format!(
+            "memory probe for {}: unexpected output {line:?}",
+            kind.name()
+        )
+    })
+}
