@@ -167,6 +167,30 @@ export const tests = [
     },
   },
   {
+    name: "the debug view draws the contact points, and only while it is on",
+    async run({ page, url, out }) {
+      // Sleeping balloons report no contacts: keep them awake.
+      await open(page, url, `#scene=${base64url(JSON.stringify({ sim: { sleep: false } }))}`);
+      await page.waitForFunction(() => (window.__up.stats()?.stats.contacts ?? 0) > 0, null, { timeout: 30_000 });
+      assert.equal((await up(page, () => window.__up.contacts())).inFrame, 0, "no contacts travel while the debug view is off");
+      await page.keyboard.press("d");
+      await page.waitForFunction(() => window.__up.contacts().drawn > 0, null, { timeout: 20_000 });
+      await pause(page);
+      const c = await up(page, () => window.__up.contacts());
+      assert.ok(c.drawn > 0, "contacts are drawn");
+      assert.equal(c.drawn, c.inFrame, `every contact of the frame is drawn (${c.drawn} of ${c.inFrame})`);
+      assert.ok(c.total >= c.inFrame, `the step had ${c.total} contacts`);
+      await page.addStyleTag({ content: "#hud, #help { visibility: hidden !important; }" });
+      const debugShot = await page.screenshot({ path: join(out, "debug-view.png") });
+      await page.keyboard.press("d");
+      await page.keyboard.press("n"); // a fresh frame, without contacts
+      await page.waitForFunction(() => window.__up.contacts().inFrame === 0 && !window.__up.debugView());
+      assert.equal((await up(page, () => window.__up.contacts())).drawn, 0);
+      await page.waitForTimeout(300);
+      assert.ok(!(await page.screenshot()).equals(debugShot), "the debug view changed the picture");
+    },
+  },
+  {
     name: "a balloon can be grabbed, dragged and popped",
     async run({ page, url }) {
       await open(page, url, `#scene=${base64url(JSON.stringify({ balloons: [{ count: 3 }], sim: { gravity: [0, -9.81, 0] } }))}`);

@@ -50,6 +50,11 @@ function start(): void {
   let lastRoomKey = "";
   let linkPending = false;
   let framesDrawn = 0;
+  /** The frame whose contacts the debug view shows. */
+  let contactsFrame: unknown = null;
+  /** Main-thread milliseconds spent in renderer.render, summed (measurements). */
+  let renderMs = 0;
+  let lastStats: { stats: unknown; stepsPerSecond: number } | null = null;
 
   // A shared link carries the scene; a malformed one is reported and the default scene shown.
   let initialJson: string | null = null;
@@ -101,6 +106,7 @@ function start(): void {
       panel?.setPaused(bridge.paused);
     },
     stats(stats, stepsPerSecond) {
+      lastStats = { stats, stepsPerSecond };
       hud.setStats(stats, stepsPerSecond);
     },
     error(message, fatal) {
@@ -141,11 +147,19 @@ function start(): void {
     }, "image/png");
   }
 
+  /** Debug view on or off; contacts come from the worker only while it is on. */
+  function setDebug(on: boolean): void {
+    debug.visible = on;
+    bridge.setDebug(on);
+    contactsFrame = null;
+    if (!on) debug.setContacts(bridge.contacts, 0);
+  }
+
   function keyAction(a: KeyAction): void {
     if (a.kind === "togglePause") togglePause();
     else if (a.kind === "singleStep") bridge.singleStep();
     else if (a.kind === "toggleDebug") {
-      debug.visible = !debug.visible;
+      setDebug(!debug.visible);
       panel?.setDebugTrees(debug.visible);
     } else if (a.kind === "screenshot") screenshot();
   }
@@ -172,7 +186,7 @@ function start(): void {
     togglePause,
     step: () => bridge.singleStep(),
     debugTrees(on: boolean) {
-      debug.visible = on;
+      setDebug(on);
     },
     screenshot,
     share() {
@@ -212,11 +226,17 @@ function start(): void {
       balloons.update(bridge.prev, bridge.curr, f.count, bridge.alpha(performance.timeOrigin + now));
       if (debug.visible) {
         debug.update(bridge.curr, 0, f.count, bridge.models);
+        if (contactsFrame !== f) {
+          debug.setContacts(bridge.contacts, f.contactCount);
+          contactsFrame = f;
+        }
       }
       hud.setCount(f.count);
     }
     hud.frame(now);
+    const renderStart = performance.now();
     renderer.render(scene, camera);
+    renderMs += performance.now() - renderStart;
     if (f && balloons) framesDrawn++;
     requestAnimationFrame(loop);
   }
@@ -229,6 +249,13 @@ function start(): void {
     balloonCount: () => bridge.current?.count ?? 0,
     poses: () => Array.from(bridge.curr),
     paused: () => bridge.paused,
+    /** Frames drawn with balloons, and main-thread ms spent in renderer.render over them. */
+    frames: () => ({ drawn: framesDrawn, renderMs }),
+    /** The worker's last stats (stage ms per step, counts) and its steps per second. */
+    stats: () => lastStats,
+    debugView: () => debug.visible,
+    /** Contacts the debug view draws now, and how many the current frame carried. */
+    contacts: () => ({ drawn: debug.visible ? debug.contactCount : 0, inFrame: bridge.current?.contactCount ?? 0, total: bridge.current?.contactTotal ?? 0 }),
     placement: () => controls.placement,
     steps: () => bridge.current?.steps ?? 0,
     version: () => bridge.current?.version ?? -1,

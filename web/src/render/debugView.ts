@@ -1,9 +1,19 @@
 // Debug view: every balloon's sphere tree (the report's Figure 2), drawn as
-// wireframe spheres coloured by depth.
+// wireframe spheres coloured by depth, and the last step's contact points:
+// a dot at each and a short segment along its normal (red between balloons,
+// blue against the room), in preallocated buffers updated in place.
 
 import * as THREE from "three";
 import type { TreeNode } from "../sim/engine";
 import { POSE_STRIDE } from "./poseMath";
+import { contactArrays, writeContactGeometry, type ContactArrays } from "./contactLines";
+
+/** Most contacts drawn (the worker sends at most this many). */
+export const MAX_DRAWN_CONTACTS = 32_768;
+/** Length of a contact's normal segment, m (a balloon is about 0.3 m across). */
+const NORMAL_LENGTH = 0.06;
+/** Size of a contact dot, CSS pixels. */
+const POINT_SIZE = 5;
 
 const DEPTH_COLORS = [0xffe066, 0x4dd2ff, 0x7cff6b, 0xff7ad9, 0xffffff];
 
@@ -19,11 +29,53 @@ export class DebugView {
   private readonly quaternion = new THREE.Quaternion();
   private readonly scale = new THREE.Vector3();
   private readonly color = new THREE.Color();
+  private readonly contactData: ContactArrays = contactArrays(MAX_DRAWN_CONTACTS);
+  private readonly contactPoints: THREE.Points;
+  private readonly contactLines: THREE.LineSegments;
+  /** Contacts drawn now. */
+  contactCount = 0;
 
   constructor() {
     this.group.name = "debug";
     this.group.visible = false;
     this.spheres = this.makeSpheres(1024);
+    const d = this.contactData;
+    const points = new THREE.BufferGeometry();
+    points.setAttribute("position", new THREE.BufferAttribute(d.points, 3).setUsage(THREE.DynamicDrawUsage));
+    points.setAttribute("color", new THREE.BufferAttribute(d.pointColors, 3).setUsage(THREE.DynamicDrawUsage));
+    points.setDrawRange(0, 0);
+    // Drawn over everything: contacts hide inside the spheres otherwise.
+    const onTop = { depthTest: false, depthWrite: false, transparent: true, vertexColors: true };
+    this.contactPoints = new THREE.Points(points, new THREE.PointsMaterial({ ...onTop, size: POINT_SIZE, sizeAttenuation: false }));
+    const lines = new THREE.BufferGeometry();
+    lines.setAttribute("position", new THREE.BufferAttribute(d.lines, 3).setUsage(THREE.DynamicDrawUsage));
+    lines.setAttribute("color", new THREE.BufferAttribute(d.lineColors, 3).setUsage(THREE.DynamicDrawUsage));
+    lines.setDrawRange(0, 0);
+    this.contactLines = new THREE.LineSegments(lines, new THREE.LineBasicMaterial(onTop));
+    for (const o of [this.contactPoints, this.contactLines]) {
+      o.frustumCulled = false;
+      o.renderOrder = 10;
+      this.group.add(o);
+    }
+  }
+
+  /** Shows `count` contacts of `contacts` (sim/frameLayout.ts layout): call when a new frame arrives. */
+  setContacts(contacts: Float32Array, count: number): void {
+    const n = writeContactGeometry(contacts, count, this.contactData, NORMAL_LENGTH);
+    this.contactCount = n;
+    for (const [object, vertices] of [
+      [this.contactPoints, n],
+      [this.contactLines, 2 * n],
+    ] as const) {
+      const g = object.geometry;
+      g.setDrawRange(0, vertices);
+      for (const name of ["position", "color"]) {
+        const a = g.getAttribute(name) as THREE.BufferAttribute;
+        a.clearUpdateRanges();
+        a.addUpdateRange(0, vertices * 3);
+        a.needsUpdate = true;
+      }
+    }
   }
 
   private makeSpheres(capacity: number): THREE.InstancedMesh {

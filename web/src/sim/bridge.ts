@@ -4,7 +4,7 @@
 
 import type { EngineStats } from "./engine";
 import type { Frame, FromWorker, ToWorker, Vec3Tuple, WorldInfo } from "./protocol";
-import { POSE_STRIDE } from "../render/poseMath";
+import { frameViews } from "./frameLayout";
 
 export interface BridgeEvents {
   ready(info: WorldInfo): void;
@@ -19,6 +19,8 @@ export class SimBridge {
   current: Frame | null = null;
   prev = new Float32Array(0);
   curr = new Float32Array(0);
+  /** The current step's contacts (empty unless the debug view is on). */
+  contacts = new Float32Array(0);
   colors: Uint32Array = new Uint32Array(0);
   models: Uint32Array = new Uint32Array(0);
   info: WorldInfo | null = null;
@@ -43,9 +45,10 @@ export class SimBridge {
       case "frame": {
         const old = this.current;
         this.current = msg;
-        const floats = msg.count * POSE_STRIDE;
-        this.prev = new Float32Array(msg.buffer, 0, floats);
-        this.curr = new Float32Array(msg.buffer, floats * 4, floats);
+        const views = frameViews(msg.buffer, msg.count, msg.contactCount);
+        this.prev = views.prev;
+        this.curr = views.curr;
+        this.contacts = views.contacts;
         if (msg.colors) this.colors = msg.colors;
         if (msg.models) this.models = msg.models;
         this.paused = msg.paused;
@@ -81,6 +84,11 @@ export class SimBridge {
   setPaused(paused: boolean): void {
     this.paused = paused;
     this.send({ type: "pause", paused });
+  }
+
+  /** Asks for contacts in every frame (debug view on), or for none. */
+  setDebug(on: boolean): void {
+    this.send({ type: "debug", on });
   }
 
   singleStep(): void {

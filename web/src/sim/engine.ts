@@ -35,7 +35,7 @@ export class EngineError extends Error {
 interface Exports {
   memory: WebAssembly.Memory;
   up_alloc(len: number): number;
-  up_free(ptr: number, len: number): void;
+  up_free(ptr: number, len: number): number;
   up_last_error_ptr(): number;
   up_last_error_len(): number;
   up_output_ptr(): number;
@@ -73,6 +73,11 @@ interface Exports {
   up_stats_json(): number;
   up_world_info_json(): number;
   up_state_hash(): bigint;
+  up_write_contacts(max: number): number;
+  up_contacts_ptr(): number;
+  up_contact_count(): number;
+  up_contact_total(): number;
+  up_max_contacts(): number;
 }
 
 /** One node of a balloon model's sphere tree, body frame. */
@@ -117,6 +122,16 @@ export interface EngineStats {
 /** Floats per pose: x, y, z, qx, qy, qz, qw of the balloon's mesh frame. */
 export const POSE_FLOATS = 7;
 
+/** The last step's contacts, as `up_write_contacts` wrote them. */
+export interface Contacts {
+  /** CONTACT_STRIDE floats per contact (sim/frameLayout.ts): a view, valid until the next call. */
+  view: Float32Array;
+  /** Contacts in `view`. */
+  count: number;
+  /** Contacts the step had in all (more than `count` when capped). */
+  total: number;
+}
+
 export class Engine {
   private constructor(private readonly x: Exports) {}
 
@@ -127,11 +142,16 @@ export class Engine {
     return new Engine(instance.exports as unknown as Exports);
   }
 
-  /** Fetches and instantiates the module at `url`. */
-  static async fetch(url: string): Promise<Engine> {
+  /** Fetches the module's bytes at `url` (instantiate them with `load`, again after a trap). */
+  static async fetchBytes(url: string): Promise<ArrayBuffer> {
     const response = await fetch(url);
     if (!response.ok) throw new Error(`cannot load the physics engine ${url}: HTTP ${response.status}`);
-    return Engine.load(await response.arrayBuffer());
+    return response.arrayBuffer();
+  }
+
+  /** Fetches and instantiates the module at `url`. */
+  static async fetch(url: string): Promise<Engine> {
+    return Engine.load(await Engine.fetchBytes(url));
   }
 
   private check(code: number): void {
@@ -300,6 +320,20 @@ export class Engine {
   stats(): EngineStats {
     this.check(this.x.up_stats_json());
     return JSON.parse(this.output()) as EngineStats;
+  }
+
+  /** The last step's contacts, at most `max` of them (and at most `maxContacts()`). */
+  contacts(max: number): Contacts {
+    this.check(this.x.up_write_contacts(max));
+    const count = this.x.up_contact_count();
+    // 8 floats per contact: crates/up-wasm/src/contacts.rs.
+    const view = new Float32Array(this.x.memory.buffer, this.x.up_contacts_ptr(), count * 8);
+    return { view, count, total: this.x.up_contact_total() };
+  }
+
+  /** The most contacts `contacts()` returns. */
+  maxContacts(): number {
+    return this.x.up_max_contacts();
   }
 
   stateHash(): bigint {

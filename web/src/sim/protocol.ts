@@ -13,6 +13,8 @@ export type ToWorker =
   | { type: "load"; sceneJson: string | null }
   | { type: "pause"; paused: boolean }
   | { type: "step" }
+  /** Debug view on or off: contacts travel in the frames only while it is on. */
+  | { type: "debug"; on: boolean }
   | { type: "addOnFloor"; x: number; z: number }
   | { type: "pop"; index: number; version: number }
   | { type: "grab"; index: number; version: number; point: Vec3Tuple }
@@ -41,9 +43,13 @@ export interface WorldInfo {
 
 export interface Frame {
   type: "frame";
-  /** `[previous step poses | current step poses]`, 7 floats per body each. */
+  /** `[previous poses | current poses | contacts]`: see sim/frameLayout.ts. */
   buffer: ArrayBuffer;
   count: number;
+  /** Contacts in the buffer (0 unless the debug view is on). */
+  contactCount: number;
+  /** Contacts the step had in all, written or not (0 unless the debug view is on). */
+  contactTotal: number;
   /** Changes whenever bodies are added or removed (dense order may change). */
   version: number;
   /** Colour and model index per body; sent only when `version` changed. */

@@ -3,17 +3,29 @@
 // for physics: with thousands of balloons a step may take longer than a frame,
 // and the page still draws and answers input.
 
-import { Engine, POSE_FLOATS } from "./engine";
+import { Engine } from "./engine";
+import { frameFloats, frameViews } from "./frameLayout";
 import type { FromWorker, ToWorker, WorldInfo } from "./protocol";
 
 /** Most steps taken in one tick; beyond that the simulation runs slow rather than spiral. */
 const MAX_STEPS_PER_TICK = 4;
 /** How often stats go to the HUD, ms. */
 const STATS_INTERVAL_MS = 250;
+/** Most contacts sent per frame to the debug view (8 floats each: 1 MiB). */
+const MAX_DRAWN_CONTACTS = 32_768;
+/** Restarts after a trap before the worker gives up. */
+const MAX_RESTARTS = 3;
 
 const scope = self as unknown as DedicatedWorkerGlobalScope;
 
 let engine: Engine | null = null;
+/** The module's bytes, to instantiate it afresh if it ever traps. */
+let wasmBytes: ArrayBuffer | null = null;
+/** The scene of the current world, to rebuild it after a trap. */
+let currentSceneJson: string | null = null;
+let restarts = 0;
+/** Whether frames carry the step's contacts (the debug view is on). */
+let sendContacts = false;
 let dtMs = 1000 / 60;
 let paletteSize = 1;
 let paused = false;
@@ -64,6 +76,7 @@ function load(sceneJson: string | null): void {
   if (sceneJson === null) engine.loadDefaultScene();
   else engine.loadSceneJson(sceneJson);
   const info = worldInfo(engine);
+  currentSceneJson = info.sceneJson;
   dtMs = info.dt * 1000;
   paletteSize = Math.max(1, info.palette.length);
   simTime = 0;
@@ -87,17 +100,23 @@ function takeBuffer(bytes: number): ArrayBuffer | null {
 function sendFrame(previous: Float32Array | null): void {
   if (!engine) return;
   const count = engine.bodyCount();
-  const floats = count * POSE_FLOATS;
-  const buffer = takeBuffer(Math.max(4, floats * 2 * 4));
+  const contacts = sendContacts ? engine.contacts(MAX_DRAWN_CONTACTS) : null;
+  const contactCount = contacts?.count ?? 0;
+  const buffer = takeBuffer(Math.max(4, frameFloats(count, contactCount) * 4));
   if (!buffer) return; // the main thread still holds every buffer: send on return
-  const out = new Float32Array(buffer, 0, floats * 2);
+  const out = frameViews(buffer, count, contactCount);
+  // Copy the contacts before asking for poses: writing poses may grow wasm memory,
+  // which detaches the contacts view.
+  if (contacts) out.contacts.set(contacts.view);
   const current = engine.poses();
-  out.set(previous && previous.length === floats ? previous : current, 0);
-  out.set(current, floats);
+  out.prev.set(previous && previous.length === current.length ? previous : current);
+  out.curr.set(current);
   const frame: FromWorker = {
     type: "frame",
     buffer,
     count,
+    contactCount,
+    contactTotal: contacts?.total ?? 0,
     version,
     stepTime: lastStepTime,
     simTime,
@@ -111,6 +130,35 @@ function sendFrame(previous: Float32Array | null): void {
   }
   dirty = false;
   post(frame, [buffer]);
+}
+
+/**
+ * A trap (a panic inside the module) leaves it unusable: instantiate it
+ * afresh and rebuild the scene, saying so. Returns whether `error` was one.
+ */
+function restartAfterTrap(error: unknown): boolean {
+  if (!(error instanceof WebAssembly.RuntimeError) || !wasmBytes) return false;
+  engine = null;
+  restarts++;
+  if (restarts > MAX_RESTARTS) {
+    fail(new Error(`the physics engine stopped ${restarts} times (last: ${error.message}); reload the page`), true);
+    return true;
+  }
+  fail(new Error(`the physics engine stopped (${error.message}) and was restarted: the scene starts again`), false);
+  const scene = currentSceneJson;
+  Engine.load(wasmBytes)
+    .then((e) => {
+      engine = e;
+      try {
+        load(scene);
+      } catch (err) {
+        fail(err, false);
+        load(null);
+      }
+      schedule();
+    })
+    .catch((err) => fail(err, true));
+  return true;
 }
 
 let lastStepTime = now();
@@ -163,6 +211,7 @@ function tick(): void {
       stepsSinceStats = 0;
     }
   } catch (e) {
+    if (restartAfterTrap(e)) return;
     fail(e, false);
     paused = true;
   }
@@ -178,8 +227,10 @@ function schedule(): void {
 function handle(msg: ToWorker): void {
   switch (msg.type) {
     case "init":
-      Engine.fetch(msg.wasmUrl)
-        .then((e) => {
+      Engine.fetchBytes(msg.wasmUrl)
+        .then(async (bytes) => {
+          wasmBytes = bytes;
+          const e = await Engine.load(bytes);
           engine = e;
           for (let i = 0; i < 3; i++) freeBuffers.push(new ArrayBuffer(4096));
           try {
@@ -193,6 +244,10 @@ function handle(msg: ToWorker): void {
           schedule();
         })
         .catch((err) => fail(err, true));
+      return;
+    case "debug":
+      sendContacts = msg.on;
+      dirty = true;
       return;
     case "return":
       freeBuffers.push(msg.buffer);
@@ -219,6 +274,7 @@ function handle(msg: ToWorker): void {
       case "step":
         pendingSingleSteps++;
         break;
+
       case "addOnFloor": {
         const color = engine.bodyCount() % paletteSize;
         engine.addBalloonOnFloor(msg.x, msg.z, color);
@@ -244,6 +300,7 @@ function handle(msg: ToWorker): void {
         break;
     }
   } catch (err) {
+    if (restartAfterTrap(err)) return;
     fail(err, false);
   }
   if (tickTimer !== null && dirty) {

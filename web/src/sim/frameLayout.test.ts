@@ -1,0 +1,34 @@
+import { describe, expect, it } from "vitest";
+import { CONTACT_STRIDE, frameFloats, frameViews } from "./frameLayout";
+
+describe("frame buffer layout", () => {
+  it("lays out previous poses, current poses and contacts without overlap", () => {
+    const count = 2;
+    const prev = Float32Array.from({ length: 14 }, (_, i) => i);
+    const curr = Float32Array.from({ length: 14 }, (_, i) => 100 + i);
+    const contacts = Float32Array.from({ length: 3 * CONTACT_STRIDE }, (_, i) => 1000 + i);
+    expect(frameFloats(count, 3)).toBe(28 + 24);
+    const buffer = new ArrayBuffer(frameFloats(count, 3) * 4 + 64); // a reused buffer may be larger
+    const w = frameViews(buffer, count, 3);
+    w.contacts.set(contacts); // the worker copies contacts first, then the poses
+    w.curr.set(curr);
+    w.prev.set(prev);
+    const v = frameViews(buffer, count, 3);
+    expect(v.contacts.byteOffset).toBe(28 * 4);
+    expect(Array.from(v.prev)).toEqual(Array.from(prev));
+    expect(Array.from(v.curr)).toEqual(Array.from(curr));
+    expect(Array.from(v.contacts)).toEqual(Array.from(contacts));
+  });
+
+  it("has an empty contacts view when the debug view is off", () => {
+    const buffer = new ArrayBuffer(frameFloats(1, 0) * 4);
+    frameViews(buffer, 1, 0).curr.fill(2);
+    const v = frameViews(buffer, 1, 0);
+    expect(v.contacts.length).toBe(0);
+    expect(v.curr[6]).toBe(2);
+  });
+
+  it("refuses a buffer too small for what the frame claims", () => {
+    expect(() => frameViews(new ArrayBuffer(4 * 14), 1, 1)).toThrow(RangeError);
+  });
+});
