@@ -1046,6 +1046,7 @@ impl World {
                 ));
             }
         }
+        solver.color();
 
         let grab = self.grab?;
         let i = self.handles.dense(grab.body)?;
@@ -1069,13 +1070,14 @@ impl World {
     fn store_impulses(&mut self) {
         self.warm.clear();
         let narrow = &self.scratch.narrow;
-        let constraints = &self.scratch.solver.constraints;
+        let solver = &self.scratch.solver;
         for &(key, start, count) in &narrow.runs {
             self.warm
                 .runs
                 .push((key, self.warm.impulses.len() as u32, count));
-            for c in &constraints[start as usize..(start + count) as usize] {
-                self.warm.impulses.push(contact_constraint::stored(c));
+            for i in start as usize..(start + count) as usize {
+                let stored = contact_constraint::stored(solver.constraint(i));
+                self.warm.impulses.push(stored);
             }
         }
         self.warm.index();

@@ -97,3 +97,48 @@ fn bodies_added_and_removed_while_running() {
     assert_eq!(world.body_count(), 60);
     assert!(world.center_of_mass(new).unwrap().y > 1.0);
 }
+
+/// With the `parallel` feature the colours of the solve, and the body passes,
+/// run on rayon's threads; a crowd large enough to split into many tasks
+/// must end bit for bit the same on 1, 2 and 4 threads.
+#[cfg(feature = "parallel")]
+#[test]
+fn the_state_hash_does_not_depend_on_the_thread_count() {
+    let crowd = || {
+        let def = WorldDef {
+            room: Some(room(4.0, 4.0, 2.5, Some(1.0))),
+            ..WorldDef::default()
+        };
+        let (mut world, shape) = world_with(def);
+        for i in 0..600 {
+            let (x, z) = (
+                (i % 12) as f32 * 0.32 - 1.76,
+                ((i / 12) % 12) as f32 * 0.32 - 1.76,
+            );
+            let y = 0.3 + 0.45 * (i / 144) as f32;
+            let q = Quat::from_rotation_y(i as f32) * Quat::from_rotation_x(0.05 * (i % 5) as f32);
+            add(&mut world, shape, Vec3::new(x, y, z), q);
+        }
+        world
+    };
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("a thread pool");
+        pool.install(|| {
+            let mut world = crowd();
+            for _ in 0..150 {
+                world.step();
+            }
+            assert!(
+                world.stats().contact_count > 1000,
+                "too few contacts to split"
+            );
+            world.state_hash()
+        })
+    };
+    let one = run(1);
+    assert_eq!(run(2), one);
+    assert_eq!(run(4), one);
+}

@@ -13,7 +13,7 @@ use super::body_state::BodyState;
 use super::softness::Softness;
 use crate::contact::{ContactPoint, StoredImpulse};
 
-/// 136 bytes.
+/// 168 bytes.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct ContactConstraint {
     /// Solver state indices (the room is the last, static state).
@@ -44,6 +44,12 @@ pub(crate) struct ContactConstraint {
     pub friction: f32,
     pub restitution: f32,
     pub feature: u64,
+    /// Separation and lever arms at the bodies' current positions: positions
+    /// only change between passes, so each is computed once per substep
+    /// (`refresh`) and shared by the passes that follow.
+    pub separation: f32,
+    pub arm_a: Vec3,
+    pub arm_b: Vec3,
 }
 
 /// A right-handed orthonormal basis around `n`, the same on every platform.
@@ -102,7 +108,7 @@ pub(crate) fn prepare(
         tangent_impulse = [p.tangent.dot(tangent[0]), p.tangent.dot(tangent[1])];
     }
     let dv = sb.point_velocity(arm_b) - sa.point_velocity(arm_a);
-    ContactConstraint {
+    let mut constraint = ContactConstraint {
         a,
         b,
         normal: n,
@@ -125,20 +131,21 @@ pub(crate) fn prepare(
         friction: material.0,
         restitution: material.1,
         feature: c.feature,
-    }
+        separation: 0.0,
+        arm_a: Vec3::ZERO,
+        arm_b: Vec3::ZERO,
+    };
+    refresh(&mut constraint, sa, sb);
+    constraint
 }
 
+/// Recomputes the separation and arms after the positions moved.
 #[inline]
-fn pair_mut(states: &mut [BodyState], a: u32, b: u32) -> (&mut BodyState, &mut BodyState) {
-    let (a, b) = (a as usize, b as usize);
-    debug_assert_ne!(a, b);
-    if a < b {
-        let (lo, hi) = states.split_at_mut(b);
-        (&mut lo[a], &mut hi[0])
-    } else {
-        let (lo, hi) = states.split_at_mut(a);
-        (&mut hi[0], &mut lo[b])
-    }
+pub(crate) fn refresh(c: &mut ContactConstraint, sa: &BodyState, sb: &BodyState) {
+    let (separation, arm_a, arm_b) = current_geometry(c, sa, sb);
+    c.separation = separation;
+    c.arm_a = arm_a;
+    c.arm_b = arm_b;
 }
 
 /// Current separation, and the lever arms from each body's current centre to
@@ -156,98 +163,106 @@ fn current_geometry(c: &ContactConstraint, sa: &BodyState, sb: &BodyState) -> (f
     (separation, arm_a, arm_a - ab)
 }
 
-pub(crate) fn warm_start(constraints: &[ContactConstraint], states: &mut [BodyState]) {
-    for c in constraints {
-        let (sa, sb) = pair_mut(states, c.a, c.b);
-        let (_, arm_a, arm_b) = current_geometry(c, sa, sb);
-        let p = c.normal_impulse * c.normal
-            + c.tangent_impulse[0] * c.tangent[0]
-            + c.tangent_impulse[1] * c.tangent[1];
-        sa.apply_impulse(-p, arm_a);
-        sb.apply_impulse(p, arm_b);
-    }
+/// Applies last step's impulses again (warm start).
+#[inline]
+pub(crate) fn warm_start(c: &mut ContactConstraint, sa: &mut BodyState, sb: &mut BodyState) {
+    let p = c.normal_impulse * c.normal
+        + c.tangent_impulse[0] * c.tangent[0]
+        + c.tangent_impulse[1] * c.tangent[1];
+    sa.apply_impulse(-p, c.arm_a);
+    sb.apply_impulse(p, c.arm_b);
 }
 
-/// One Gauss-Seidel pass. With `use_bias` overlap is pushed out softly;
-/// without it (the relax pass) only the velocity constraint remains.
+/// How the solve pushes overlap out this substep.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Bias {
+    pub soft: Softness,
+    pub inv_h: f32,
+    /// m/s: the fastest push-out.
+    pub max_push_out: f32,
+    /// False for the relax pass: only the velocity constraint remains.
+    pub use_bias: bool,
+}
+
+/// One Gauss-Seidel update of one contact. With `use_bias` overlap is pushed
+/// out softly; without it (the relax pass) only the velocity constraint remains.
+#[inline]
 pub(crate) fn solve(
-    constraints: &mut [ContactConstraint],
-    states: &mut [BodyState],
-    soft: Softness,
-    inv_h: f32,
-    max_push_out: f32,
-    use_bias: bool,
+    c: &mut ContactConstraint,
+    sa: &mut BodyState,
+    sb: &mut BodyState,
+    bias: &Bias,
 ) {
-    for c in constraints.iter_mut() {
-        let (sa, sb) = pair_mut(states, c.a, c.b);
+    let Bias {
+        soft,
+        inv_h,
+        max_push_out,
+        use_bias,
+    } = *bias;
+    // Separation and arms as the last `refresh` left them.
+    let (s, arm_a, arm_b) = (c.separation, c.arm_a, c.arm_b);
 
-        // Current separation and arms from the motion since the step began.
-        let (s, arm_a, arm_b) = current_geometry(c, sa, sb);
+    let (bias, mass_scale, impulse_scale) = if s > 0.0 {
+        (s * inv_h, 1.0, 0.0) // speculative: close the gap, no more
+    } else if use_bias {
+        (
+            (soft.bias_rate * s).max(-max_push_out),
+            soft.mass_scale,
+            soft.impulse_scale,
+        )
+    } else {
+        (0.0, 1.0, 0.0)
+    };
 
-        let (bias, mass_scale, impulse_scale) = if s > 0.0 {
-            (s * inv_h, 1.0, 0.0) // speculative: close the gap, no more
-        } else if use_bias {
-            (
-                (soft.bias_rate * s).max(-max_push_out),
-                soft.mass_scale,
-                soft.impulse_scale,
-            )
-        } else {
-            (0.0, 1.0, 0.0)
-        };
+    let vn = (sb.point_velocity(arm_b) - sa.point_velocity(arm_a)).dot(c.normal);
+    let impulse = -c.normal_mass * mass_scale * (vn + bias) - impulse_scale * c.normal_impulse;
+    let total = (c.normal_impulse + impulse).max(0.0);
+    let applied = total - c.normal_impulse;
+    c.normal_impulse = total;
+    c.max_normal_impulse = c.max_normal_impulse.max(applied);
+    let p = applied * c.normal;
+    sa.apply_impulse(-p, arm_a);
+    sb.apply_impulse(p, arm_b);
 
-        let vn = (sb.point_velocity(arm_b) - sa.point_velocity(arm_a)).dot(c.normal);
-        let impulse = -c.normal_mass * mass_scale * (vn + bias) - impulse_scale * c.normal_impulse;
-        let total = (c.normal_impulse + impulse).max(0.0);
-        let applied = total - c.normal_impulse;
-        c.normal_impulse = total;
-        c.max_normal_impulse = c.max_normal_impulse.max(applied);
-        let p = applied * c.normal;
-        sa.apply_impulse(-p, arm_a);
-        sb.apply_impulse(p, arm_b);
-
-        // Friction: both tangent rows, then clamp the pair to the Coulomb disk.
-        let dv = sb.point_velocity(arm_b) - sa.point_velocity(arm_a);
-        let old = c.tangent_impulse;
-        let mut new = [
-            old[0] - c.tangent_mass[0] * dv.dot(c.tangent[0]),
-            old[1] - c.tangent_mass[1] * dv.dot(c.tangent[1]),
-        ];
-        let limit = c.friction * c.normal_impulse;
-        let len_sq = new[0] * new[0] + new[1] * new[1];
-        if len_sq > limit * limit {
-            let scale = limit / len_sq.sqrt();
-            new = [new[0] * scale, new[1] * scale];
-        }
-        c.tangent_impulse = new;
-        let p = (new[0] - old[0]) * c.tangent[0] + (new[1] - old[1]) * c.tangent[1];
-        sa.apply_impulse(-p, arm_a);
-        sb.apply_impulse(p, arm_b);
+    // Friction: both tangent rows, then clamp the pair to the Coulomb disk.
+    let dv = sb.point_velocity(arm_b) - sa.point_velocity(arm_a);
+    let old = c.tangent_impulse;
+    let mut new = [
+        old[0] - c.tangent_mass[0] * dv.dot(c.tangent[0]),
+        old[1] - c.tangent_mass[1] * dv.dot(c.tangent[1]),
+    ];
+    let limit = c.friction * c.normal_impulse;
+    let len_sq = new[0] * new[0] + new[1] * new[1];
+    if len_sq > limit * limit {
+        let scale = limit / len_sq.sqrt();
+        new = [new[0] * scale, new[1] * scale];
     }
+    c.tangent_impulse = new;
+    let p = (new[0] - old[0]) * c.tangent[0] + (new[1] - old[1]) * c.tangent[1];
+    sa.apply_impulse(-p, arm_a);
+    sb.apply_impulse(p, arm_b);
 }
 
 /// Bounces: contacts that approached faster than `threshold` and pushed this
 /// step leave at `restitution` times their approach speed.
 pub(crate) fn apply_restitution(
-    constraints: &mut [ContactConstraint],
-    states: &mut [BodyState],
+    c: &mut ContactConstraint,
+    sa: &mut BodyState,
+    sb: &mut BodyState,
     threshold: f32,
 ) {
-    for c in constraints.iter_mut() {
-        if c.restitution == 0.0 || c.relative_velocity > -threshold || c.max_normal_impulse == 0.0 {
-            continue;
-        }
-        let (sa, sb) = pair_mut(states, c.a, c.b);
-        let (_, arm_a, arm_b) = current_geometry(c, sa, sb);
-        let vn = (sb.point_velocity(arm_b) - sa.point_velocity(arm_a)).dot(c.normal);
-        let impulse = -c.normal_mass * (vn + c.restitution * c.relative_velocity);
-        let total = (c.normal_impulse + impulse).max(0.0);
-        let applied = total - c.normal_impulse;
-        c.normal_impulse = total;
-        let p = applied * c.normal;
-        sa.apply_impulse(-p, arm_a);
-        sb.apply_impulse(p, arm_b);
+    if c.restitution == 0.0 || c.relative_velocity > -threshold || c.max_normal_impulse == 0.0 {
+        return;
     }
+    let (arm_a, arm_b) = (c.arm_a, c.arm_b);
+    let vn = (sb.point_velocity(arm_b) - sa.point_velocity(arm_a)).dot(c.normal);
+    let impulse = -c.normal_mass * (vn + c.restitution * c.relative_velocity);
+    let total = (c.normal_impulse + impulse).max(0.0);
+    let applied = total - c.normal_impulse;
+    c.normal_impulse = total;
+    let p = applied * c.normal;
+    sa.apply_impulse(-p, arm_a);
+    sb.apply_impulse(p, arm_b);
 }
 
 /// What a constraint hands to the next step's warm start.
@@ -266,19 +281,16 @@ pub(crate) fn stored(c: &ContactConstraint) -> StoredImpulse {
 /// momentum is added and the centre of mass stays put; the soft solve stays
 /// in charge of the dynamics, this pass only bounds how deep a crowd pressing
 /// on a pile can push balloons into each other.
-pub(crate) fn stabilize(constraints: &[ContactConstraint], states: &mut [BodyState], slop: f32) {
-    for c in constraints {
-        let (sa, sb) = pair_mut(states, c.a, c.b);
-        let inv_mass = sa.inv_mass + sb.inv_mass;
-        if inv_mass == 0.0 {
-            continue;
-        }
-        let (s, _, _) = current_geometry(c, sa, sb);
-        if s >= -slop {
-            continue;
-        }
-        let push = (-slop - s) / inv_mass * c.normal;
-        sa.dp -= sa.inv_mass * push;
-        sb.dp += sb.inv_mass * push;
+pub(crate) fn stabilize(c: &ContactConstraint, sa: &mut BodyState, sb: &mut BodyState, slop: f32) {
+    let inv_mass = sa.inv_mass + sb.inv_mass;
+    if inv_mass == 0.0 {
+        return;
     }
+    let (s, _, _) = current_geometry(c, sa, sb);
+    if s >= -slop {
+        return;
+    }
+    let push = (-slop - s) / inv_mass * c.normal;
+    sa.dp -= sa.inv_mass * push;
+    sb.dp += sb.inv_mass * push;
 }

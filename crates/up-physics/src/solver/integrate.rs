@@ -3,6 +3,7 @@
 use glam::Vec3;
 
 use super::body_state::BodyState;
+use super::parallel;
 use crate::forces::buoyancy::buoyancy_torque;
 use crate::forces::drag::drag_force;
 
@@ -46,8 +47,7 @@ pub(crate) fn integrate_velocities(
     grab: Option<&GrabSpring>,
     h: f32,
 ) {
-    for &i in awake {
-        let s = &mut states[i as usize];
+    parallel::for_each_body(awake, states, |i, s| {
         let f = &forces[i as usize];
         let arm = s.q * f.buoyancy_arm;
         let drag = drag_force(f.drag_factor, s.v);
@@ -55,7 +55,7 @@ pub(crate) fn integrate_velocities(
         let speed_damping = h * f.drag_factor * s.v.length() * s.inv_mass;
         s.v = (s.v + h * s.inv_mass * f.force) / (1.0 + speed_damping);
         s.w = (s.w + h * (s.inv_inertia * torque)) / (1.0 + h * angular_damping);
-    }
+    });
     if let Some(g) = grab {
         let s = &mut states[g.state as usize];
         let r = s.dq * g.anchor;
