@@ -102,15 +102,18 @@ struct ReportArgs {
     /// Sizes both engines run at.
     #[arg(long, value_delimiter = ',', default_value = "1000,10000")]
     sizes: Vec<u64>,
-    /// Sizes UP runs at alone.
-    #[arg(long, value_delimiter = ',', default_value = "100000")]
+    /// Sizes UP runs at alone (`--up-only-sizes` with no value: none).
+    #[arg(long, value_delimiter = ',', num_args = 0.., default_value = "100000")]
     up_only_sizes: Vec<u64>,
     /// Steps at every size (default: each size's own, see `--steps` of a run).
     #[arg(long)]
     steps: Option<u64>,
-    /// Threads for UP.
+    /// Threads for UP where both engines run.
     #[arg(long, default_value_t = 1)]
     threads: usize,
+    /// Threads for UP where it runs alone; 0: all the machine has.
+    #[arg(long, default_value_t = 0)]
+    up_only_threads: usize,
     /// Also run web/bench (node) at the sizes both engines run at.
     #[arg(long)]
     node: bool,
@@ -201,6 +204,10 @@ fn main() -> Result<()> {
             up_only_sizes: args.up_only_sizes,
             steps: args.steps,
             threads: args.threads,
+            up_only_threads: match args.up_only_threads {
+                0 => up_bench::system_info::threads(),
+                n => n,
+            },
             node: args.node.then_some(args.node_script),
             markdown: args.markdown,
             svg: args.svg,

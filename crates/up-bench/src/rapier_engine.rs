@@ -15,7 +15,9 @@
 //!   are then those of UP.
 //! - Forces each step, through the force API (reset, then add): the weight at
 //!   the centre of mass; buoyancy plus quadratic drag at the centre of
-//!   buoyancy (as UP applies drag there). Angular damping is Rapier's own
+//!   buoyancy (as UP applies drag there). Drag is taken from the velocity at
+//!   the start of the step (UP takes it implicitly per substep): the terminal
+//!   speed is the same, the approach to it 1–2 % brisker. Angular damping is Rapier's own
 //!   (ω ← ω/(1 + h·c) per substep, UP's formula). Sleeping bodies are left
 //!   alone (their forces stay set and are not integrated).
 
@@ -76,6 +78,8 @@ pub struct RapierEngine {
     forces: AirForces,
     /// Reused list of the awake bodies.
     active: Vec<RigidBodyHandle>,
+    /// Whether the world has taken a step.
+    stepped: bool,
 }
 
 pub fn rvec(v: Vec3) -> RVec {
@@ -203,6 +207,10 @@ impl RapierEngine {
                     }
                 }
             }
+            // Mass properties now, not at the first step (for checks before it).
+            if let Some(b) = world.bodies.get_mut(handle) {
+                b.recompute_mass_properties_from_colliders(&world.colliders);
+            }
             bodies.push(handle);
         }
         let forces = AirForces {
@@ -216,6 +224,7 @@ impl RapierEngine {
             bodies,
             forces,
             active: Vec::new(),
+            stepped: false,
         })
     }
 
@@ -223,7 +232,12 @@ impl RapierEngine {
     fn apply_air_forces(&mut self) {
         let f = self.forces;
         self.active.clear();
-        self.active.extend(self.world.islands.active_bodies());
+        if self.stepped {
+            self.active.extend(self.world.islands.active_bodies());
+        } else {
+            // Rapier registers the bodies with its islands during the first step.
+            self.active.extend_from_slice(&self.bodies);
+        }
         for &handle in &self.active {
             let Some(body) = self.world.bodies.get_mut(handle) else {
                 continue;
@@ -251,6 +265,7 @@ impl Engine for RapierEngine {
     fn step(&mut self) {
         self.apply_air_forces();
         self.world.step();
+        self.stepped = true;
     }
 
     fn poses(&self, out: &mut Vec<UpPose>) {

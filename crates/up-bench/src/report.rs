@@ -23,7 +23,10 @@ pub struct ReportOptions {
     pub sizes: Vec<u64>,
     pub up_only_sizes: Vec<u64>,
     pub steps: Option<u64>,
+    /// Threads for UP where both engines run (Rapier runs on one).
     pub threads: usize,
+    /// Threads for UP where it runs alone.
+    pub up_only_threads: usize,
     /// web/bench/bench.mjs, when Node runs too.
     pub node: Option<PathBuf>,
     pub markdown: PathBuf,
@@ -66,14 +69,14 @@ pub fn parse_results(text: &str) -> Result<Vec<EngineResult>> {
     Ok(results)
 }
 
-fn bench_step(exe: &str, n: u64, engines: &str, opts: &ReportOptions) -> Step {
+fn bench_step(exe: &str, n: u64, engines: &str, threads: usize, opts: &ReportOptions) -> Step {
     let mut args = vec![
         "--balloons".to_string(),
         n.to_string(),
         "--engines".into(),
         engines.into(),
         "--threads".into(),
-        opts.threads.to_string(),
+        threads.to_string(),
         "--json".into(),
     ];
     if let Some(steps) = opts.steps {
@@ -114,12 +117,12 @@ pub fn report(opts: &ReportOptions) -> Result<()> {
     let mut steps: Vec<Step> = opts
         .sizes
         .iter()
-        .map(|&n| bench_step(&exe, n, "up,rapier", opts))
+        .map(|&n| bench_step(&exe, n, "up,rapier", opts.threads, opts))
         .collect();
     steps.extend(
         opts.up_only_sizes
             .iter()
-            .map(|&n| bench_step(&exe, n, "up", opts)),
+            .map(|&n| bench_step(&exe, n, "up", opts.up_only_threads, opts)),
     );
     if let Some(script) = &opts.node {
         steps.extend(opts.sizes.iter().map(|&n| node_step(script, n, opts)));

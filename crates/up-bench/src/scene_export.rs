@@ -12,6 +12,7 @@ use up_geom::{Pose, Quat, Vec3};
 
 use crate::measure::{escaped, max_penetration};
 use crate::rapier_engine::{integration_parameters, mass_properties, sleep_speed};
+use crate::run::default_steps;
 use crate::scene_data::SceneData;
 
 /// Floats per pose in a poses file: x, y, z, qx, qy, qz, qw (little-endian f32).
@@ -23,6 +24,8 @@ pub struct ExportedScene {
     pub seed: u64,
     pub room_width_m: f32,
     pub pile_layers: f32,
+    /// Steps a run takes by default (`run::default_steps`).
+    pub default_steps: u64,
     /// The scene file (JSON) for `up_world_from_json`.
     pub scene: serde_json::Value,
     pub rapier: RapierSetup,
@@ -74,6 +77,10 @@ pub fn export(data: &SceneData, balloons: u64, seed: u64) -> Result<ExportedScen
         seed,
         room_width_m: data.layout.room_width_m,
         pile_layers: data.layout.pile_layers,
+        default_steps: default_steps(
+            data.layout.wall_height_m + data.layout.apex_height_m,
+            def.dt,
+        ),
         scene,
         rapier: RapierSetup {
             dt: params.dt,

@@ -1,0 +1,425 @@
+#!/usr/bin/env node
+// UP's WebAssembly build against @dimforge/rapier3d-compat, in Node, on the
+// benchmark scene of up-bench (docs/benchmarks.md): the same scene, the same
+// interleaved timing and the same JSON lines as `up-bench --json`, with
+// "runtime": "wasm-node".
+//
+//   node web/bench/bench.mjs --balloons 1000 [--steps K] [--json] [--engines up,rapier]
+//
+// Needs target/release/up-bench (the scene, Rapier's matched parameters, and
+// the overlap measure — one measurement for both engines, natively) and
+// web/public/wasm/up_wasm.wasm (`make web/public/wasm/up_wasm.wasm`).
+// Peak memory: each engine alone in a child process (`--rss-probe ENGINE`).
+
+import { execFileSync, spawnSync } from 'node:child_process';
+import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { dirname, join, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { performance } from 'node:perf_hooks';
+
+const HERE = dirname(fileURLToPath(import.meta.url));
+const ROOT = resolve(HERE, '..', '..');
+const POSE_FLOATS = 7;
+const TREE_FLOATS = 6;
+const CHECKPOINTS = 10;
+
+/** Rapier, imported only where it runs (UP's memory probe never loads it). */
+let RAPIER = null;
+async function loadRapier() {
+  if (!RAPIER) {
+    RAPIER = (await import('@dimforge/rapier3d-compat')).default;
+    await RAPIER.init();
+  }
+  return RAPIER;
+}
+
+function parseArgs(argv) {
+  const opts = {
+    balloons: 1000,
+    steps: null,
+    seed: 1,
+    json: false,
+    engines: ['up', 'rapier'],
+    rss: true,
+    rssProbe: null,
+    upBench: join(ROOT, 'target', 'release', 'up-bench'),
+    wasm: join(ROOT, 'web', 'public', 'wasm', 'up_wasm.wasm'),
+  };
+  const int = (name, value, min, max) => {
+    const n = Number(value);
+    if (!Number.isInteger(n) || n < min || n > max) {
+      throw new Error(`${name}: expected an integer from ${min} to ${max}, found ${JSON.stringify(value)}`);
+    }
+    return n;
+  };
+  for (let i = 2; i < argv.length; i++) {
+    const arg = argv[i];
+    const next = () => {
+      if (i + 1 >= argv.length) throw new Error(`${arg}: expected a value`);
+      return argv[++i];
+    };
+    switch (arg) {
+      case '--balloons': opts.balloons = int(arg, next(), 1, 50000); break;
+      case '--steps': opts.steps = int(arg, next(), 1, 1000000); break;
+      case '--seed': opts.seed = int(arg, next(), 0, Number.MAX_SAFE_INTEGER); break;
+      case '--json': opts.json = true; break;
+      case '--no-rss': opts.rss = false; break;
+      case '--engines':
+        opts.engines = next().split(',').map((e) => e.trim());
+        for (const e of opts.engines) {
+          if (e !== 'up' && e !== 'rapier') throw new Error(`--engines: expected up or rapier, found ${JSON.stringify(e)}`);
+        }
+        break;
+      case '--rss-probe': opts.rssProbe = next(); break;
+      case '--up-bench': opts.upBench = resolve(next()); break;
+      case '--wasm': opts.wasm = resolve(next()); break;
+      case '--help':
+        console.log('node bench.mjs [--balloons N] [--steps K] [--seed S] [--json] [--engines up,rapier] [--no-rss] [--up-bench PATH] [--wasm PATH]');
+        process.exit(0);
+        break;
+      default: throw new Error(`unknown argument ${JSON.stringify(arg)} (try --help)`);
+    }
+  }
+  return opts;
+}
+
+/** The scene and Rapier's matched parameters, from up-bench. */
+function loadScene(opts) {
+  const text = execFileSync(opts.upBench, ['--balloons', String(opts.balloons), '--seed', String(opts.seed), '--print-scene'], {
+    encoding: 'utf8',
+    maxBuffer: 1 << 28,
+  });
+  return JSON.parse(text);
+}
+
+// ---- UP, through its extern "C" API ----
+
+class UpWasm {
+  static async load(path) {
+    const bytes = readFileSync(path);
+    const { instance } = await WebAssembly.instantiate(bytes, { env: { up_now_ms: () => performance.now() } });
+    return new UpWasm(instance.exports);
+  }
+
+  constructor(x) {
+    this.x = x;
+  }
+
+  check(code, what) {
+    if (code === 0) return;
+    const bytes = new Uint8Array(this.x.memory.buffer, this.x.up_last_error_ptr(), this.x.up_last_error_len());
+    throw new Error(`${what}: status ${code}: ${new TextDecoder().decode(bytes)}`);
+  }
+
+  output() {
+    const bytes = new Uint8Array(this.x.memory.buffer, this.x.up_output_ptr(), this.x.up_output_len());
+    return new TextDecoder().decode(bytes);
+  }
+
+  loadSceneJson(json) {
+    const bytes = new TextEncoder().encode(json);
+    const ptr = this.x.up_alloc(bytes.length);
+    if (ptr === 0) throw new Error(`up_alloc: cannot allocate ${bytes.length} bytes for the scene`);
+    new Uint8Array(this.x.memory.buffer, ptr, bytes.length).set(bytes);
+    const code = this.x.up_world_from_json(ptr, bytes.length);
+    this.x.up_free(ptr, bytes.length);
+    this.check(code, 'up_world_from_json');
+  }
+
+  step() {
+    this.check(this.x.up_step(1), 'up_step');
+  }
+
+  bodyCount() {
+    return this.x.up_body_count();
+  }
+
+  /** A copy of every pose (x, y, z, qx, qy, qz, qw), dense order = creation order. */
+  poses() {
+    this.check(this.x.up_write_poses(), 'up_write_poses');
+    return new Float32Array(this.x.memory.buffer, this.x.up_poses_ptr(), this.bodyCount() * POSE_FLOATS).slice();
+  }
+
+  room() {
+    const m = this.x.memory.buffer;
+    return {
+      vertices: new Float32Array(m, this.x.up_room_vertices_ptr(), this.x.up_room_vertex_count() * 3).slice(),
+      triangles: new Uint32Array(m, this.x.up_room_triangles_ptr(), this.x.up_room_triangle_count() * 3).slice(),
+    };
+  }
+
+  /** Leaf spheres of model 0's tree: [x, y, z, r] in the body frame. */
+  leaves() {
+    this.check(this.x.up_model_tree(0), 'up_model_tree');
+    const nodes = new Float32Array(this.x.memory.buffer, this.x.up_tree_ptr(), this.x.up_tree_node_count() * TREE_FLOATS);
+    const out = [];
+    for (let i = 0; i < nodes.length; i += TREE_FLOATS) {
+      if (nodes[i + 5] !== 0) out.push([nodes[i], nodes[i + 1], nodes[i + 2], nodes[i + 3]]);
+    }
+    return out;
+  }
+
+  awakeCount() {
+    this.check(this.x.up_stats_json(), 'up_stats_json');
+    return JSON.parse(this.output()).awake;
+  }
+}
+
+class UpEngine {
+  constructor(up) {
+    this.up = up;
+    this.name = 'up';
+  }
+  step() { this.up.step(); }
+  poses() { return this.up.poses(); }
+  awakeCount() { return this.up.awakeCount(); }
+}
+
+// ---- Rapier, built to match (see crates/up-bench/src/rapier_engine.rs) ----
+
+function rotate(q, v) {
+  // v + 2·w·(u × v) + 2·u × (u × v), u = (qx, qy, qz).
+  const tx = 2 * (q.y * v[2] - q.z * v[1]);
+  const ty = 2 * (q.z * v[0] - q.x * v[2]);
+  const tz = 2 * (q.x * v[1] - q.y * v[0]);
+  return [
+    v[0] + q.w * tx + (q.y * tz - q.z * ty),
+    v[1] + q.w * ty + (q.z * tx - q.x * tz),
+    v[2] + q.w * tz + (q.x * ty - q.y * tx),
+  ];
+}
+
+class RapierEngine {
+  constructor(setup, room, startPoses, leaves) {
+    this.name = 'rapier';
+    this.setup = setup;
+    const world = new RAPIER.World({ x: 0, y: 0, z: 0 }); // weight is applied as a force
+    world.timestep = setup.dt;
+    const ip = world.integrationParameters;
+    ip.numSolverIterations = setup.num_solver_iterations;
+    ip.numInternalPgsIterations = setup.num_internal_pgs_iterations;
+    ip.contact_natural_frequency = setup.contact_natural_frequency;
+    ip.maxCcdSubsteps = setup.ccd ? 1 : 0;
+    world.createCollider(
+      RAPIER.ColliderDesc.trimesh(room.vertices, room.triangles, RAPIER.TriMeshFlags.FIX_INTERNAL_EDGES)
+        .setFriction(setup.friction)
+        .setRestitution(setup.restitution),
+    );
+    const v3 = (a) => ({ x: a[0], y: a[1], z: a[2] });
+    const frame = { x: setup.inertia_frame[0], y: setup.inertia_frame[1], z: setup.inertia_frame[2], w: setup.inertia_frame[3] };
+    const balls = leaves.map((l) => new RAPIER.Ball(l[3]));
+    const positions = leaves.map((l) => ({ x: l[0], y: l[1], z: l[2] }));
+    const rotations = leaves.map(() => ({ x: 0, y: 0, z: 0, w: 1 }));
+    this.bodies = [];
+    const n = startPoses.length / POSE_FLOATS;
+    for (let i = 0; i < n; i++) {
+      const p = startPoses.subarray(i * POSE_FLOATS, (i + 1) * POSE_FLOATS);
+      const desc = RAPIER.RigidBodyDesc.dynamic()
+        .setTranslation(p[0], p[1], p[2])
+        .setRotation({ x: p[3], y: p[4], z: p[5], w: p[6] })
+        .setAdditionalMassProperties(setup.mass, v3(setup.center_of_mass), v3(setup.principal_inertia), frame)
+        .setAngularDamping(setup.angular_damping)
+        .setCcdEnabled(setup.ccd)
+        .setCanSleep(setup.can_sleep);
+      const body = world.createRigidBody(desc);
+      world.createCollider(
+        RAPIER.ColliderDesc.compound(balls, positions, rotations)
+          .setDensity(0)
+          .setFriction(setup.friction)
+          .setRestitution(setup.restitution),
+        body,
+      );
+      this.bodies.push(body);
+    }
+    this.world = world;
+    this.stepped = false;
+    this.weight = v3(setup.weight);
+  }
+
+  /** Weight at the centre of mass; buoyancy and drag at the centre of buoyancy. */
+  applyForces(body) {
+    const s = this.setup;
+    const v = body.linvel();
+    const speed = Math.hypot(v.x, v.y, v.z);
+    const k = -s.drag_factor * speed;
+    const t = body.translation();
+    const r = rotate(body.rotation(), s.center_of_buoyancy);
+    body.resetForces(false);
+    body.resetTorques(false);
+    body.addForce(this.weight, false);
+    body.addForceAtPoint(
+      { x: s.buoyancy[0] + k * v.x, y: s.buoyancy[1] + k * v.y, z: s.buoyancy[2] + k * v.z },
+      { x: t.x + r[0], y: t.y + r[1], z: t.z + r[2] },
+      false,
+    );
+  }
+
+  step() {
+    if (this.stepped) {
+      this.world.forEachActiveRigidBody((body) => this.applyForces(body));
+    } else {
+      // Rapier registers the bodies with its islands during the first step.
+      for (const body of this.bodies) this.applyForces(body);
+    }
+    this.world.step();
+    this.stepped = true;
+  }
+
+  poses() {
+    const out = new Float32Array(this.bodies.length * POSE_FLOATS);
+    this.bodies.forEach((b, i) => {
+      const t = b.translation();
+      const q = b.rotation();
+      out.set([t.x, t.y, t.z, q.x, q.y, q.z, q.w], i * POSE_FLOATS);
+    });
+    return out;
+  }
+
+  awakeCount() {
+    let n = 0;
+    for (const b of this.bodies) if (!b.isSleeping()) n++;
+    return n;
+  }
+}
+
+async function buildEngines(opts, exported, names) {
+  const up = await UpWasm.load(opts.wasm);
+  up.loadSceneJson(JSON.stringify(exported.scene));
+  if (up.bodyCount() !== exported.balloons) {
+    throw new Error(`UP's wasm built ${up.bodyCount()} balloons, expected ${exported.balloons}`);
+  }
+  const leaves = up.leaves();
+  const same = leaves.length === exported.rapier.leaves.length &&
+    leaves.every((l, i) => l.every((x, j) => Math.abs(x - exported.rapier.leaves[i][j]) < 1e-6));
+  if (!same) throw new Error("the wasm build's balloon tree differs from up-bench's: rebuild both");
+  const engines = [];
+  for (const name of names) {
+    if (name === 'up') engines.push(new UpEngine(up));
+    else {
+      await loadRapier();
+      engines.push(new RapierEngine(exported.rapier, up.room(), up.poses(), leaves));
+    }
+  }
+  return engines;
+}
+
+// ---- statistics, as crates/up-bench/src/stats.rs ----
+
+function quantile(samples, q) {
+  const s = [...samples].sort((a, b) => a - b);
+  const rank = Math.ceil(Math.min(Math.max(q, 0), 1) * s.length);
+  return s[Math.min(Math.max(rank, 1), s.length) - 1];
+}
+const median = (s) => quantile(s, 0.5);
+const mean = (s) => s.reduce((a, b) => a + b, 0) / s.length;
+const settled = (s) => s.slice(s.length - Math.ceil(s.length / 3));
+
+function peakRssMb() {
+  return (process.resourceUsage().maxRSS * 1024) / 1e6;
+}
+
+/** Overlap and escapes of recorded frames, measured by up-bench (the native measure). */
+function measure(opts, frames) {
+  const dir = mkdtempSync(join(tmpdir(), 'up-bench-'));
+  try {
+    const file = join(dir, 'poses.f32');
+    const all = new Float32Array(frames.reduce((n, f) => n + f.length, 0));
+    let at = 0;
+    for (const f of frames) {
+      all.set(f, at);
+      at += f.length;
+    }
+    writeFileSync(file, Buffer.from(all.buffer));
+    const text = execFileSync(opts.upBench, ['measure', '--balloons', String(opts.balloons), '--seed', String(opts.seed), '--poses', file], {
+      encoding: 'utf8',
+    });
+    return JSON.parse(text);
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+}
+
+function probeInChild(opts, engine, steps) {
+  const args = [fileURLToPath(import.meta.url), '--rss-probe', engine, '--balloons', String(opts.balloons), '--seed', String(opts.seed), '--steps', String(steps), '--up-bench', opts.upBench, '--wasm', opts.wasm];
+  const r = spawnSync(process.execPath, args, { encoding: 'utf8', maxBuffer: 1 << 24 });
+  if (r.status !== 0) throw new Error(`memory probe for ${engine} failed: ${r.stderr.trim()}`);
+  return JSON.parse(r.stdout.trim().split('\n').pop());
+}
+
+async function rssProbe(opts) {
+  const baseline = peakRssMb();
+  const exported = loadScene(opts);
+  const [engine] = await buildEngines(opts, exported, [opts.rssProbe]);
+  const steps = opts.steps ?? exported.default_steps;
+  for (let i = 0; i < steps; i++) engine.step();
+  console.log(JSON.stringify({ baseline_rss_mb: baseline, peak_rss_mb: peakRssMb() }));
+}
+
+async function main() {
+  const opts = parseArgs(process.argv);
+  if (opts.rssProbe) return rssProbe(opts);
+  const exported = loadScene(opts);
+  const steps = opts.steps ?? exported.default_steps;
+  const engines = await buildEngines(opts, exported, opts.engines);
+  const times = engines.map(() => []);
+  const frames = engines.map(() => []);
+  const every = Math.max(1, Math.ceil(steps / CHECKPOINTS));
+  for (let step = 1; step <= steps; step++) {
+    // Alternate who goes first, as the native harness does.
+    const order = step % 2 === 1 ? engines.keys() : [...engines.keys()].reverse();
+    for (const i of order) {
+      const t0 = performance.now();
+      engines[i].step();
+      times[i].push(performance.now() - t0);
+    }
+    if (step % every === 0 || step === steps) {
+      engines.forEach((e, i) => frames[i].push(e.poses()));
+    }
+  }
+  const results = engines.map((e, i) => {
+    const m = measure(opts, frames[i]);
+    const rss = opts.rss ? probeInChild(opts, e.name, steps) : null;
+    const t = times[i];
+    return {
+      engine: e.name,
+      runtime: 'wasm-node',
+      balloons: opts.balloons,
+      steps,
+      threads: 1,
+      ms_per_step_median: median(t),
+      ms_per_step_p95: quantile(t, 0.95),
+      ms_per_step_mean: mean(t),
+      settled_ms_per_step_median: median(settled(t)),
+      max_penetration_m: m.max_penetration_m,
+      final_penetration_m: m.final_penetration_m,
+      escaped: m.escaped,
+      awake_at_end: e.awakeCount(),
+      peak_rss_mb: rss ? rss.peak_rss_mb : null,
+      rss_bytes_per_balloon: rss ? ((rss.peak_rss_mb - rss.baseline_rss_mb) * 1e6) / opts.balloons : null,
+      room_width_m: exported.room_width_m,
+      ...(e.name === 'rapier' ? { rapier_shape: 'compound' } : {}),
+    };
+  });
+  const up = results.find((r) => r.engine === 'up');
+  const rapier = results.find((r) => r.engine === 'rapier');
+  if (opts.json) {
+    for (const r of results) console.log(JSON.stringify(r));
+    if (up && rapier) console.log(JSON.stringify({ ratio_rapier_over_up: rapier.ms_per_step_median / up.ms_per_step_median }));
+  } else {
+    for (const r of results) {
+      console.log(
+        `${r.engine.padEnd(7)} ${r.balloons} balloons, ${r.steps} steps: median ${r.ms_per_step_median.toFixed(3)} ms, ` +
+          `p95 ${r.ms_per_step_p95.toFixed(3)} ms, settled ${r.settled_ms_per_step_median.toFixed(3)} ms, ` +
+          `max penetration ${(r.max_penetration_m * 1e3).toFixed(3)} mm, escaped ${r.escaped}, awake ${r.awake_at_end}, ` +
+          `peak RSS ${r.peak_rss_mb === null ? '-' : r.peak_rss_mb.toFixed(1)} MB`,
+      );
+    }
+    if (up && rapier) console.log(`Rapier / UP (median ms per step): ${(rapier.ms_per_step_median / up.ms_per_step_median).toFixed(2)}`);
+  }
+}
+
+main().catch((e) => {
+  console.error(`bench.mjs: ${e.message}`);
+  process.exit(1);
+});
