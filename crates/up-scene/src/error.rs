@@ -43,6 +43,9 @@ pub enum SceneError {
         #[source]
         source: std::io::Error,
     },
+    /// The file is larger than a scene can be (`scene::MAX_SCENE_BYTES`).
+    #[error("{}: too large: expected a scene file of at most {max} bytes", path.display())]
+    TooLarge { path: PathBuf, max: u64 },
     /// The extension is neither `.toml` nor `.json`.
     #[error("{}: unknown scene file type: expected a `.toml` or `.json` extension", path.display())]
     UnknownFormat { path: PathBuf },

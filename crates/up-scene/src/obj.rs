@@ -13,7 +13,7 @@
 //! the material `balloon`; a renderer swaps the MTL to recolour.
 
 use std::fmt::Write as _;
-use std::io::Cursor;
+use std::io::{Cursor, Read};
 use std::path::{Path, PathBuf};
 
 use glam::Vec3;
@@ -22,6 +22,11 @@ use up_geom::fit::{check_closed, MeshCheck, MeshCheckError};
 
 use crate::balloon_mesh::BalloonMesh;
 use crate::room::RoomMesh;
+
+/// Largest OBJ file read, bytes (64 MiB, about a million triangles): a bigger
+/// file is refused before it is read whole, and devices that never end
+/// (`/dev/zero`) stop there too.
+pub const MAX_OBJ_BYTES: u64 = 64 << 20;
 
 /// The named balloon colours, in palette order.
 pub const COLOR_NAMES: [&str; 8] = [
@@ -54,6 +59,13 @@ pub enum ObjError {
         path: PathBuf,
         source: std::io::Error,
     },
+    #[error(
+        "{path}: too large: more than {max} bytes (expected an OBJ file of at most {max} bytes, \
+         about a million triangles)"
+    )]
+    TooLarge { path: PathBuf, max: u64 },
+    #[error("{path}: not UTF-8 text (expected a Wavefront OBJ text file)")]
+    NotText { path: PathBuf },
     #[error("{path}: cannot write: {source}")]
     Write {
         path: PathBuf,
@@ -125,9 +137,16 @@ impl ObjMesh {
 }
 
 /// Reads the triangles of an OBJ file (polygons are triangulated; points,
-/// lines, normals, texture coordinates and materials are ignored).
+/// lines, normals, texture coordinates and materials are ignored). Files over
+/// `MAX_OBJ_BYTES` are refused.
 pub fn read_obj_mesh(path: &Path) -> Result<ObjMesh, ObjError> {
-    let text = std::fs::read_to_string(path).map_err(|source| match source.kind() {
+    let text = read_capped(path, MAX_OBJ_BYTES)?;
+    parse_obj_mesh(&text, path)
+}
+
+/// Reads at most `max` bytes of `path` as UTF-8; more is an error, not a truncation.
+fn read_capped(path: &Path, max: u64) -> Result<String, ObjError> {
+    let io_error = |source: std::io::Error| match source.kind() {
         std::io::ErrorKind::NotFound => ObjError::Missing {
             path: path.to_path_buf(),
         },
@@ -135,8 +154,26 @@ pub fn read_obj_mesh(path: &Path) -> Result<ObjMesh, ObjError> {
             path: path.to_path_buf(),
             source,
         },
-    })?;
-    prescan(path, &text)?;
+    };
+    let file = std::fs::File::open(path).map_err(io_error)?;
+    let mut bytes = Vec::new();
+    file.take(max + 1)
+        .read_to_end(&mut bytes)
+        .map_err(io_error)?;
+    if bytes.len() as u64 > max {
+        return Err(ObjError::TooLarge {
+            path: path.to_path_buf(),
+            max,
+        });
+    }
+    String::from_utf8(bytes).map_err(|_| ObjError::NotText {
+        path: path.to_path_buf(),
+    })
+}
+
+/// Parses OBJ text as `read_obj_mesh` does; `path` names it in messages.
+pub fn parse_obj_mesh(text: &str, path: &Path) -> Result<ObjMesh, ObjError> {
+    prescan(path, text)?;
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: false,

@@ -225,3 +225,97 @@ fn committed_assets_match_the_generator() {
         );
     }
 }
+
+#[test]
+fn non_manifold_and_inconsistent_meshes_fail_the_closed_check() {
+    let dir = scratch("manifold");
+    // Two cubes sharing one edge: that edge has four triangles.
+    let mut text = String::from(SPLIT_CUBE);
+    text.push_str("v 1 1 0\nv 2 1 0\nv 2 2 0\nv 1 2 0\nv 1 1 1\nv 2 1 1\nv 2 2 1\nv 1 2 1\n");
+    for f in [
+        "25 28 27 26",
+        "29 30 31 32",
+        "25 26 30 29",
+        "28 32 31 27",
+        "25 29 32 28",
+        "26 27 31 30",
+    ] {
+        text.push_str(&format!("f {f}\n"));
+    }
+    let mesh = read_obj_mesh(&write(&dir, "two.obj", &text)).unwrap();
+    let e = mesh.check_closed().unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with(&format!("{}: ", dir.join("two.obj").display())),
+        "{e}"
+    );
+    // One face turned the wrong way round.
+    let flipped = SPLIT_CUBE.replace("f 1 2 3 4", "f 4 3 2 1");
+    let mesh = read_obj_mesh(&write(&dir, "flip.obj", &flipped)).unwrap();
+    assert!(mesh.check_closed().is_err());
+    // Fitting (what `up fit-spheres` does) refuses an open mesh with the same check.
+    let open = SPLIT_CUBE.replace("f 21 22 23 24\n", "");
+    let mesh = read_obj_mesh(&write(&dir, "open.obj", &open)).unwrap();
+    let fit = up_geom::fit::fit_sphere_tree(
+        mesh.vertices(),
+        mesh.triangles(),
+        &up_geom::fit::FitOptions::with_leaves(5),
+    );
+    assert!(fit.is_err());
+}
+
+#[test]
+fn huge_files_are_refused_with_the_cap() {
+    let dir = scratch("huge");
+    let p = write(&dir, "big.obj", &"v 0 0 0\n".repeat(8));
+    let e = read_capped(&p, 32).unwrap_err();
+    assert!(matches!(e, ObjError::TooLarge { max: 32, .. }), "{e}");
+    assert!(
+        e.to_string()
+            .ends_with("big.obj: too large: more than 32 bytes (expected an OBJ file of at most 32 bytes, about a million triangles)"),
+        "{e}"
+    );
+    assert_eq!(read_capped(&p, 64).unwrap().len(), 64);
+    // A device that never ends stops at MAX_OBJ_BYTES.
+    let e = read_obj_mesh(Path::new("/dev/zero")).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            ObjError::TooLarge {
+                max: MAX_OBJ_BYTES,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    let p = dir.join("bin.obj");
+    std::fs::write(&p, [b'v', b' ', 0xff, b'\n']).unwrap();
+    assert!(matches!(read_obj_mesh(&p), Err(ObjError::NotText { .. })));
+    let e = read_obj_mesh(&dir).unwrap_err();
+    assert!(matches!(e, ObjError::Read { .. }), "a directory: {e}");
+}
+
+#[test]
+fn parsing_text_reports_like_reading_a_file() {
+    let e = parse_obj_mesh(
+        "v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n",
+        Path::new("mem.obj"),
+    )
+    .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "mem.obj:3: vertex coordinates must be finite numbers, got \"v 0 nan 0\""
+    );
+    let mesh = parse_obj_mesh(SPLIT_CUBE, Path::new("cube.obj")).unwrap();
+    assert_eq!(mesh.triangles().len(), 12);
+    // Huge or signless indices, and a vertex far beyond f32, are errors.
+    let bad = [
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999\n",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -99999999999999999999\n",
+        "v 0 0 0\nv 1 0 0\nv 0 1e39 0\nf 1 2 3\n",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 +\n",
+    ];
+    for text in bad {
+        assert!(parse_obj_mesh(text, Path::new("b.obj")).is_err(), "{text}");
+    }
+}

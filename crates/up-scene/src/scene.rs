@@ -21,8 +21,8 @@ mod validate;
 
 pub use locate::KeyLines;
 pub use validate::{
-    MAX_BALLOON_DIAMETER_M, MAX_ROOM_SIZE_M, MAX_SEED, MAX_TOTAL_BALLOONS, MIN_BALLOON_DIAMETER_M,
-    MIN_ROOM_SIZE_M,
+    MAX_BALLOON_DIAMETER_M, MAX_BALLOON_GROUPS, MAX_GROUP_COLORS, MAX_ROOM_SIZE_M,
+    MAX_SCENE_LEAVES, MAX_SEED, MAX_TOTAL_BALLOONS, MIN_BALLOON_DIAMETER_M, MIN_ROOM_SIZE_M,
 };
 
 /// Metres per inch: balloon sizes are sold in inches (11″ ≈ 0.28 m).
@@ -35,6 +35,9 @@ pub const DEFAULT_ENVELOPE_MASS_G_11IN: f32 = 3.0;
 pub const DEFAULT_KNOT_MASS_G: f32 = 0.5;
 /// The original's six colours.
 pub const DEFAULT_COLORS: [&str; 6] = ["red", "yellow", "blue", "green", "purple", "orange"];
+/// Largest scene file read, bytes (1 MiB: the full documented example is
+/// about 2 KiB). A bigger file, or a device that never ends, is refused.
+pub const MAX_SCENE_BYTES: u64 = 1 << 20;
 /// Name used in messages for a scene that did not come from a file.
 pub const DEFAULT_SOURCE_NAME: &str = "<default scene>";
 
@@ -43,7 +46,7 @@ pub const DEFAULT_SOURCE_NAME: &str = "<default scene>";
 #[serde(deny_unknown_fields, default)]
 pub struct Scene {
     pub room: RoomSpec,
-    /// Groups of identical balloons (colours cycle within a group).
+    /// Groups of identical balloons (colours cycle within a group); at most 64.
     pub balloons: Vec<BalloonGroup>,
     pub air: AirSpec,
     pub sim: SimSpec,
@@ -137,7 +140,8 @@ pub enum GasKind {
 pub struct BalloonGroup {
     /// How many; 1. At most 200 000 over all groups.
     pub count: u64,
-    /// Colour names (`"red"`, ...) or `"#rrggbb"`, cycled over the group; the six originals.
+    /// Colour names (`"red"`, ...) or `"#rrggbb"`, cycled over the group; the six
+    /// originals. 1 to 64 of them.
     pub colors: Vec<String>,
     /// m, widest diameter of the inflated balloon; 0.28 (11″). Range [0.05, 5].
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -166,7 +170,7 @@ pub struct BalloonGroup {
     /// Degrees: and turned about the vertical by a random angle within ± this; 10.
     /// Range [0, 180].
     pub yaw_deg: f32,
-    /// Leaf spheres of the fitted collision tree; 5 (the original's layout). Range 1..=64.
+    /// Leaf spheres of the fitted collision tree; 5 (the original's layout). Range 1..=32.
     pub leaves: u32,
 }
 
@@ -355,10 +359,7 @@ impl Scene {
                 })
             }
         };
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text = read_scene_text(path)?;
         let name = path.display().to_string();
         let mut scene = if is_toml {
             Self::from_toml_str(&text, &name)
@@ -486,6 +487,35 @@ impl Scene {
             _ => mesh.to_path_buf(),
         })
     }
+}
+
+/// The text of a scene file: at most `MAX_SCENE_BYTES`, UTF-8.
+fn read_scene_text(path: &Path) -> Result<String, SceneError> {
+    use std::io::Read as _;
+    let read_error = |source| SceneError::Read {
+        path: path.to_path_buf(),
+        source,
+    };
+    let file = std::fs::File::open(path).map_err(read_error)?;
+    let mut bytes = Vec::new();
+    file.take(MAX_SCENE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(read_error)?;
+    if bytes.len() as u64 > MAX_SCENE_BYTES {
+        return Err(SceneError::TooLarge {
+            path: path.to_path_buf(),
+            max: MAX_SCENE_BYTES,
+        });
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        read_error(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "not UTF-8 text (invalid byte at offset {})",
+                e.utf8_error().valid_up_to()
+            ),
+        ))
+    })
 }
 
 /// `"#rrggbb"` → RGB in 0–1 (sRGB, as written); colour names are looked up in `obj::color_rgb`.

@@ -281,7 +281,7 @@ fn other_ranges_are_checked() {
         ),
         ("[[balloons]]\ntilt_deg = 100\n", "balloons[0].tilt_deg"),
         ("[[balloons]]\nleaves = 0\n", "balloons[0].leaves"),
-        ("[[balloons]]\nleaves = 65\n", "balloons[0].leaves"),
+        ("[[balloons]]\nleaves = 33\n", "balloons[0].leaves"),
         (
             "[[balloons]]\nvelocity = [400.0, 0.0, 0.0]\n",
             "balloons[0].velocity",
@@ -410,4 +410,133 @@ fn documented_full_example_parses_the_same_in_toml_and_json() {
     let from_json = Scene::from_json_str(&block("json"), "doc.json").unwrap();
     assert_eq!(from_toml, from_json);
     assert_eq!(from_toml.total_balloons(), 41);
+}
+
+#[test]
+fn json_gets_the_same_checks_as_toml() {
+    // JSON has no NaN literal; a number beyond f32 becomes infinite and is caught.
+    let e = json_err("{\"room\": {\"width\": 1e39}}");
+    assert!(
+        e.to_string().starts_with(
+            "test.json:1: room.width: expected a finite number in [0.5, 1000] m, found inf"
+        ),
+        "{e}"
+    );
+    let e = json_err("{\"sim\": {\"dt\": NaN}}");
+    assert!(matches!(e, SceneError::Parse { .. }), "{e}");
+    let e = json_err("{\n\"balloons\": [\n{\"count\": 1000000000}\n]\n}");
+    assert!(
+        e.to_string()
+            .starts_with("test.json:3: balloons[0].count: expected at most 200000"),
+        "{e}"
+    );
+    let e = json_err("{\"balloons\": [{\"diameter_m\": -0.3}]}");
+    assert_eq!(e.key(), Some("balloons[0].diameter_m"), "{e}");
+    let e = json_err("{\"room\": {\"wall_height\": 1}, \"balloons\": [{\"diameter_m\": 2}]}");
+    assert!(e.to_string().contains("smaller than the room"), "{e}");
+    let e = json_err("{\"balloons\": [{\"spawn\": {\"min\": [-1, 0, -1], \"max\": [1, 9, 1]}}]}");
+    assert!(e.to_string().contains("a region inside the room"), "{e}");
+    let e = json_err("{\"balloons\": [{\"spawn\": {\"min\": [0, 0, 0]}}]}");
+    assert!(e.to_string().contains("missing field `max`"), "{e}");
+    let e = json_err("{\"balloons\": {\"count\": 3}}");
+    assert!(
+        e.to_string()
+            .contains("invalid type: map, expected a sequence"),
+        "{e}"
+    );
+    let e = json_err("{\"sim\": {\"sleep\": \"yes\"}}");
+    assert_eq!(e.key(), Some("sim.sleep"), "{e}");
+    let e = json_err("[1, 2]");
+    assert!(
+        e.to_string()
+            .starts_with("test.json:1: invalid type: integer `1`, expected struct RoomSpec"),
+        "{e}"
+    );
+}
+
+#[test]
+fn wrong_types_in_toml_name_the_key() {
+    let cases = [
+        ("[sim]\nsleep = 1\n", "sim.sleep"),
+        ("[sim]\ngravity = [0.0, -9.81]\n", "sim.gravity"),
+        ("[sim]\nseed = -1\n", "sim.seed"),
+        ("[sim]\nsubsteps = 2.5\n", "sim.substeps"),
+        ("[room]\nmesh = 3\n", "room.mesh"),
+        ("[[balloons]]\ngas = \"hydrogen\"\n", "balloons[0].gas"),
+        ("[[balloons]]\ncolors = \"red\"\n", "balloons[0].colors"),
+    ];
+    for (text, key) in cases {
+        let e = toml_err(text);
+        assert!(matches!(e, SceneError::Parse { .. }), "{text}: {e}");
+        assert_eq!(e.key(), Some(key), "{text}: {e}");
+        assert_eq!(e.line(), Some(2), "{text}: {e}");
+    }
+    // A value too large for the integer type is a parse error, not a wrap.
+    let e = toml_err("[[balloons]]\ncount = 99999999999999999999\n");
+    assert!(matches!(e, SceneError::Parse { .. }), "{e}");
+}
+
+#[test]
+fn every_absurd_count_names_its_key_and_limit() {
+    let mut text = String::new();
+    for _ in 0..=MAX_BALLOON_GROUPS {
+        text.push_str("[[balloons]]\ncount = 1\n");
+    }
+    let e = toml_err(&text);
+    assert_eq!(e.key(), Some("balloons[64]"), "{e}");
+    assert_eq!(e.line(), Some(129), "{e}");
+    assert!(e
+        .to_string()
+        .contains("expected at most 64 balloon groups, found 65 groups"));
+
+    let colors = vec!["\"red\""; MAX_GROUP_COLORS + 1].join(", ");
+    let e = toml_err(&format!("[[balloons]]\ncolors = [{colors}]\n"));
+    assert_eq!(e.key(), Some("balloons[0].colors"), "{e}");
+    assert!(
+        e.to_string().contains("expected 1 to 64 colours, found 65"),
+        "{e}"
+    );
+
+    let e = toml_err("[[balloons]]\ncount = 18446744073709551615\n");
+    assert!(matches!(e, SceneError::Parse { .. }), "{e}");
+    // The limit over all groups stays within what the engine holds.
+    assert!(MAX_TOTAL_BALLOONS <= up_physics::MAX_BODIES as u64);
+    let e = toml_err("[[balloons]]\ncount = 200001\n");
+    assert!(
+        e.to_string().contains("expected at most 200000 balloons"),
+        "{e}"
+    );
+    assert!(Scene::from_toml_str("[[balloons]]\ncount = 200000\n", "max.toml").is_ok());
+}
+
+#[test]
+fn oversized_scene_files_are_refused_before_parsing() {
+    let dir = std::env::temp_dir().join(format!("up-scene-big-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let big = dir.join("big.toml");
+    let mut text = "# padding\n".repeat((MAX_SCENE_BYTES / 10) as usize + 1);
+    text.push_str("[room]\nwidth = 6\n");
+    std::fs::write(&big, &text).unwrap();
+    let e = Scene::from_path(&big).unwrap_err();
+    assert!(matches!(e, SceneError::TooLarge { .. }), "{e}");
+    assert_eq!(
+        e.to_string(),
+        format!(
+            "{}: too large: expected a scene file of at most 1048576 bytes",
+            big.display()
+        )
+    );
+    // A device that never ends stops at the cap too.
+    let endless = dir.join("endless.toml");
+    let _ = std::fs::remove_file(&endless);
+    std::os::unix::fs::symlink("/dev/zero", &endless).unwrap();
+    assert!(matches!(
+        Scene::from_path(&endless),
+        Err(SceneError::TooLarge { .. })
+    ));
+    let binary = dir.join("binary.json");
+    std::fs::write(&binary, [0x7b, 0xff, 0xfe, 0x7d]).unwrap();
+    let e = Scene::from_path(&binary).unwrap_err();
+    assert!(e.to_string().contains("not UTF-8 text"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
 }

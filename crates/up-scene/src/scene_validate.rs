@@ -3,10 +3,20 @@
 
 use super::{parse_color, CeilingKind, Scene};
 use crate::error::SceneError;
-use up_geom::fit::MAX_LEAVES;
-
-/// At most this many balloons over all groups.
+/// At most this many balloons over all groups: far below
+/// `up_physics::MAX_BODIES` (4 000 000), and about 0.2 GB of world and
+/// broadphase memory; a run of that many steps at several seconds each.
 pub const MAX_TOTAL_BALLOONS: u64 = 200_000;
+/// At most this many balloon groups. Every group fits its own sphere tree
+/// when the world is built (0.1 s for 5 leaves, 5 s for 32), so the count of
+/// groups bounds the time before the first step.
+pub const MAX_BALLOON_GROUPS: usize = 64;
+/// At most this many colours listed in one group.
+pub const MAX_GROUP_COLORS: usize = 64;
+/// Most leaf spheres a scene may ask of a group's fitted tree. Fitting time
+/// grows steeply with the leaves (5 s for 32, 90 s for 64 on one core), so
+/// scene files stop at 32; `up fit-spheres --leaves` goes up to 64 offline.
+pub const MAX_SCENE_LEAVES: u32 = 32;
 /// Room width, depth and wall height range, m.
 pub const MIN_ROOM_SIZE_M: f32 = 0.5;
 pub const MAX_ROOM_SIZE_M: f32 = 1000.0;
@@ -174,6 +184,13 @@ pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
         "",
     )?;
 
+    if scene.balloons.len() > MAX_BALLOON_GROUPS {
+        return Err(c.fail(
+            &format!("balloons[{MAX_BALLOON_GROUPS}]"),
+            format!("at most {MAX_BALLOON_GROUPS} balloon groups"),
+            format!("{} groups", scene.balloons.len()),
+        ));
+    }
     let mut total: u64 = 0;
     for (i, group) in scene.balloons.iter().enumerate() {
         let key = |k: &str| format!("balloons[{i}].{k}");
@@ -185,8 +202,12 @@ pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
                 format!("{} in this group, {total} so far", group.count),
             ));
         }
-        if group.colors.is_empty() {
-            return Err(c.fail(&key("colors"), "at least one colour", "an empty list"));
+        if group.colors.is_empty() || group.colors.len() > MAX_GROUP_COLORS {
+            return Err(c.fail(
+                &key("colors"),
+                format!("1 to {MAX_GROUP_COLORS} colours"),
+                format!("{} colours", group.colors.len()),
+            ));
         }
         for (j, color) in group.colors.iter().enumerate() {
             if parse_color(color).is_none() {
@@ -227,8 +248,8 @@ pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
         )?;
         c.range(&key("tilt_deg"), group.tilt_deg, 0.0, 90.0, false, "°")?;
         c.range(&key("yaw_deg"), group.yaw_deg, 0.0, 180.0, false, "°")?;
-        if !(1..=MAX_LEAVES as u32).contains(&group.leaves) {
-            let expected = format!("an integer in [1, {MAX_LEAVES}]");
+        if !(1..=MAX_SCENE_LEAVES).contains(&group.leaves) {
+            let expected = format!("an integer in [1, {MAX_SCENE_LEAVES}]");
             return Err(c.fail(&key("leaves"), expected, group.leaves.to_string()));
         }
 
