@@ -11,7 +11,8 @@ use crate::hash::Fnv1a;
 use crate::world::World;
 
 const MAGIC: &[u8; 6] = b"UPSNAP";
-const VERSION: u16 = 1;
+/// 2: `StepStats` counts quarantined bodies.
+const VERSION: u16 = 2;
 const HEADER: usize = 6 + 2 + 8;
 
 #[derive(Debug, Error, PartialEq)]

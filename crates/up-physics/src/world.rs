@@ -17,6 +17,7 @@ use crate::forces::gravity::gravity_force;
 use crate::grab::{Grab, GRAB_DAMPING_RATIO, GRAB_HERTZ, GRAB_MAX_WEIGHTS};
 use crate::hash::Fnv1a;
 use crate::narrow_phase::{NarrowInput, NarrowPhase};
+use crate::quarantine::{self, QuarantinedBody, MAX_QUARANTINE_REPORTS};
 use crate::sleep::{SleepingIslands, UnionFind};
 use crate::snapshot::{self, SnapshotError};
 use crate::solver::body_state::{world_inverse_inertia, BodyState};
@@ -137,6 +138,8 @@ pub struct StepStats {
     pub pair_count: u32,
     pub contact_count: u32,
     pub awake_count: u32,
+    /// Bodies quarantined (taken out as non-finite) since the world was made.
+    pub quarantined_count: u64,
 }
 
 /// The most bodies a world holds (handles and buffers are sized by u32).
@@ -156,6 +159,7 @@ struct Scratch {
     solver: Solver,
     islands: UnionFind,
     wake: Vec<u32>,
+    non_finite: Vec<usize>,
 }
 
 /// A world of balloons in a room. See the crate docs for conventions.
@@ -171,6 +175,9 @@ pub struct World {
     time: f64,
     step_count: u64,
     stats: StepStats,
+    /// Reports of bodies taken out as non-finite, not yet collected (events, not state).
+    #[serde(skip)]
+    quarantined: Vec<QuarantinedBody>,
     #[serde(skip)]
     counters: Counters,
     #[serde(skip)]
@@ -293,6 +300,7 @@ impl World {
             time: 0.0,
             step_count: 0,
             stats: StepStats::default(),
+            quarantined: Vec::new(),
             counters: Counters::default(),
             scratch: Scratch::default(),
         })
@@ -409,6 +417,35 @@ impl World {
             self.handles.set_dense(moved, i as u32);
         }
         Ok(())
+    }
+
+    /// Takes out every body whose state is no longer finite or whose motion ran
+    /// away, and reports it.
+    fn quarantine_non_finite(&mut self) {
+        // Runaways found by the solve are already listed.
+        let mut bad = std::mem::take(&mut self.scratch.non_finite);
+        quarantine::find_faulty(&self.bodies, &mut bad);
+        for &i in &bad {
+            let (id, user_data) = (self.bodies.id[i], self.bodies.user_data[i]);
+            // The body is still registered: removal cannot fail.
+            let _ = self.remove_body(id);
+            if self.quarantined.len() == MAX_QUARANTINE_REPORTS {
+                self.quarantined.remove(0);
+            }
+            self.quarantined.push(QuarantinedBody {
+                id,
+                user_data,
+                step: self.step_count + 1,
+            });
+            self.stats.quarantined_count += 1;
+        }
+        self.scratch.non_finite = bad;
+    }
+
+    /// Bodies taken out of the world because their state stopped being finite
+    /// since the last call (at most `MAX_QUARANTINE_REPORTS`), oldest first.
+    pub fn take_quarantined(&mut self) -> Vec<QuarantinedBody> {
+        std::mem::take(&mut self.quarantined)
     }
 
     fn dense(&self, id: BodyId) -> Result<usize, PhysicsError> {
@@ -789,6 +826,7 @@ impl World {
         counters.continuous_ms = clock.lap();
 
         self.update_sleep();
+        self.quarantine_non_finite();
         counters.sleep_ms = clock.lap();
 
         self.time += self.def.dt as f64;
@@ -968,6 +1006,7 @@ impl World {
             pair_count: s.broad.pairs.len() as u32,
             contact_count: s.narrow.contacts.len() as u32,
             awake_count: self.bodies.awake.iter().filter(|&&a| a).count() as u32,
+            quarantined_count: self.stats.quarantined_count,
         };
     }
 
@@ -999,6 +1038,7 @@ impl World {
                 q,
                 inv_mass: shape.inv_mass_translational,
                 inv_inertia: world_inverse_inertia(q, shape.inv_inertia_local),
+                runaway: false,
             });
             let buoyancy = buoyancy_force(air, shape.def.volume, g);
             solver.forces.push(BodyForces {
@@ -1085,10 +1125,16 @@ impl World {
 
     /// Copies the solver's results back to the bodies; clears held forces.
     fn finish_motion(&mut self) {
+        self.scratch.non_finite.clear();
         let solver = &self.scratch.solver;
         for &i in &solver.awake {
             let i = i as usize;
             let s = &solver.states[i];
+            if s.runaway {
+                // Left where the step found it; quarantined at the step's end.
+                self.scratch.non_finite.push(i);
+                continue;
+            }
             self.bodies.center[i] += s.dp;
             self.bodies.rotation[i] = s.q;
             self.bodies.linear_velocity[i] = s.v;

@@ -142,3 +142,40 @@ fn the_state_hash_does_not_depend_on_the_thread_count() {
     assert_eq!(run(2), one);
     assert_eq!(run(4), one);
 }
+
+#[test]
+fn a_body_driven_to_infinity_is_quarantined_and_the_rest_goes_on() {
+    let mut world = scene();
+    for _ in 0..120 {
+        world.step();
+    }
+    let victim = world.body_ids()[7];
+    let user_data = world.user_data(victim).unwrap();
+    // Finite, but absurd: the velocity overflows within a step or two.
+    world
+        .apply_force_at_point(victim, Vec3::new(3e38, 3e38, 0.0), Vec3::ZERO)
+        .expect("a finite force is accepted");
+    let before = world.body_count();
+    let mut reports = Vec::new();
+    for _ in 0..60 {
+        world.step();
+        reports.extend(world.take_quarantined());
+    }
+    assert!(
+        reports
+            .iter()
+            .any(|r| r.id == victim && r.user_data == user_data),
+        "{reports:?}"
+    );
+    assert!(!world.contains(victim));
+    assert_eq!(world.stats().quarantined_count, reports.len() as u64);
+    assert_eq!(world.body_count(), before - reports.len());
+    assert_eq!(reports.len(), 1, "the fault spread: {reports:?}");
+    for (_, pose) in world.poses() {
+        assert!(pose.position.is_finite() && pose.rotation.is_finite());
+    }
+    assert!(
+        world.take_quarantined().is_empty(),
+        "reports are handed out once"
+    );
+}

@@ -2,7 +2,7 @@
 
 use glam::{Mat3, Quat, Vec3};
 
-/// Hot per-body state for the substeps. 100 bytes.
+/// Hot per-body state for the substeps. 104 bytes.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct BodyState {
     /// m/s, of the centre of mass.
@@ -19,6 +19,9 @@ pub(crate) struct BodyState {
     pub inv_mass: f32,
     /// World-frame inverse inertia at the start of the step; 0 for static or sleeping.
     pub inv_inertia: Mat3,
+    /// Set when its velocity ran away (`freeze_runaway`): the body sits out
+    /// the rest of the step as static and is quarantined at its end.
+    pub runaway: bool,
 }
 
 impl BodyState {
@@ -31,6 +34,7 @@ impl BodyState {
         q: Quat::IDENTITY,
         inv_mass: 0.0,
         inv_inertia: Mat3::ZERO,
+        runaway: false,
     };
 
     /// Velocity of a point at `r` from the centre of mass.
@@ -43,6 +47,16 @@ impl BodyState {
     pub fn apply_impulse(&mut self, impulse: Vec3, r: Vec3) {
         self.v += self.inv_mass * impulse;
         self.w += self.inv_inertia * r.cross(impulse);
+    }
+
+    /// Takes a body whose velocity ran away out of the step: immovable from
+    /// here on, so its impulses cannot spread to the bodies it touches.
+    pub fn freeze_runaway(&mut self) {
+        self.v = Vec3::ZERO;
+        self.w = Vec3::ZERO;
+        self.inv_mass = 0.0;
+        self.inv_inertia = Mat3::ZERO;
+        self.runaway = true;
     }
 
     /// Advances position and orientation by substep `h` (the step's start pose stays put;

@@ -6,6 +6,7 @@ use super::body_state::BodyState;
 use super::parallel;
 use crate::forces::buoyancy::buoyancy_torque;
 use crate::forces::drag::drag_force;
+use crate::quarantine;
 
 /// Per-body forces for one step, gathered at prepare time.
 #[derive(Clone, Copy, Debug, Default)]
@@ -48,6 +49,9 @@ pub(crate) fn integrate_velocities(
     h: f32,
 ) {
     parallel::for_each_body(awake, states, |i, s| {
+        if s.runaway {
+            return; // frozen until the step ends (its forces may be infinite)
+        }
         let f = &forces[i as usize];
         let arm = s.q * f.buoyancy_arm;
         let drag = drag_force(f.drag_factor, s.v);
@@ -55,6 +59,9 @@ pub(crate) fn integrate_velocities(
         let speed_damping = h * f.drag_factor * s.v.length() * s.inv_mass;
         s.v = (s.v + h * s.inv_mass * f.force) / (1.0 + speed_damping);
         s.w = (s.w + h * (s.inv_inertia * torque)) / (1.0 + h * angular_damping);
+        if s.inv_mass > 0.0 && !quarantine::is_sane_motion(s.v, s.w) {
+            s.freeze_runaway();
+        }
     });
     if let Some(g) = grab {
         let s = &mut states[g.state as usize];
