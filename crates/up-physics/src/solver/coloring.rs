@@ -25,6 +25,8 @@ pub(crate) struct Coloring {
     pub ranges: Vec<(u32, u32)>,
     /// For each constraint in the narrowphase's order, where it went.
     pub position: Vec<u32>,
+    /// The inverse of `position`.
+    order: Vec<u32>,
     sorted: Vec<ContactConstraint>,
 }
 
@@ -66,15 +68,19 @@ impl Coloring {
             }
             start += count;
         }
+        // Counting sort: where each constraint goes, then one gathering copy.
         self.position.clear();
-        self.sorted.clear();
-        self.sorted.extend_from_slice(constraints);
+        self.order.clear();
+        self.order.resize(constraints.len(), 0);
         for (i, &color) in self.color.iter().enumerate() {
             let slot = next[color as usize];
             next[color as usize] += 1;
             self.position.push(slot);
-            self.sorted[slot as usize] = constraints[i];
+            self.order[slot as usize] = i as u32;
         }
+        self.sorted.clear();
+        self.sorted
+            .extend(self.order.iter().map(|&i| constraints[i as usize]));
         std::mem::swap(constraints, &mut self.sorted);
     }
 }
