@@ -315,7 +315,18 @@ const median = (s) => quantile(s, 0.5);
 const mean = (s) => s.reduce((a, b) => a + b, 0) / s.length;
 const settled = (s) => s.slice(s.length - Math.ceil(s.length / 3));
 
+/**
+ * MB of this process's peak resident set: VmHWM, as the native harness reads it.
+ * (Not `resourceUsage().maxRSS`: Linux carries that across exec, so a child
+ * would start with its parent's peak.)
+ */
 function peakRssMb() {
+  try {
+    const line = readFileSync('/proc/self/status', 'utf8').split('\n').find((l) => l.startsWith('VmHWM:'));
+    if (line) return (Number(line.split(/\s+/)[1]) * 1024) / 1e6;
+  } catch {
+    // Not Linux: fall through.
+  }
   return (process.resourceUsage().maxRSS * 1024) / 1e6;
 }
 
