@@ -8,9 +8,16 @@ import { OBJLoader } from "three/examples/jsm/loaders/OBJLoader.js";
 import { mergeGeometries, mergeVertices } from "three/examples/jsm/utils/BufferGeometryUtils.js";
 import { colorNameOfMtlFile, parseMtl } from "./mtl";
 import { writeInstanceMatrices } from "./poseMath";
+import { CROWD_BALLOONS, revolutionProfile, thinProfile } from "./crowdLod";
+
+/** Rings kept (every n-th) and segments around of the crowd geometry: 20 × 12, about 450 triangles. */
+const CROWD_RING_STEP = 2;
+const CROWD_SEGMENTS = 12;
 
 export interface BalloonAssets {
   geometry: THREE.BufferGeometry;
+  /** The same balloon with fewer triangles, for crowds (crowdLod.ts). */
+  crowdGeometry: THREE.BufferGeometry;
   /** Widest horizontal extent of the OBJ, m: the model's diameter. */
   diameter: number;
   /** Linear RGB of each colour name found in the MTL files. */
@@ -47,6 +54,13 @@ export async function loadBalloonAssets(base: string): Promise<BalloonAssets> {
   geometry.computeBoundingSphere();
   const box = geometry.boundingBox!;
   const diameter = Math.max(box.max.x - box.min.x, box.max.z - box.min.z);
+  const profile = thinProfile(revolutionProfile(geometry.getAttribute("position").array), CROWD_RING_STEP);
+  const crowdGeometry = new THREE.LatheGeometry(
+    profile.map(([r, y]) => new THREE.Vector2(r, y)),
+    CROWD_SEGMENTS,
+  );
+  crowdGeometry.deleteAttribute("uv");
+  crowdGeometry.computeBoundingSphere();
 
   const mtlColors = new Map<string, [number, number, number]>();
   await Promise.all(
@@ -61,7 +75,7 @@ export async function loadBalloonAssets(base: string): Promise<BalloonAssets> {
         if (name && kd) mtlColors.set(name, kd);
       }),
   );
-  return { geometry, diameter, mtlColors };
+  return { geometry, crowdGeometry, diameter, mtlColors };
 }
 
 export class Balloons {
@@ -134,6 +148,7 @@ export class Balloons {
     }
     if (this.mesh.instanceColor) this.mesh.instanceColor.needsUpdate = true;
     this.mesh.count = count;
+    this.mesh.geometry = count > CROWD_BALLOONS ? this.assets.crowdGeometry : this.assets.geometry;
   }
 
   /** Writes interpolated poses into the instance matrices. */
