@@ -10,16 +10,15 @@ import { existsSync, mkdirSync, mkdtempSync, rmSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { dirname, join } from "node:path";
 import { fileURLToPath } from "node:url";
-import { chromium } from "playwright-core";
+import { executablePath, launchChromium } from "./browser.mjs";
 import { serve } from "./server.mjs";
 import { tests } from "./tests.mjs";
 
 const here = dirname(fileURLToPath(import.meta.url));
 const dist = join(here, "..", "dist");
 const out = process.env.E2E_OUT ?? join(here, "out");
-const executablePath = process.env.CHROMIUM ?? "/usr/bin/chromium";
 const only = process.env.E2E_ONLY ?? "";
-/** Per test, ms: SwiftShader on two cores is slow. */
+/** Per test unless it sets `timeoutMs`, ms: SwiftShader on two cores is slow. */
 const TEST_TIMEOUT_MS = 90_000;
 
 if (!existsSync(join(dist, "index.html"))) {
@@ -64,25 +63,8 @@ let passed = 0;
 let failed = 0;
 try {
   server = await serve(dist);
-  browser = await chromium.launch({
-    executablePath,
-    headless: true,
-    args: [
-      "--no-sandbox",
-      "--disable-gpu",
-      "--disable-quic",
-      "--no-first-run",
-      "--disable-background-networking",
-      "--disable-component-update",
-      "--disable-sync",
-      "--use-gl=angle",
-      "--use-angle=swiftshader",
-      "--enable-unsafe-swiftshader",
-      "--ignore-gpu-blocklist",
-    ],
-    // Playwright passes its own fresh --user-data-dir; this is where temp files go.
-    env: { ...process.env, TMPDIR: profile },
-  });
+  // Playwright passes its own fresh --user-data-dir; TMPDIR is where temp files go.
+  browser = await launchChromium({ ...process.env, TMPDIR: profile });
   console.log(`e2e: ${server.url} in Chromium ${browser.version()}`);
 
   for (const test of tests.filter((t) => t.name.includes(only))) {
@@ -95,7 +77,7 @@ try {
     page.on("pageerror", (e) => consoleErrors.push(`uncaught: ${e.message}`));
     const started = Date.now();
     try {
-      await withTimeout(test.run({ page, url: server.url, consoleErrors, out }), TEST_TIMEOUT_MS, test.name);
+      await withTimeout(test.run({ page, url: server.url, consoleErrors, out }), test.timeoutMs ?? TEST_TIMEOUT_MS, test.name);
       passed++;
       console.log(`ok - ${test.name} (${((Date.now() - started) / 1000).toFixed(1)} s)`);
     } catch (e) {

@@ -3,13 +3,14 @@
 
 import assert from "node:assert/strict";
 import { join } from "node:path";
+import { base64url } from "./browser.mjs";
 
 const DEFAULT_BALLOONS = 50;
 
 /** Opens the app (with `hash`) and waits until it has drawn balloons. */
-async function open(page, url, hash = "") {
+async function open(page, url, hash = "", timeout = 60_000) {
   await page.goto(url + hash);
-  await page.waitForFunction(() => window.__up?.ready(), null, { timeout: 60_000 });
+  await page.waitForFunction(() => window.__up?.ready(), null, { timeout, polling: 250 });
 }
 
 const up = (page, expr, arg) => page.evaluate(expr, arg);
@@ -27,10 +28,6 @@ async function pause(page) {
   await page.waitForFunction(() => window.__up.paused());
   // Let OrbitControls' damping settle and the last frame arrive.
   await page.waitForTimeout(600);
-}
-
-function base64url(text) {
-  return Buffer.from(text, "utf8").toString("base64").replace(/\+/g, "-").replace(/\//g, "_").replace(/=+$/, "");
 }
 
 export const tests = [
@@ -247,6 +244,34 @@ export const tests = [
       }
       assert.equal(result.ok, 0, "the engine still steps after every refused call");
       assert.equal(result.count, result.n, "no refused call changed the world");
+    },
+  },
+  {
+    name: "the page answers input and keeps drawing while a large scene runs in the worker",
+    // SwiftShader on two shared cores draws such a frame in seconds.
+    timeoutMs: 180_000,
+    async run({ page, url, out }) {
+      // 800 balloons: about 10 ms per step in the worker (the crowd geometry draws them).
+      const scene = { room: { width: 10, depth: 10 }, balloons: [{ count: 800 }], sim: { sleep: false } };
+      // A small canvas: the claim is about the main thread, not about pixels.
+      await page.setViewportSize({ width: 480, height: 300 });
+      await open(page, url, `#scene=${base64url(JSON.stringify(scene))}`, 120_000);
+      assert.equal(await count(page), 800);
+      await page.waitForFunction(() => (window.__up.stats()?.stats.stages.at(-1)?.[1] ?? 0) > 1, null, { timeout: 30_000 });
+      const before = await up(page, () => ({ steps: window.__up.steps(), frames: window.__up.frames().drawn, camera: window.__up.camera() }));
+      // A key handled on the main thread changes state at once...
+      await page.keyboard.press("d");
+      assert.equal(await up(page, () => window.__up.debugView()), true, "the D key's handler ran");
+      await page.keyboard.press("d");
+      // ...and a held arrow turns the view at the next frames, whatever the physics costs.
+      await page.keyboard.down("ArrowLeft");
+      await page.waitForFunction((x) => Math.abs(window.__up.camera().position[0] - x) > 1e-3, before.camera.position[0], { timeout: 30_000 });
+      await page.keyboard.up("ArrowLeft");
+      // Frames kept coming while the worker stepped.
+      await page.waitForFunction((b) => window.__up.frames().drawn >= b.frames + 2 && window.__up.steps() > b.steps + 10, before, { timeout: 30_000 });
+      const after = await up(page, () => ({ steps: window.__up.steps(), paused: window.__up.paused() }));
+      assert.equal(after.paused, false, "the simulation ran throughout");
+      await page.screenshot({ path: join(out, "large-scene.png") });
     },
   },
   {
