@@ -20,6 +20,15 @@ use crate::{closest_point_triangle, Contact, Sphere, TriangleRegion};
 /// is meaningless and the face normal is used instead (m).
 pub(crate) const CENTER_ON_SURFACE: f32 = 1e-6;
 
+/// Unit normal of the triangle (a, b, c) by the right-hand rule, or `None`
+/// for a zero-area one. A cross product whose squared length is subnormal
+/// counts as zero: normalising it gives a vector visibly shorter than 1.
+#[inline]
+pub(crate) fn triangle_unit_normal(a: Vec3, b: Vec3, c: Vec3) -> Option<Vec3> {
+    let cross = (b - a).cross(c - a);
+    (cross.length_squared() >= f32::MIN_POSITIVE).then(|| cross.normalize())
+}
+
 /// Contact between sphere A and one-sided triangle B, if closer than `margin`.
 pub fn contact_sphere_triangle(
     sphere: Sphere,
@@ -28,7 +37,7 @@ pub fn contact_sphere_triangle(
 ) -> Option<(Contact, TriangleRegion)> {
     let [a, b, c] = *triangle;
     let center = sphere.center;
-    let face_normal = (b - a).cross(c - a).try_normalize();
+    let face_normal = triangle_unit_normal(a, b, c);
     let (closest, region) = closest_point_triangle(center, a, b, c);
     let delta = center - closest;
     // `m` points from the triangle to the centre; `distance` is measured along it.
@@ -149,6 +158,21 @@ mod tests {
         let point = [Vec3::ONE; 3];
         let (c, _) = contact_sphere_triangle(Sphere::new(Vec3::ONE, 0.5), &point, 0.0).unwrap();
         assert!(c.normal.is_finite() && c.separation == -0.5);
+    }
+
+    /// Found by fuzzing: a cross product of ~1e-22 (squared: subnormal)
+    /// normalised to a "unit" normal 0.4 % short.
+    #[test]
+    fn tiny_triangle_normal_is_unit_or_absent() {
+        let tri = [
+            Vec3::new(1.6687409e-38, 1.6134235e-38, 1.1612822e-16),
+            Vec3::new(-1.6987044e-6, 6.493e-41, 0.0),
+            Vec3::ZERO,
+        ];
+        let sphere = Sphere::new(Vec3::new(5.288444e-9, 0.0, 4.135903e-25), 0.001000478);
+        let (c, _) = contact_sphere_triangle(sphere, &tri, 0.0).unwrap();
+        assert!((c.normal.length() - 1.0).abs() < 1e-6, "{c:?}");
+        assert!(c.separation <= 0.0, "{c:?}");
     }
 
     fn brute_force_distance(p: Vec3, t: &[Vec3; 3]) -> f32 {

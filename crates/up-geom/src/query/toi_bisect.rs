@@ -19,6 +19,7 @@
 use glam::Vec3;
 
 use super::closest_point_triangle::closest_point_triangle;
+use super::contact_sphere_triangle::triangle_unit_normal;
 use crate::Sphere;
 
 /// Uniform steps of the unbounded scan in `toi_bisect`.
@@ -111,7 +112,7 @@ pub fn toi_sphere_triangle_bisect(
     tolerance: f32,
 ) -> Option<f32> {
     let [a, b, c] = *triangle;
-    let normal = (b - a).cross(c - a).try_normalize();
+    let normal = triangle_unit_normal(a, b, c);
     let distance = |t: f32| {
         let center = s.center + v * t;
         if let Some(n) = normal {

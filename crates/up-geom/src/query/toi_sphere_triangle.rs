@@ -19,6 +19,7 @@
 use glam::Vec3;
 
 use super::closest_point_triangle::closest_point_triangle;
+use super::contact_sphere_triangle::triangle_unit_normal;
 use super::toi_sphere_sphere::toi_moving_point_sphere;
 use crate::{Sphere, TriangleRegion};
 
@@ -36,7 +37,7 @@ pub fn toi_sphere_triangle(
     triangle: &[Vec3; 3],
 ) -> Option<(f32, TriangleRegion)> {
     let [a, b, c] = *triangle;
-    let normal = (b - a).cross(c - a).try_normalize();
+    let normal = triangle_unit_normal(a, b, c);
     let height0 = normal.map_or(0.0, |n| (s.center - a).dot(n));
     let approach = normal.map_or(0.0, |n| v.dot(n));
     let in_front = |t: f32| height0 + approach * t >= -BOUNDARY_SLACK;
