@@ -42,7 +42,9 @@ pub struct WorldDef {
     /// Overlap the position pass leaves alone, m; 0.0005. Deeper overlap is removed
     /// after each step, so balloons never sink into each other.
     pub stabilization_slop: f32,
-    /// Passes of the position pass per step; 2 (0 turns it off).
+    /// Passes of the position pass per step; 4 (0 turns it off). Cheap next to the
+    /// solve; 2 let a 1,000-balloon pile reach 1.8 mm of overlap once the solve ran
+    /// colour by colour, 4 hold it to 1.3 mm.
     pub stabilization_iterations: u32,
     /// Contact stiffness, Hz; 60, a quarter of the substep rate at 4 substeps of a
     /// 60 Hz step (higher is clamped to that). Box2D and Rapier use 30; balloons
@@ -89,7 +91,7 @@ impl Default for WorldDef {
             substeps: 4,
             solve_iterations: 1,
             stabilization_slop: 0.0005,
-            stabilization_iterations: 2,
+            stabilization_iterations: 4,
             contact_hertz: 60.0,
             contact_damping_ratio: 10.0,
             max_push_out: 1.0,
