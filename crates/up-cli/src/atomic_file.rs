@@ -79,3 +79,74 @@ pub fn write_atomically(target: &Path, bytes: &[u8]) -> Result<()> {
         .with_context(|| format!("cannot write {}", target.display()))?;
     file.commit()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("up-atomic-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    fn names(dir: &Path) -> Vec<String> {
+        let mut names: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        names
+    }
+
+    #[test]
+    fn the_target_appears_only_on_commit() {
+        let dir = scratch("commit");
+        let target = dir.join("out.csv");
+        let mut file = AtomicFile::create(&target).unwrap();
+        file.write_all(b"half a file").unwrap();
+        file.flush().unwrap();
+        assert!(!target.exists(), "nothing under the name before commit");
+        assert_eq!(names(&dir).len(), 1);
+        file.commit().unwrap();
+        assert_eq!(std::fs::read(&target).unwrap(), b"half a file");
+        assert_eq!(names(&dir), vec!["out.csv"]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn an_abandoned_write_leaves_nothing() {
+        let dir = scratch("abandon");
+        let target = dir.join("out.csv");
+        let mut file = AtomicFile::create(&target).unwrap();
+        file.write_all(&[b'x'; 100_000]).unwrap();
+        drop(file);
+        assert!(names(&dir).is_empty(), "{:?}", names(&dir));
+        // An existing target is kept whole when a new write is abandoned.
+        std::fs::write(&target, "old").unwrap();
+        let mut file = AtomicFile::create(&target).unwrap();
+        file.write_all(b"new, unfinished").unwrap();
+        drop(file);
+        assert_eq!(std::fs::read_to_string(&target).unwrap(), "old");
+        assert_eq!(names(&dir), vec!["out.csv"]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_failing_rename_leaves_no_target_and_no_temporary() {
+        let dir = scratch("rename");
+        // A directory in the way: the rename fails after the data is written.
+        let target = dir.join("taken");
+        std::fs::create_dir_all(target.join("inside")).unwrap();
+        let mut file = AtomicFile::create(&target).unwrap();
+        file.write_all(b"data").unwrap();
+        let e = file.commit().unwrap_err();
+        assert!(format!("{e:#}").contains("cannot write"), "{e:#}");
+        assert_eq!(names(&dir), vec!["taken"]);
+        assert!(target.is_dir());
+        let e = write_atomically(&dir.join("no/such/dir/f"), b"x").unwrap_err();
+        assert!(format!("{e:#}").contains("cannot create"), "{e:#}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

@@ -12,6 +12,7 @@ mod export_obj;
 mod fit_spheres;
 mod run;
 mod scene_arg;
+mod soak;
 mod summary;
 mod validate;
 
@@ -41,6 +42,8 @@ enum Command {
     ExportObj(export_obj::ExportObjArgs),
     /// Fit a sphere tree to a closed OBJ mesh and write it as JSON.
     FitSpheres(fit_spheres::FitSpheresArgs),
+    /// A long run checking health as it goes: finite, inside, overlap, memory.
+    Soak(soak::SoakArgs),
 }
 
 /// Exit status for every error: bad input, unreadable or unwritable files.
@@ -55,6 +58,7 @@ fn main() -> ExitCode {
         Command::Validate(args) => validate::run(&args),
         Command::ExportObj(args) => export_obj::run(&args),
         Command::FitSpheres(args) => fit_spheres::run(&args),
+        Command::Soak(args) => soak::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

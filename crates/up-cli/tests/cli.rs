@@ -111,6 +111,7 @@ fn help_is_available_everywhere() {
         "validate",
         "export-obj",
         "fit-spheres",
+        "soak",
     ] {
         let text = up_ok(&[sub, "--help"]);
         assert!(text.contains("Usage: up"), "{sub}: {text}");
@@ -428,4 +429,183 @@ fn export_obj_writes_meshes_and_fit_spheres_reads_them_back() {
         &dir.str("no/dir/fit.json"),
     ]);
     assert_eq!(dir.files(), before);
+}
+
+#[test]
+fn corrupted_or_truncated_state_files_are_rejected_clearly() {
+    let dir = TempDir::new("corrupt");
+    let state = dir.str("good.upsnap");
+    up_ok(&[
+        "run",
+        "--balloons",
+        "3",
+        "--seconds",
+        "0.1",
+        "--save-state",
+        &state,
+    ]);
+    let bytes = std::fs::read(&state).unwrap();
+    let load = |name: &str, content: &[u8]| {
+        std::fs::write(dir.path(name), content).unwrap();
+        up_err(&["run", "--seconds", "0.1", "--load-state", &dir.str(name)])
+    };
+    let err = load("truncated.upsnap", &bytes[..bytes.len() / 2]);
+    assert!(
+        err.contains("truncated.upsnap") && err.contains("snapshot truncated"),
+        "{err}"
+    );
+    let err = load("header.upsnap", &bytes[..10]);
+    assert!(err.contains("snapshot truncated"), "{err}");
+    let mut flipped = bytes.clone();
+    let middle = flipped.len() / 2;
+    flipped[middle] ^= 0x40;
+    let err = load("flipped.upsnap", &flipped);
+    assert!(
+        err.contains("flipped.upsnap") && err.contains("checksum mismatch"),
+        "{err}"
+    );
+    let mut longer = bytes.clone();
+    longer.extend_from_slice(b"tail");
+    let err = load("longer.upsnap", &longer);
+    assert!(err.contains("snapshot truncated"), "{err}");
+    let err = load("empty.upsnap", b"");
+    assert!(err.contains("not a UP snapshot"), "{err}");
+    let mut version = bytes.clone();
+    version[6] = 0xEE;
+    let err = load("version.upsnap", &version);
+    assert!(err.contains("format version"), "{err}");
+    // The good one still loads.
+    up_ok(&["run", "--seconds", "0.1", "--load-state", &state]);
+}
+
+#[test]
+fn an_interrupted_run_leaves_no_file_under_the_requested_name() {
+    let dir = TempDir::new("interrupt");
+    let csv = dir.str("traj.csv");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_up"))
+        .args([
+            "run",
+            "--balloons",
+            "200",
+            "--seconds",
+            "600",
+            "--out",
+            &csv,
+        ])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    // Wait until the temporary file has rows in it, then kill the run.
+    let started = std::time::Instant::now();
+    let temp_has_rows = || {
+        dir.files().iter().any(|name| {
+            name.ends_with(".tmp") && std::fs::metadata(dir.path(name)).is_ok_and(|m| m.len() > 0)
+        })
+    };
+    while !temp_has_rows() && started.elapsed().as_secs() < 60 {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let files = dir.files();
+    assert!(!files.contains(&"traj.csv".to_string()), "{files:?}");
+    assert!(
+        files
+            .iter()
+            .all(|f| f.starts_with(".traj.csv.") && f.ends_with(".tmp")),
+        "only the temporary file may remain: {files:?}"
+    );
+}
+
+#[test]
+fn soak_checks_and_reports_its_figures() {
+    let text = up_ok(&[
+        "soak",
+        "--balloons",
+        "20",
+        "--seconds",
+        "2",
+        "--check-every",
+        "30",
+        "--json",
+    ]);
+    let j = last_json(&text);
+    assert_eq!(j["balloons"], 20);
+    assert_eq!(j["steps"], 120);
+    assert_eq!(j["checks"].as_array().unwrap().len(), 4, "{j}");
+    assert_eq!(j["failures"].as_array().unwrap().len(), 0, "{j}");
+    assert_eq!(j["max_non_finite"], 0);
+    assert_eq!(j["max_escaped"], 0);
+    let bound = j["penetration_bound_m"].as_f64().unwrap();
+    assert!(
+        (bound - 0.0014).abs() < 1e-6,
+        "1 % of an 11-inch radius: {j}"
+    );
+    assert!(j["checks"][0]["rss_bytes"].as_u64().unwrap() > 0, "{j}");
+    assert!(text.contains("result") && text.contains("passed"), "{text}");
+    up_err(&["soak", "--seconds", "0"]);
+    up_err(&["soak", "--check-every", "0"]);
+    let err = up_err(&["soak", "--balloons", "1000000000"]);
+    assert!(err.contains("balloons[0].count"), "{err}");
+}
+
+#[test]
+fn bad_inputs_exit_2_naming_file_key_and_range() {
+    let dir = TempDir::new("ranges");
+    let cases = [
+        (
+            "count.toml",
+            "[[balloons]]\ncount = 1000000000\n",
+            "count.toml:2: balloons[0].count: expected at most 200000",
+        ),
+        (
+            "big.json",
+            "{\"balloons\": [{\"diameter_m\": 4.0}], \"room\": {\"wall_height\": 3}}",
+            "big.json:1: balloons[0].diameter_m: expected a balloon smaller than the room",
+        ),
+        (
+            "spawn.toml",
+            "[[balloons]]\nspawn = { min = [-9, 0, -1], max = [1, 1, 1] }\n",
+            "spawn.toml:2: balloons[0].spawn: expected a region inside the room",
+        ),
+        (
+            "type.json",
+            "{\"sim\": {\"dt\": \"fast\"}}",
+            "type.json:1: sim.dt: invalid type: string \"fast\", expected f32",
+        ),
+        (
+            "leaves.toml",
+            "[[balloons]]\nleaves = 64\n",
+            "leaves.toml:2: balloons[0].leaves: expected an integer in [1, 32], found 64",
+        ),
+        (
+            "mesh.toml",
+            "[room]\nmesh = \"absent.obj\"\n",
+            "mesh.toml:2: room.mesh: cannot build the room",
+        ),
+    ];
+    for (name, text, expected) in cases {
+        std::fs::write(dir.path(name), text).unwrap();
+        let path = dir.str(name);
+        for command in ["run", "validate"] {
+            let err = up_err(&[command, &path]);
+            assert!(
+                err.contains(&format!("{}{}", dir.0.display(), "/")),
+                "{err}"
+            );
+            assert!(err.contains(expected), "{command} {name}: {err}");
+        }
+    }
+    // An open room mesh is refused with the file and the edge.
+    std::fs::write(dir.path("open.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    std::fs::write(dir.path("room.toml"), "[room]\nmesh = \"open.obj\"\n").unwrap();
+    let err = up_err(&["validate", &dir.str("room.toml")]);
+    assert!(
+        err.contains("open.obj") && err.contains("not closed"),
+        "{err}"
+    );
+    // A huge OBJ (a device that never ends) is refused by its size.
+    let err = up_err(&["fit-spheres", "/dev/zero"]);
+    assert!(err.contains("/dev/zero: too large"), "{err}");
 }

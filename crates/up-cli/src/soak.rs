@@ -1,0 +1,322 @@
+//! `up soak`: a long run that checks the world's health as it goes: every
+//! pose finite, no balloon outside the room, the deepest overlap within 1 %
+//! of the balloon radius, and memory flat after the first simulated minute.
+//!
+//! Without a scene file the room is sized for the balloons (a pyramid-roofed
+//! box of at least 6 m × 6 m, about 20 balloons per m² of floor), so that
+//! `--balloons 10000` fits. The checks print as a table, one row per check;
+//! the run fails (exit 2) at the end if any check failed.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::{bail, Result};
+use clap::Args;
+use serde::Serialize;
+use up_physics::World;
+use up_scene::build::build_world;
+use up_scene::room::RoomMesh;
+use up_scene::scene::Scene;
+
+use crate::scene_arg::{load_scene, scene_name};
+use crate::summary::print_table;
+
+/// Longest soak `--seconds` accepts, s (one simulated day).
+const MAX_SECONDS: f64 = 86_400.0;
+/// Allowed overlap, as a fraction of the smallest balloon radius.
+const PENETRATION_FRACTION: f32 = 0.01;
+/// Simulated time after which memory must stay flat, s.
+const SETTLE_SECONDS: f64 = 60.0;
+/// Allowed resident memory growth after the first minute, bytes (allocator
+/// noise; a leak of a few bytes per step over an hour is far more).
+const RSS_SLACK_BYTES: u64 = 8 << 20;
+/// Balloons per m² of floor in the room made for `--balloons`.
+const BALLOONS_PER_M2: f64 = 20.0;
+
+#[derive(Args, Debug)]
+pub struct SoakArgs {
+    /// Scene file (.toml or .json); without one, a room sized for --balloons.
+    pub scene: Option<PathBuf>,
+    /// Total number of balloons (overrides the scene).
+    #[arg(long, value_name = "N", default_value_t = 10_000)]
+    pub balloons: u64,
+    /// Simulated seconds.
+    #[arg(long, value_name = "S", default_value_t = 3600.0)]
+    pub seconds: f64,
+    /// Check every K steps (penetration is tracked at every step regardless).
+    #[arg(long, value_name = "K", default_value_t = 600,
+          value_parser = clap::value_parser!(u64).range(1..))]
+    pub check_every: u64,
+    /// Seed of the spawn layout (overrides `sim.seed`).
+    #[arg(long, value_name = "K")]
+    pub seed: Option<u64>,
+    /// Keep every balloon awake (sleep off): the whole pile is simulated at every step.
+    #[arg(long)]
+    pub no_sleep: bool,
+    /// End with one JSON object on the last line of standard output.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// One row of the soak's table.
+#[derive(Clone, Debug, Serialize)]
+pub struct SoakCheck {
+    pub sim_seconds: f64,
+    pub steps: u64,
+    /// Deepest overlap over the steps since the previous check, m.
+    pub max_penetration_m: f32,
+    pub non_finite: usize,
+    pub escaped: usize,
+    pub awake: u32,
+    /// Resident memory of the process, bytes (0 where /proc is missing).
+    pub rss_bytes: u64,
+    /// Mean wall-clock time per step since the previous check, ms.
+    pub ms_per_step: f64,
+}
+
+/// The last line of `up soak --json`.
+#[derive(Debug, Serialize)]
+pub struct SoakSummary {
+    pub scene: String,
+    pub balloons: usize,
+    pub steps: u64,
+    pub sim_seconds: f64,
+    pub wall_seconds: f64,
+    pub ms_per_step: f64,
+    /// Deepest overlap over the whole run, m, and the bound it is held to.
+    pub max_penetration_m: f32,
+    pub penetration_bound_m: f32,
+    pub max_non_finite: usize,
+    pub max_escaped: usize,
+    /// Resident memory at the first check at or after one simulated minute, and at the end, bytes.
+    pub rss_at_1min_bytes: u64,
+    pub rss_end_bytes: u64,
+    pub state_hash: String,
+    /// What failed; empty when the soak passed.
+    pub failures: Vec<String>,
+    pub checks: Vec<SoakCheck>,
+}
+
+/// Resident set size of this process, bytes, from `/proc/self/statm`.
+pub fn resident_bytes() -> u64 {
+    let Ok(text) = std::fs::read_to_string("/proc/self/statm") else {
+        return 0;
+    };
+    let pages: u64 = text
+        .split_whitespace()
+        .nth(1)
+        .and_then(|w| w.parse().ok())
+        .unwrap_or(0);
+    pages * 4096
+}
+
+/// The default scene with a room wide enough for `balloons` on the floor.
+fn room_for(balloons: u64) -> Scene {
+    let mut scene = Scene::default();
+    // Capped at the largest room: an absurd count is then refused by its own key.
+    let side = (balloons as f64 / BALLOONS_PER_M2)
+        .sqrt()
+        .ceil()
+        .clamp(6.0, 1000.0) as f32;
+    scene.room.width = side;
+    scene.room.depth = side;
+    scene
+}
+
+pub fn run(args: &SoakArgs) -> Result<()> {
+    if !(args.seconds.is_finite() && args.seconds > 0.0 && args.seconds <= MAX_SECONDS) {
+        bail!(
+            "--seconds: expected a number in (0, {MAX_SECONDS}], found {}",
+            args.seconds
+        );
+    }
+    let scene = match &args.scene {
+        Some(_) => load_scene(args.scene.as_deref(), args.seed, Some(args.balloons))?,
+        None => {
+            let mut scene = room_for(args.balloons);
+            if let Some(seed) = args.seed {
+                scene.sim.seed = seed;
+            }
+            scene.with_total_balloons(args.balloons)?
+        }
+    };
+    let mut scene = scene;
+    if args.no_sleep {
+        scene.sim.sleep = false;
+    }
+    let radius = scene
+        .balloons
+        .iter()
+        .filter(|g| g.count > 0)
+        .map(|g| g.diameter() / 2.0)
+        .fold(f32::INFINITY, f32::min);
+    let bound = PENETRATION_FRACTION * radius;
+    let mut built = build_world(&scene)?;
+    let world = &mut built.world;
+    let steps = (args.seconds / f64::from(world.def().dt)).round().max(1.0) as u64;
+    eprintln!(
+        "up soak: {} balloons, {steps} steps, room {} m × {} m; checks every {} steps",
+        world.body_count(),
+        scene.room.width,
+        scene.room.depth,
+        args.check_every
+    );
+
+    let mut checks = Vec::new();
+    let mut window_penetration = 0.0f32;
+    let mut window_start = Instant::now();
+    let mut window_steps = 0u64;
+    let started = Instant::now();
+    let mut rss_at_1min = None;
+    for step in 1..=steps {
+        world.step();
+        window_penetration = window_penetration.max(world.stats().max_penetration);
+        window_steps += 1;
+        if step % args.check_every == 0 || step == steps {
+            let ms = window_start.elapsed().as_secs_f64() * 1000.0 / window_steps as f64;
+            let check = check(world, &built.room, step, window_penetration, ms);
+            if rss_at_1min.is_none() && check.sim_seconds >= SETTLE_SECONDS {
+                rss_at_1min = Some(check.rss_bytes);
+            }
+            eprintln!(
+                "  t {:>8.1} s  max pen {:>6.3} mm  non-finite {}  escaped {}  awake {:>6}  \
+                 rss {:>7.1} MiB  {:>8.3} ms/step",
+                check.sim_seconds,
+                check.max_penetration_m * 1000.0,
+                check.non_finite,
+                check.escaped,
+                check.awake,
+                check.rss_bytes as f64 / (1 << 20) as f64,
+                check.ms_per_step
+            );
+            checks.push(check);
+            window_penetration = 0.0;
+            window_steps = 0;
+            window_start = Instant::now();
+        }
+    }
+    let wall = started.elapsed().as_secs_f64();
+    let last = checks.last().cloned();
+    let rss_end = last.as_ref().map_or(0, |c| c.rss_bytes);
+    let summary = SoakSummary {
+        scene: args.scene.as_ref().map_or_else(
+            || "a room sized for the balloons".into(),
+            |_| scene_name(args.scene.as_ref()),
+        ),
+        balloons: world.body_count(),
+        steps,
+        sim_seconds: world.time(),
+        wall_seconds: wall,
+        ms_per_step: wall * 1000.0 / steps as f64,
+        max_penetration_m: checks
+            .iter()
+            .map(|c| c.max_penetration_m)
+            .fold(0.0, f32::max),
+        penetration_bound_m: bound,
+        max_non_finite: checks.iter().map(|c| c.non_finite).max().unwrap_or(0),
+        max_escaped: checks.iter().map(|c| c.escaped).max().unwrap_or(0),
+        rss_at_1min_bytes: rss_at_1min.unwrap_or(0),
+        rss_end_bytes: rss_end,
+        state_hash: format!("{:016x}", world.state_hash()),
+        failures: Vec::new(),
+        checks,
+    };
+    let summary = SoakSummary {
+        failures: failures(&summary),
+        ..summary
+    };
+    print_table("up soak", &rows(&summary));
+    if args.json {
+        println!("{}", serde_json::to_string(&summary)?);
+    }
+    if !summary.failures.is_empty() {
+        bail!("soak failed: {}", summary.failures.join("; "));
+    }
+    Ok(())
+}
+
+fn check(world: &World, room: &RoomMesh, steps: u64, penetration: f32, ms: f64) -> SoakCheck {
+    let mut non_finite = 0;
+    let mut escaped = 0;
+    for (_, pose) in world.poses() {
+        if !(pose.position.is_finite() && pose.rotation.is_finite()) {
+            non_finite += 1;
+        } else if !room.contains_point(pose.position) {
+            escaped += 1;
+        }
+    }
+    SoakCheck {
+        sim_seconds: world.time(),
+        steps,
+        max_penetration_m: penetration,
+        non_finite,
+        escaped,
+        awake: world.stats().awake_count,
+        rss_bytes: resident_bytes(),
+        ms_per_step: ms,
+    }
+}
+
+/// Every check the soak holds the run to, as messages of what failed.
+fn failures(s: &SoakSummary) -> Vec<String> {
+    let mut failed = Vec::new();
+    if s.max_non_finite > 0 {
+        failed.push(format!("{} bodies became non-finite", s.max_non_finite));
+    }
+    if s.max_escaped > 0 {
+        failed.push(format!("{} bodies left the room", s.max_escaped));
+    }
+    if s.max_penetration_m > s.penetration_bound_m {
+        failed.push(format!(
+            "penetration {:.3} mm over the bound {:.3} mm",
+            s.max_penetration_m * 1000.0,
+            s.penetration_bound_m * 1000.0
+        ));
+    }
+    if s.rss_at_1min_bytes > 0 && s.rss_end_bytes > s.rss_at_1min_bytes + RSS_SLACK_BYTES {
+        failed.push(format!(
+            "memory grew from {} to {} bytes after the first minute",
+            s.rss_at_1min_bytes, s.rss_end_bytes
+        ));
+    }
+    failed
+}
+
+fn rows(s: &SoakSummary) -> Vec<(&'static str, String)> {
+    let mib = |b: u64| {
+        if b == 0 {
+            "n/a".to_string()
+        } else {
+            format!("{:.1} MiB", b as f64 / (1 << 20) as f64)
+        }
+    };
+    vec![
+        ("scene", s.scene.clone()),
+        ("balloons", s.balloons.to_string()),
+        ("steps", s.steps.to_string()),
+        ("simulated", format!("{:.1} s", s.sim_seconds)),
+        ("wall clock", format!("{:.1} s", s.wall_seconds)),
+        ("per step", format!("{:.3} ms", s.ms_per_step)),
+        (
+            "max penetration",
+            format!(
+                "{:.3} mm (bound {:.3} mm)",
+                s.max_penetration_m * 1000.0,
+                s.penetration_bound_m * 1000.0
+            ),
+        ),
+        ("non-finite bodies", s.max_non_finite.to_string()),
+        ("escaped", s.max_escaped.to_string()),
+        ("memory at 1 min", mib(s.rss_at_1min_bytes)),
+        ("memory at the end", mib(s.rss_end_bytes)),
+        ("state hash", s.state_hash.clone()),
+        (
+            "result",
+            if s.failures.is_empty() {
+                "passed".to_string()
+            } else {
+                format!("FAILED: {}", s.failures.join("; "))
+            },
+        ),
+    ]
+}
