@@ -6,7 +6,7 @@
 //
 // Loads a scene link with that many balloons, then for `seconds` presses an
 // arrow key and clicks the canvas every 400 ms while the worker simulates,
-// then pauses the simulation and measures again (drawing alone). Prints one
+// then pauses the simulation and measures again (drawing alone, same input). Prints one
 // JSON line:
 // - frame_ms: main-thread requestAnimationFrame intervals (median, p95, max);
 // - input_delay_ms: from an input event's timestamp to its handler running
@@ -135,7 +135,7 @@ try {
   await page.keyboard.press(" ");
   await page.waitForFunction(() => window.__up.paused());
   await page.waitForTimeout(500);
-  const paused = await phase(page, Math.min(5, seconds) * 1000, false);
+  const paused = await phase(page, Math.min(5, seconds) * 1000, true);
   const result = {
     balloons: count,
     room_m: [side, side],
@@ -144,7 +144,7 @@ try {
     renderer: "SwiftShader (CPU)",
     load_to_first_frames_s: Math.round(loadSeconds * 10) / 10,
     running,
-    paused_drawing_only: { frame_ms: paused.frame_ms, fps: paused.fps, render_call_ms: paused.render_call_ms },
+    paused_drawing_only: { frame_ms: paused.frame_ms, fps: paused.fps, render_call_ms: paused.render_call_ms, input_delay_ms: paused.input_delay_ms, input_to_frame_ms: paused.input_to_frame_ms },
     page_errors: errors,
   };
   console.log(JSON.stringify(result));
