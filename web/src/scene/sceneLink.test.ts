@@ -96,6 +96,8 @@ describe("scene validation", () => {
     expect(keysOf({ balloons: [{ gas: "hydrogen" }] })).toEqual(["balloons[0].gas"]);
     expect(keysOf({ balloons: [{ velocity: [400, 0, 0] }] })).toEqual(["balloons[0].velocity"]);
     expect(keysOf({ balloons: [{ leaves: 40 }] })).toEqual(["balloons[0].leaves"]);
+    expect(keysOf({ balloons: Array.from({ length: 65 }, () => ({ count: 0 })) })).toEqual(["balloons"]);
+    expect(keysOf({ balloons: [{ colors: Array(65).fill("red") }] })).toEqual(["balloons[0].colors"]);
   });
 
   it("rejects a balloon larger than the room and a spawn box outside it", () => {

@@ -10,6 +10,9 @@ export interface SceneProblem {
 }
 
 export const MAX_TOTAL_BALLOONS = 200_000;
+/** Balloon groups a scene may have, and colours a group may list (up_scene: MAX_BALLOON_GROUPS, MAX_GROUP_COLORS). */
+export const MAX_BALLOON_GROUPS = 64;
+export const MAX_GROUP_COLORS = 64;
 export const MIN_ROOM_SIZE_M = 0.5;
 export const MAX_ROOM_SIZE_M = 1000;
 export const MIN_BALLOON_DIAMETER_M = 0.05;
@@ -180,6 +183,7 @@ export function validateScene(scene: unknown): SceneProblem[] {
     if (!Array.isArray(groups)) {
       c.fail("balloons", `expected an array of balloon groups, found ${kind(groups)}`);
     } else {
+      if (groups.length > MAX_BALLOON_GROUPS) c.fail("balloons", `expected at most ${MAX_BALLOON_GROUPS} balloon groups, found ${groups.length}`);
       let total = 0;
       groups.forEach((g, i) => {
         const path = `balloons[${i}]`;
@@ -198,6 +202,8 @@ export function validateScene(scene: unknown): SceneProblem[] {
           const colors = g.colors;
           if (!Array.isArray(colors) || colors.length === 0) {
             c.fail(`${path}.colors`, `expected a non-empty list of colours, found ${kind(colors)}`);
+          } else if (colors.length > MAX_GROUP_COLORS) {
+            c.fail(`${path}.colors`, `expected at most ${MAX_GROUP_COLORS} colours, found ${colors.length}`);
           } else {
             colors.forEach((col, j) => {
               if (typeof col !== "string" || !isColor(col)) {
