@@ -1,7 +1,11 @@
 # UP — one entry point for building, running and testing.
 #   make run    set up, build everything, serve the app on http://localhost:$(PORT)
 #   make test   set up, lint, run every test (Rust, web unit, browser end-to-end)
-#   make bench  time the engine (up bench) on the original scene
+#   make bench  UP against Rapier (native and in Node) at 1k and 10k balloons, UP alone at 100k;
+#               writes docs/benchmarks.md and docs/benchmarks.svg (tens of minutes)
+#   make measure  the web app with 5,000 balloons in headless Chromium (frames, input, physics)
+#   make fuzz   run every cargo-fuzz target for FUZZ_SECONDS each (nightly + cargo-fuzz)
+#   make soak   the long run of issue 7: 10,000 balloons for an hour of simulated time
 # Every target installs what it needs, idempotently.
 
 SHELL := /bin/bash
@@ -13,7 +17,7 @@ WASM_OUT := web/public/wasm/up_wasm.wasm
 RUST_SOURCES := $(shell find crates -name '*.rs' -o -name Cargo.toml) Cargo.toml Cargo.lock
 WEB_SOURCES := $(shell find web/src web/index.html web/vite.config.* web/tsconfig*.json web/scripts -type f 2>/dev/null) $(shell find assets -type f 2>/dev/null)
 
-.PHONY: run build test lint test-rust test-web test-e2e bench setup setup-rust setup-web setup-browser serve clean
+.PHONY: run build test lint test-rust test-web test-e2e test-determinism bench measure fuzz soak setup setup-rust setup-web setup-browser setup-bench serve clean
 
 run: build
 	@echo "UP is being served on http://localhost:$(PORT)  (Ctrl-C stops it)"
@@ -68,11 +72,38 @@ test-web: setup-web
 test-e2e: setup-browser build
 	cd web && npm run e2e
 
-test: lint test-rust test-web test-e2e
+# The WebAssembly build, run in Node, must end a small scene with the native run's state hash.
+test-determinism: build
+	node web/determinism/check.mjs
+
+test: lint test-rust test-web test-e2e test-determinism
 	@echo "make test: all suites passed"
 
-bench: setup-rust
-	$(CARGO) run --release -p up-cli -- bench --balloons 1000 --steps 600
+FUZZ_SECONDS ?= 300
+SOAK_ARGS ?= --balloons 10000 --seconds 3600
+
+setup-bench: web/bench/node_modules/.installed
+
+web/bench/node_modules/.installed: web/bench/package.json web/bench/package-lock.json
+	cd web/bench && npm ci --no-audit --no-fund
+	touch $@
+
+bench: setup-rust setup-bench $(WASM_OUT)
+	$(CARGO) build --release -p up-bench -p up-cli
+	target/release/up bench --balloons 1000 --steps 600
+	target/release/up-bench report --node
+
+# The page with 5,000 balloons in headless Chromium: frame intervals, input delay, physics per step.
+measure: setup-browser build
+	cd web && node e2e/measure.mjs 5000 10
+
+fuzz:
+	@rustup toolchain list | grep -q nightly || rustup toolchain install nightly --profile minimal
+	@cargo +nightly fuzz --version >/dev/null 2>&1 || cargo install cargo-fuzz --locked
+	fuzz/run.sh $(FUZZ_SECONDS)
+
+soak: setup-rust
+	$(CARGO) run --release -p up-cli -- soak $(SOAK_ARGS)
 
 clean:
 	$(CARGO) clean
