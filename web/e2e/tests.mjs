@@ -63,7 +63,10 @@ export const tests = [
   {
     name: "balloons rise over time",
     async run({ page, url }) {
-      await open(page, url);
+      // A 30 m tall room: the rise takes ≈ 17 s, so a page that was slow to
+      // become ready (a loaded machine) still catches the balloons rising.
+      const tall = { room: { wall_height: 30 }, balloons: [{ count: 20 }] };
+      await open(page, url, `#scene=${base64url(JSON.stringify(tall))}`);
       const before = await meanY(page);
       const stepsBefore = await up(page, () => window.__up.steps());
       await page.waitForTimeout(2500);
