@@ -376,50 +376,45 @@ impl Scene {
     /// Parses and validates TOML; `source` names it in messages (a file name).
     pub fn from_toml_str(text: &str, source: &str) -> Result<Scene, SceneError> {
         let lines = KeyLines::scan_toml(text);
-        let mut scene: Scene = toml::from_str(text).map_err(|e| {
+        let parsed = toml::from_str(text).map_err(|e: toml::de::Error| {
             let line = e
                 .span()
                 .map(|span| locate::line_of_offset(text, span.start));
-            let key = line.and_then(|l| lines.key_at(l)).map(str::to_string);
-            let message = e.message().trim().to_string();
-            SceneError::Parse {
-                at: Location {
-                    file: source.to_string(),
-                    key,
-                    line,
-                },
-                message,
-            }
-        })?;
-        scene.source = SceneSource {
-            name: source.to_string(),
-            dir: None,
-            lines,
-        };
-        scene.validate()?;
-        Ok(scene)
+            (line, e.message().trim().to_string())
+        });
+        Self::finish_parse(parsed, source, lines)
     }
 
     /// Parses and validates JSON; `source` names it in messages (a file name).
     pub fn from_json_str(text: &str, source: &str) -> Result<Scene, SceneError> {
         let lines = KeyLines::scan_json(text);
-        let mut scene: Scene = serde_json::from_str(text).map_err(|e| {
+        let parsed = serde_json::from_str(text).map_err(|e| {
             let line = (e.line() > 0).then_some(e.line());
-            let key = line.and_then(|l| lines.key_at(l)).map(str::to_string);
             // serde_json appends " at line L column C"; the location says it already.
             let full = e.to_string();
             let message = match full.rfind(" at line ") {
                 Some(cut) => full[..cut].to_string(),
                 None => full,
             };
-            SceneError::Parse {
-                at: Location {
-                    file: source.to_string(),
-                    key,
-                    line,
-                },
-                message,
-            }
+            (line, message)
+        });
+        Self::finish_parse(parsed, source, lines)
+    }
+
+    /// Either format's result: a parse error located at its line and key, or
+    /// the scene with its source attached, validated.
+    fn finish_parse(
+        parsed: Result<Scene, (Option<usize>, String)>,
+        source: &str,
+        lines: KeyLines,
+    ) -> Result<Scene, SceneError> {
+        let mut scene = parsed.map_err(|(line, message)| SceneError::Parse {
+            at: Location {
+                file: source.to_string(),
+                key: line.and_then(|l| lines.key_at(l)).map(str::to_string),
+                line,
+            },
+            message,
         })?;
         scene.source = SceneSource {
             name: source.to_string(),

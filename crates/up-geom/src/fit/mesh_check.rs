@@ -9,18 +9,13 @@
 use glam::Vec3;
 use thiserror::Error;
 
+use crate::shape::trimesh::{validate_indices, TriMeshError};
+
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum MeshCheckError {
-    #[error("the mesh has no triangles")]
-    Empty,
-    #[error("vertex {index} has a non-finite coordinate")]
-    NonFiniteVertex { index: usize },
-    #[error("triangle {triangle} refers to vertex {vertex}, but there are only {count} vertices")]
-    IndexOutOfRange {
-        triangle: usize,
-        vertex: u32,
-        count: usize,
-    },
+    /// No triangles, a non-finite vertex or an index out of range.
+    #[error(transparent)]
+    Indices(#[from] TriMeshError),
     #[error(
         "the mesh is not closed: edge between vertices {a} and {b} belongs to only one triangle \
          (expected exactly two)"
@@ -47,32 +42,12 @@ pub struct MeshCheck {
     pub edges: usize,
 }
 
-/// Finite vertices, indices in range and at least one triangle.
-pub fn check_indices(vertices: &[Vec3], triangles: &[[u32; 3]]) -> Result<(), MeshCheckError> {
-    if triangles.is_empty() {
-        return Err(MeshCheckError::Empty);
-    }
-    if let Some(index) = vertices.iter().position(|v| !v.is_finite()) {
-        return Err(MeshCheckError::NonFiniteVertex { index });
-    }
-    for (triangle, t) in triangles.iter().enumerate() {
-        if let Some(&vertex) = t.iter().find(|&&i| i as usize >= vertices.len()) {
-            return Err(MeshCheckError::IndexOutOfRange {
-                triangle,
-                vertex,
-                count: vertices.len(),
-            });
-        }
-    }
-    Ok(())
-}
-
 /// Valid indices, and every edge shared by exactly two oppositely wound triangles.
 pub fn check_closed(
     vertices: &[Vec3],
     triangles: &[[u32; 3]],
 ) -> Result<MeshCheck, MeshCheckError> {
-    check_indices(vertices, triangles)?;
+    validate_indices(vertices, triangles)?;
     // Directed edges as (low, high, runs low→high); sorted, so groups are
     // contiguous and the first reported problem is deterministic.
     let mut edges: Vec<(u32, u32, bool)> = Vec::with_capacity(triangles.len() * 3);
@@ -88,7 +63,7 @@ pub fn check_closed(
         }
     }
     if edges.is_empty() {
-        return Err(MeshCheckError::Empty);
+        return Err(MeshCheckError::Indices(TriMeshError::Empty));
     }
     edges.sort_unstable();
     let mut distinct = 0;
@@ -175,18 +150,23 @@ mod tests {
         t.push([0, 1, 9]);
         assert!(matches!(
             check_closed(&v, &t),
-            Err(MeshCheckError::IndexOutOfRange {
+            Err(MeshCheckError::Indices(TriMeshError::IndexOutOfRange {
                 triangle: 4,
                 vertex: 9,
                 count: 4
-            })
+            }))
         ));
         t.pop();
         v[2].y = f32::NAN;
         assert_eq!(
             check_closed(&v, &t),
-            Err(MeshCheckError::NonFiniteVertex { index: 2 })
+            Err(MeshCheckError::Indices(TriMeshError::NonFiniteVertex {
+                index: 2
+            }))
         );
-        assert_eq!(check_closed(&v, &[]), Err(MeshCheckError::Empty));
+        assert_eq!(
+            check_closed(&v, &[]),
+            Err(MeshCheckError::Indices(TriMeshError::Empty))
+        );
     }
 }

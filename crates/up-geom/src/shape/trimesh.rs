@@ -17,7 +17,7 @@ use thiserror::Error;
 use super::aabb::Aabb;
 use super::bvh::Bvh;
 
-#[derive(Debug, Error, PartialEq)]
+#[derive(Clone, Debug, Error, PartialEq)]
 pub enum TriMeshError {
     #[error("a triangle mesh needs at least one triangle")]
     Empty,
@@ -114,21 +114,7 @@ impl TriMesh {
     /// Validates the mesh (at least one triangle, finite vertices, indices in
     /// range) and builds normals, adjacency and the BVH.
     pub fn new(vertices: Vec<Vec3>, triangles: Vec<[u32; 3]>) -> Result<Self, TriMeshError> {
-        if triangles.is_empty() {
-            return Err(TriMeshError::Empty);
-        }
-        if let Some(index) = vertices.iter().position(|v| !v.is_finite()) {
-            return Err(TriMeshError::NonFiniteVertex { index });
-        }
-        for (triangle, t) in triangles.iter().enumerate() {
-            if let Some(&vertex) = t.iter().find(|&&v| v as usize >= vertices.len()) {
-                return Err(TriMeshError::IndexOutOfRange {
-                    triangle,
-                    vertex,
-                    count: vertices.len(),
-                });
-            }
-        }
+        validate_indices(&vertices, &triangles)?;
         let normals: Vec<Vec3> = triangles
             .iter()
             .map(|t| {
@@ -281,6 +267,27 @@ impl TriMesh {
     pub fn query_aabb_until(&self, aabb: &Aabb, visit: impl FnMut(u32) -> bool) -> bool {
         self.bvh.query_until(aabb, visit)
     }
+}
+
+/// At least one triangle, finite vertices and indices in range: what any
+/// triangle mesh needs (`TriMesh::new`, and the fitter's closedness check).
+pub fn validate_indices(vertices: &[Vec3], triangles: &[[u32; 3]]) -> Result<(), TriMeshError> {
+    if triangles.is_empty() {
+        return Err(TriMeshError::Empty);
+    }
+    if let Some(index) = vertices.iter().position(|v| !v.is_finite()) {
+        return Err(TriMeshError::NonFiniteVertex { index });
+    }
+    for (triangle, t) in triangles.iter().enumerate() {
+        if let Some(&vertex) = t.iter().find(|&&v| v as usize >= vertices.len()) {
+            return Err(TriMeshError::IndexOutOfRange {
+                triangle,
+                vertex,
+                count: vertices.len(),
+            });
+        }
+    }
+    Ok(())
 }
 
 /// `(b - a) × (c - a)` normalised, or zero when the triangle has no area.
