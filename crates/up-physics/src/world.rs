@@ -3,7 +3,7 @@
 use glam::{Quat, Vec3};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
-use up_geom::query::toi_sphere_trimesh::toi_sphere_trimesh;
+use up_geom::query::toi_sphere_trimesh::toi_sphere_trimesh_new_contact;
 use up_geom::{Pose, Sphere, TriMesh};
 
 use crate::body::{BalloonShape, Bodies, BodyDef, BodyId, HandleMap, ShapeData, ShapeId};
@@ -1181,7 +1181,11 @@ impl World {
                 let from = begin + q0 * leaf.center;
                 let to = end + s.q * leaf.center;
                 let core = Sphere::new(from, leaf.radius * CORE_FRACTION);
-                if let Some((t, _, normal)) = toi_sphere_trimesh(core, to - from, room) {
+                // Triangles the core is in already are the solver's to push
+                // out of: stopping at them would freeze the body in place,
+                // step after step.
+                if let Some((t, _, normal)) = toi_sphere_trimesh_new_contact(core, to - from, room)
+                {
                     if earliest.is_none_or(|(te, _)| t < te) {
                         earliest = Some((t, normal));
                     }

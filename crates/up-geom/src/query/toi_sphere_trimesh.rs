@@ -18,6 +18,26 @@ use crate::{closest_point_triangle, Aabb, Sphere, TriMesh};
 ///
 /// `v` is the displacement over the step (m). Zero-area triangles are skipped.
 pub fn toi_sphere_trimesh(s: Sphere, v: Vec3, mesh: &TriMesh) -> Option<(f32, u32, Vec3)> {
+    earliest_impact(s, v, mesh, false)
+}
+
+/// As [`toi_sphere_trimesh`], over the triangles the sphere does not touch
+/// at the start: the first *new* contact, the one a continuous sweep must
+/// stop at (contacts it starts in belong to the contact solver).
+pub fn toi_sphere_trimesh_new_contact(
+    s: Sphere,
+    v: Vec3,
+    mesh: &TriMesh,
+) -> Option<(f32, u32, Vec3)> {
+    earliest_impact(s, v, mesh, true)
+}
+
+fn earliest_impact(
+    s: Sphere,
+    v: Vec3,
+    mesh: &TriMesh,
+    skip_touching: bool,
+) -> Option<(f32, u32, Vec3)> {
     let swept =
         Aabb::from_sphere(s.center, s.radius).union(Aabb::from_sphere(s.center + v, s.radius));
     let mut best: Option<(f32, u32)> = None;
@@ -26,6 +46,9 @@ pub fn toi_sphere_trimesh(s: Sphere, v: Vec3, mesh: &TriMesh) -> Option<(f32, u3
             return;
         }
         if let Some((t, _)) = toi_sphere_triangle(s, v, &mesh.triangle(tri)) {
+            if skip_touching && t == 0.0 {
+                return;
+            }
             let better = match best {
                 None => true,
                 Some((bt, bi)) => t < bt || (t == bt && tri < bi),
@@ -99,6 +122,32 @@ mod tests {
         let (t, _, n) = toi_sphere_trimesh(s, -Vec3::X * 3.0, &wall()).unwrap();
         assert!((t - 0.5).abs() < 1e-6);
         assert!(n.distance(-Vec3::X) < 1e-6);
+    }
+
+    #[test]
+    fn new_contact_skips_the_triangle_touched_at_the_start() {
+        // A floor the sphere rests in, and a wall ahead of it.
+        let v = vec![
+            Vec3::new(-5.0, 0.0, -5.0),
+            Vec3::new(-5.0, 0.0, 5.0),
+            Vec3::new(5.0, 0.0, 5.0),
+            Vec3::new(1.0, 0.0, -5.0),
+            Vec3::new(1.0, 3.0, -5.0),
+            Vec3::new(1.0, 0.0, 5.0),
+        ];
+        let mesh = TriMesh::new(v, vec![[0, 1, 2], [3, 5, 4]]).unwrap();
+        let s = Sphere::new(Vec3::new(0.0, 0.2, 0.0), 0.5);
+        let motion = Vec3::X * 2.0;
+        assert_eq!(
+            toi_sphere_trimesh(s, motion, &mesh).map(|h| (h.0, h.1)),
+            Some((0.0, 0))
+        );
+        let (t, tri, n) = toi_sphere_trimesh_new_contact(s, motion, &mesh).unwrap();
+        assert!((t - 0.25).abs() < 1e-6, "t = {t}");
+        assert_eq!(tri, 1);
+        assert!(n.distance(Vec3::X) < 1e-6);
+        // Nothing new ahead: no impact at all.
+        assert!(toi_sphere_trimesh_new_contact(s, -motion, &mesh).is_none());
     }
 
     fn vec3(range: f32) -> impl Strategy<Value = Vec3> {
