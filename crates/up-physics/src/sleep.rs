@@ -1,10 +1,14 @@
 //! Sleeping: a settled group of touching balloons stops costing anything.
 //!
-//! Each step, awake bodies that touch are joined into islands (union-find
-//! over touching contacts). When every body of an island has been slow for
-//! `time_to_sleep`, the island sleeps together and is remembered as a group.
-//! An awake body touching a sleeping one wakes that body's whole group, and
-//! so does the user (an impulse, a grab, a removal next door).
+//! A body is rested once it has been slow for `time_to_sleep`. Each step the
+//! rested bodies that no restless body reaches fall asleep, in groups of
+//! touching ones (union-find over contacts); those a restless body reaches
+//! stay awake between it and the sleepers. A sleeping body is static to its
+//! awake neighbours. A slow restless body wakes only the sleepers it
+//! touches, and they keep their rest time (so a slow shuffle in a big pile
+//! wakes just what it moves); a fast one (an impact) wakes the touched
+//! bodies' whole groups, as the user does (an impulse, a grab, a removal
+//! next door).
 
 use serde::{Deserialize, Serialize};
 
@@ -57,6 +61,17 @@ impl SleepingIslands {
         } else {
             self.members.push(bodies);
             self.members.len() as u32 - 1
+        }
+    }
+
+    /// Keeps the members of `island` that `still_asleep`; frees it once empty.
+    pub fn retain_members(&mut self, island: u32, still_asleep: impl Fn(BodyId) -> bool) {
+        let Some(members) = self.members.get_mut(island as usize) else {
+            return;
+        };
+        members.retain(|&id| still_asleep(id));
+        if members.is_empty() {
+            self.free.push(island);
         }
     }
 

@@ -74,7 +74,7 @@ pub struct WorldDef {
     pub sleep_linear_speed: f32,
     /// ... and turning slower than this, rad/s; 0.05.
     pub sleep_angular_speed: f32,
-    /// Seconds a whole island must stay slow before it sleeps; 0.5.
+    /// Seconds a body must stay slow before it may sleep; 0.5 (see `sleep.rs`).
     pub time_to_sleep: f32,
     /// Sweep fast bodies against the room with time of impact; true.
     pub enable_continuous: bool,
@@ -160,7 +160,10 @@ struct Scratch {
     narrow: NarrowPhase,
     solver: Solver,
     islands: UnionFind,
+    /// Per body, in `update_sleep`: which stay awake, then which fall asleep.
+    stays_awake: Vec<bool>,
     wake: Vec<u32>,
+    wake_islands: Vec<u32>,
     non_finite: Vec<usize>,
 }
 
@@ -784,7 +787,7 @@ impl World {
 
         self.place_bodies(false);
         self.find_pairs();
-        if self.wake_touched_islands() {
+        if self.wake_touched_bodies() {
             // Woken bodies need their own pairs and placements.
             self.place_bodies(false);
             self.find_pairs();
@@ -906,34 +909,74 @@ impl World {
         );
     }
 
-    /// Wakes every sleeping island that an awake body's bounding sphere reaches.
-    fn wake_touched_islands(&mut self) -> bool {
-        let mut woke = false;
-        let mut k = 0;
-        while k < self.scratch.broad.pairs.len() {
-            let (a, b) = self.scratch.broad.pairs[k];
-            k += 1;
+    /// Wakes what a restless body's root sphere reaches. A body moving more
+    /// than the speculative distance per step is an impact, whose push must
+    /// travel through the pile at once: it wakes the touched body's whole
+    /// island, as a user action does. A slower one wakes only the bodies it
+    /// touches, and they keep their rest time, so they fall asleep again as
+    /// soon as nothing restless reaches them (see `update_sleep`): a sleeping
+    /// body is static to its awake neighbours, and a slow shuffle in a big
+    /// pile wakes only what it moves.
+    fn wake_touched_bodies(&mut self) -> bool {
+        let mut woken = std::mem::take(&mut self.scratch.wake);
+        woken.clear();
+        let mut islands = std::mem::take(&mut self.scratch.wake_islands);
+        islands.clear();
+        for &(a, b) in &self.scratch.broad.pairs {
             let (a, b) = (a as usize, b as usize);
             if self.bodies.awake[a] == self.bodies.awake[b] {
                 continue;
             }
             let (awake, asleep) = if self.bodies.awake[a] { (a, b) } else { (b, a) };
+            if self.bodies.sleep_time[awake] >= self.def.time_to_sleep {
+                continue;
+            }
             // Touching, not merely within the speculative margin: root spheres overlap.
-            let ra = self.shapes[self.bodies.shape[awake] as usize]
+            let reach = self.shapes[self.bodies.shape[awake] as usize]
                 .tree
                 .root()
-                .radius;
-            let rb = self.shapes[self.bodies.shape[asleep] as usize]
-                .tree
-                .root()
-                .radius;
+                .radius
+                + self.shapes[self.bodies.shape[asleep] as usize]
+                    .tree
+                    .root()
+                    .radius;
             let d = self.scratch.bound_center[awake].distance(self.scratch.bound_center[asleep]);
-            if d < ra + rb && self.bodies.sleep_time[awake] < self.def.time_to_sleep {
-                self.wake_island(self.bodies.island[asleep]);
-                woke = true;
+            if d >= reach {
+                continue;
+            }
+            // margin = speculative distance + this step's motion.
+            if self.scratch.margin[awake] > 2.0 * self.def.speculative_distance {
+                islands.push(self.bodies.island[asleep]);
+            } else {
+                woken.push(asleep as u32);
             }
         }
-        woke
+        islands.sort_unstable();
+        islands.dedup();
+        for &island in &islands {
+            self.wake_island(island);
+        }
+        // Bodies of islands woken whole are awake already.
+        woken.retain(|&i| !self.bodies.awake[i as usize]);
+        // Awake first; then each island they left keeps only its sleepers.
+        for &i in &woken {
+            self.bodies.awake[i as usize] = true;
+        }
+        for w in woken.iter_mut() {
+            let i = *w as usize;
+            *w = std::mem::replace(&mut self.bodies.island[i], u32::MAX);
+        }
+        woken.sort_unstable();
+        woken.dedup();
+        for &island in &woken {
+            let (handles, awake) = (&self.handles, &self.bodies.awake);
+            self.sleeping
+                .retain_members(island, |id| handles.dense(id).is_some_and(|i| !awake[i]));
+        }
+        let any = !woken.is_empty() || !islands.is_empty();
+        self.scratch.wake = woken;
+        self.scratch.wake_islands = islands;
+        any
     }
 
     fn wake_island(&mut self, island: u32) {
@@ -1204,7 +1247,15 @@ impl World {
         }
     }
 
-    /// Sleep timers, islands of touching awake bodies, and islands falling asleep.
+    /// Sleep timers, then the rested bodies that fall asleep.
+    ///
+    /// A body is rested once it has been slow for `time_to_sleep`. Rested
+    /// bodies sleep in groups of touching ones, except those a restless body
+    /// reaches (root spheres within the speculative distance): they stay
+    /// awake as the buffer through which a restless body pushes, and would be
+    /// woken at once by the next step's wake test anyway. So a big pile in
+    /// which a few balloons still shuffle sleeps everywhere else, where
+    /// whole-island sleep would keep all of it awake.
     fn update_sleep(&mut self) {
         let n = self.bodies.len();
         let dt = self.def.dt;
@@ -1224,63 +1275,70 @@ impl World {
         if !self.def.enable_sleep {
             return;
         }
+        let time_to_sleep = self.def.time_to_sleep;
         let s = &mut self.scratch;
+        let awake = &self.bodies.awake;
+        let sleep_time = &self.bodies.sleep_time;
+        let restless = |i: usize| awake[i] && sleep_time[i] < time_to_sleep;
+        let mut stays = std::mem::take(&mut s.stays_awake);
+        stays.clear();
+        stays.extend((0..n).map(restless));
+        for &(a, b) in &s.broad.pairs {
+            let (a, b) = (a as usize, b as usize);
+            if restless(a) == restless(b) || !awake[a] || !awake[b] {
+                continue;
+            }
+            let reach = self.shapes[self.bodies.shape[a] as usize]
+                .tree
+                .root()
+                .radius
+                + self.shapes[self.bodies.shape[b] as usize]
+                    .tree
+                    .root()
+                    .radius
+                + self.def.speculative_distance;
+            if s.bound_center[a].distance(s.bound_center[b]) < reach {
+                stays[a] = true;
+                stays[b] = true;
+            }
+        }
+        // From here `stays` means "falls asleep now".
+        for i in 0..n {
+            stays[i] = self.bodies.awake[i] && !stays[i];
+        }
+        let falls_asleep = stays;
         s.islands.reset(n);
         for c in &s.narrow.contacts {
             let (a, b) = (c.body_a as usize, c.body_b as usize);
             if c.body_b != STATIC_BODY
                 && c.separation < self.def.speculative_distance
-                && self.bodies.awake[a]
-                && self.bodies.awake[b]
+                && falls_asleep[a]
+                && falls_asleep[b]
             {
                 s.islands.union(c.body_a, c.body_b);
             }
         }
-        // Each island's least-rested body decides, held at the island's root.
-        let mut min_rest = std::mem::take(&mut s.margin);
-        min_rest.clear();
-        min_rest.resize(n, f32::INFINITY);
+        // One pass: each group's root gets an island, each member joins its root's.
+        let mut island_of_root = std::mem::take(&mut s.handle);
+        island_of_root.clear();
+        island_of_root.resize(n, u32::MAX);
         for i in 0..n {
-            if self.bodies.awake[i] {
-                let root = s.islands.find(i as u32) as usize;
-                min_rest[root] = min_rest[root].min(self.bodies.sleep_time[i]);
+            if !falls_asleep[i] {
+                continue;
             }
+            let root = s.islands.find(i as u32) as usize;
+            if island_of_root[root] == u32::MAX {
+                island_of_root[root] = self.sleeping.add(Vec::new());
+            }
+            let island = island_of_root[root];
+            self.sleeping.members[island as usize].push(self.bodies.id[i]);
+            self.bodies.island[i] = island;
+            self.bodies.awake[i] = false;
+            self.bodies.linear_velocity[i] = Vec3::ZERO;
+            self.bodies.angular_velocity[i] = Vec3::ZERO;
         }
-        let mut roots_to_sleep = std::mem::take(&mut s.wake);
-        roots_to_sleep.clear();
-        for i in 0..n {
-            if self.bodies.awake[i]
-                && s.islands.find(i as u32) as usize == i
-                && min_rest[i] >= self.def.time_to_sleep
-            {
-                roots_to_sleep.push(i as u32);
-            }
-        }
-        if !roots_to_sleep.is_empty() {
-            // One pass: each sleeping root gets an island, each member joins its root's.
-            let mut island_of_root = std::mem::take(&mut s.handle);
-            island_of_root.clear();
-            island_of_root.resize(n, u32::MAX);
-            for &root in &roots_to_sleep {
-                island_of_root[root as usize] = self.sleeping.add(Vec::new());
-            }
-            for i in 0..n {
-                if !self.bodies.awake[i] {
-                    continue;
-                }
-                let island = island_of_root[s.islands.find(i as u32) as usize];
-                if island != u32::MAX {
-                    self.sleeping.members[island as usize].push(self.bodies.id[i]);
-                    self.bodies.awake[i] = false;
-                    self.bodies.island[i] = island;
-                    self.bodies.linear_velocity[i] = Vec3::ZERO;
-                    self.bodies.angular_velocity[i] = Vec3::ZERO;
-                }
-            }
-            s.handle = island_of_root;
-        }
-        s.margin = min_rest;
-        s.wake = roots_to_sleep;
+        s.handle = island_of_root;
+        s.stays_awake = falls_asleep;
     }
 }
 
