@@ -75,9 +75,12 @@ impl BroadPhase {
             }
         }
 
-        // Ordinary bodies: the 27 cells around each, each pair once (a < b).
+        // Awake ordinary bodies: the 27 cells around each. A pair of awake
+        // bodies is found from the lower index, an awake-asleep pair from
+        // the awake one; two sleepers make no pair, so a sleeping pile costs
+        // only its place in the grid.
         for i in 0..n {
-            if radius[i] > cell_radius {
+            if radius[i] > cell_radius || !awake[i] {
                 continue;
             }
             let [x, y, z] = self.cell_of[i];
@@ -88,7 +91,8 @@ impl BroadPhase {
                         let b = hash_cell(target) & mask;
                         for k in self.start[b]..self.start[b + 1] {
                             let j = self.items[k as usize];
-                            if j as usize > i && self.cell_of[j as usize] == target {
+                            let ju = j as usize;
+                            if (ju > i || !awake[ju]) && self.cell_of[ju] == target {
                                 consider(&mut self.pairs, i as u32, j, center, radius, awake);
                             }
                         }

@@ -154,6 +154,8 @@ struct Scratch {
     node_start: Vec<u32>,
     bound_center: Vec<Vec3>,
     bound_radius: Vec<f32>,
+    /// Per body: asleep, and its nodes placed since it fell asleep.
+    placed_asleep: Vec<bool>,
     margin: Vec<f32>,
     handle: Vec<u32>,
     broad: BroadPhase,
@@ -411,8 +413,10 @@ impl World {
         if self.grab.is_some_and(|g| g.body == id) {
             self.grab = None;
         }
-        // Dense indices shift: last step's contacts no longer describe this world.
+        // Dense indices shift: last step's contacts no longer describe this
+        // world, nor do the placed nodes of the sleepers.
         self.scratch.narrow.contacts.clear();
+        self.scratch.placed_asleep.clear();
         self.scratch.narrow.runs.clear();
         let last = self.bodies.len() - 1;
         self.bodies.swap_remove(i);
@@ -864,15 +868,21 @@ impl World {
                 .len() as u32;
         }
         s.node_centers.resize(total as usize, Vec3::ZERO);
+        s.placed_asleep.resize(n, false);
         let dt = self.def.dt;
         for i in 0..n {
             let shape = &self.shapes[self.bodies.shape[i] as usize];
-            let pose = Pose::new(self.bodies.center[i], self.bodies.rotation[i]);
             let start = s.node_start[i] as usize;
             let nodes = shape.tree.nodes().len();
-            shape
-                .tree
-                .place(&pose, &mut s.node_centers[start..start + nodes]);
+            // A sleeper does not move: placed once, its nodes stay where they are.
+            let asleep = !self.bodies.awake[i];
+            if !(asleep && s.placed_asleep[i]) {
+                let pose = Pose::new(self.bodies.center[i], self.bodies.rotation[i]);
+                shape
+                    .tree
+                    .place(&pose, &mut s.node_centers[start..start + nodes]);
+            }
+            s.placed_asleep[i] = asleep;
             let motion = if at_rest || !self.bodies.awake[i] {
                 0.0
             } else {
@@ -910,7 +920,7 @@ impl World {
     }
 
     /// Wakes what a restless body's root sphere reaches. A body moving more
-    /// than the speculative distance per step is an impact, whose push must
+    /// than the stabilisation slop per step is an impact, whose push must
     /// travel through the pile at once: it wakes the touched body's whole
     /// island, as a user action does. A slower one wakes only the bodies it
     /// touches, and they keep their rest time, so they fall asleep again as
@@ -945,7 +955,8 @@ impl World {
                 continue;
             }
             // margin = speculative distance + this step's motion.
-            if self.scratch.margin[awake] > 2.0 * self.def.speculative_distance {
+            let motion = self.scratch.margin[awake] - self.def.speculative_distance;
+            if motion > self.def.stabilization_slop {
                 islands.push(self.bodies.island[asleep]);
             } else {
                 woken.push(asleep as u32);
