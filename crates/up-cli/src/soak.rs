@@ -4,7 +4,9 @@
 //!
 //! Without a scene file the room is sized for the balloons (a pyramid-roofed
 //! box of at least 6 m × 6 m, about 20 balloons per m² of floor), so that
-//! `--balloons 10000` fits. The checks print as a table, one row per check;
+//! `--balloons 10000` fits. Every `--stir-every` seconds (60 by default) every
+//! tenth balloon is thrown, so a long run keeps waking the pile rather than
+//! watching it sleep. The checks print as a table, one row per check;
 //! the run fails (exit 2) at the end if any check failed.
 
 use std::path::PathBuf;
@@ -12,9 +14,11 @@ use std::time::Instant;
 
 use anyhow::{bail, Result};
 use clap::Args;
+use glam::Vec3;
 use serde::Serialize;
-use up_physics::World;
+use up_physics::{BodyId, World};
 use up_scene::build::build_world;
+use up_scene::build::rng::SplitMix64;
 use up_scene::room::RoomMesh;
 use up_scene::scene::Scene;
 
@@ -30,6 +34,8 @@ const SETTLE_SECONDS: f64 = 60.0;
 /// Allowed resident memory growth after the first minute, bytes (allocator
 /// noise; a leak of a few bytes per step over an hour is far more).
 const RSS_SLACK_BYTES: u64 = 8 << 20;
+/// Mixed into the scene's seed for the stirring's own sequence.
+const STIR_SEED: u64 = 0x5715_0000;
 /// Balloons per m² of floor in the room made for `--balloons`.
 const BALLOONS_PER_M2: f64 = 20.0;
 
@@ -50,6 +56,11 @@ pub struct SoakArgs {
     /// Seed of the spawn layout (overrides `sim.seed`).
     #[arg(long, value_name = "K")]
     pub seed: Option<u64>,
+    /// Every S simulated seconds, throw every tenth balloon at up to 2 m/s along
+    /// each axis, spinning up to 3 rad/s (seeded), so that the run keeps
+    /// waking the pile instead of watching it sleep; 0: never.
+    #[arg(long, value_name = "S", default_value_t = 60.0)]
+    pub stir_every: f64,
     /// Keep every balloon awake (sleep off): the whole pile is simulated at every step.
     #[arg(long)]
     pub no_sleep: bool,
@@ -80,6 +91,8 @@ pub struct SoakSummary {
     pub scene: String,
     pub balloons: usize,
     pub steps: u64,
+    /// Times every tenth balloon was thrown (`--stir-every`).
+    pub stirs: u64,
     pub sim_seconds: f64,
     pub wall_seconds: f64,
     pub ms_per_step: f64,
@@ -130,6 +143,12 @@ pub fn run(args: &SoakArgs) -> Result<()> {
             args.seconds
         );
     }
+    if !(args.stir_every.is_finite() && args.stir_every >= 0.0) {
+        bail!(
+            "--stir-every: expected a number of seconds ≥ 0, found {}",
+            args.stir_every
+        );
+    }
     let scene = match &args.scene {
         Some(_) => load_scene(args.scene.as_deref(), args.seed, Some(args.balloons))?,
         None => {
@@ -154,6 +173,9 @@ pub fn run(args: &SoakArgs) -> Result<()> {
     let mut built = build_world(&scene)?;
     let world = &mut built.world;
     let steps = (args.seconds / f64::from(world.def().dt)).round().max(1.0) as u64;
+    let stir_steps = (args.stir_every / f64::from(world.def().dt)).round() as u64;
+    let mut stir_rng = SplitMix64::new(scene.sim.seed ^ STIR_SEED);
+    let mut stirs = 0u64;
     eprintln!(
         "up soak: {} balloons, {steps} steps, room {} m × {} m; checks every {} steps",
         world.body_count(),
@@ -172,6 +194,10 @@ pub fn run(args: &SoakArgs) -> Result<()> {
         world.step();
         window_penetration = window_penetration.max(world.stats().max_penetration);
         window_steps += 1;
+        if stir_steps > 0 && step % stir_steps == 0 && step < steps {
+            stir(world, &mut stir_rng)?;
+            stirs += 1;
+        }
         if step % args.check_every == 0 || step == steps {
             let ms = window_start.elapsed().as_secs_f64() * 1000.0 / window_steps as f64;
             let check = check(world, &built.room, step, window_penetration, ms);
@@ -205,6 +231,7 @@ pub fn run(args: &SoakArgs) -> Result<()> {
         ),
         balloons: world.body_count(),
         steps,
+        stirs,
         sim_seconds: world.time(),
         wall_seconds: wall,
         ms_per_step: wall * 1000.0 / steps as f64,
@@ -231,6 +258,20 @@ pub fn run(args: &SoakArgs) -> Result<()> {
     }
     if !summary.failures.is_empty() {
         bail!("soak failed: {}", summary.failures.join("; "));
+    }
+    Ok(())
+}
+
+/// Throws every tenth balloon (see `--stir-every`).
+fn stir(world: &mut World, rng: &mut SplitMix64) -> Result<()> {
+    let ids: Vec<BodyId> = world.body_ids().iter().copied().step_by(10).collect();
+    let mut axis = |scale: f32| {
+        let mut c = || rng.range(-scale, scale);
+        Vec3::new(c(), c(), c())
+    };
+    for id in ids {
+        let (v, w) = (axis(2.0), axis(3.0));
+        world.set_velocity(id, v, w)?;
     }
     Ok(())
 }
@@ -294,6 +335,7 @@ fn rows(s: &SoakSummary) -> Vec<(&'static str, String)> {
         ("scene", s.scene.clone()),
         ("balloons", s.balloons.to_string()),
         ("steps", s.steps.to_string()),
+        ("stirs", s.stirs.to_string()),
         ("simulated", format!("{:.1} s", s.sim_seconds)),
         ("wall clock", format!("{:.1} s", s.wall_seconds)),
         ("per step", format!("{:.3} ms", s.ms_per_step)),
