@@ -73,21 +73,6 @@ fn sphere_triangle(n: &mut Numbers) {
         .max_element()
         + sphere.radius;
     let tolerance = RELATIVE_TOLERANCE * f64::from(scale).max(1.0);
-    // A sliver (smallest angle below ~0.06°) has a normal too rounded to
-    // measure heights against: only the generic invariants are checked there.
-    let longest = (tri[1] - tri[0])
-        .length_squared()
-        .max((tri[2] - tri[1]).length_squared())
-        .max((tri[0] - tri[2]).length_squared());
-    let twice_area = (tri[1] - tri[0]).cross(tri[2] - tri[0]).length();
-    if !(twice_area >= 1e-3 * longest) {
-        if let Some((c, _)) = contact_sphere_triangle(sphere, &tri, margin) {
-            check_contact(&c, margin, tolerance, &(sphere, tri));
-        }
-        return;
-    }
-    let normal = face_normal(&tri);
-    let height = normal.map(|n| f64::from((sphere.center - tri[0]).dot(n)));
     // Points of the triangle: an upper bound on its distance from the centre.
     let samples = [
         tri[0],
@@ -102,6 +87,24 @@ fn sphere_triangle(n: &mut Numbers) {
         .iter()
         .map(|&p| distance64(p, sphere.center))
         .fold(f64::INFINITY, f64::min);
+    // A sliver (smallest angle below ~0.06°) has a normal too rounded to
+    // measure heights against: there the contact is checked against the
+    // triangle's own points only (never farther than the nearest of them).
+    let longest = (tri[1] - tri[0])
+        .length_squared()
+        .max((tri[2] - tri[1]).length_squared())
+        .max((tri[0] - tri[2]).length_squared());
+    let twice_area = (tri[1] - tri[0]).cross(tri[2] - tri[0]).length();
+    if !(twice_area >= 1e-3 * longest) {
+        if let Some((c, _)) = contact_sphere_triangle(sphere, &tri, margin) {
+            check_contact(&c, margin, tolerance, &(sphere, tri));
+            let reach = f64::from(c.separation) + f64::from(sphere.radius);
+            assert!(reach <= nearest_sample + tolerance, "{c:?} nearest {nearest_sample}");
+        }
+        return;
+    }
+    let normal = face_normal(&tri);
+    let height = normal.map(|n| f64::from((sphere.center - tri[0]).dot(n)));
     match contact_sphere_triangle(sphere, &tri, margin) {
         Some((c, _region)) => {
             check_contact(&c, margin, tolerance, &(sphere, tri));

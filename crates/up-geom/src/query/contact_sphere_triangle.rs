@@ -49,7 +49,10 @@ pub fn contact_sphere_triangle(
             }
             let distance = delta.length();
             if region == TriangleRegion::Face || distance <= CENTER_ON_SURFACE {
-                (n, height)
+                // On a sliver the normal is rounded enough to put the plane
+                // above the closest point; the centre is never farther from
+                // the triangle than from that point.
+                (n, height.min(distance))
             } else if height < 0.0 {
                 return None;
             } else {
