@@ -4,7 +4,7 @@
 //!
 //! Without a scene file the room is sized for the balloons (a pyramid-roofed
 //! box of at least 6 m × 6 m, about 20 balloons per m² of floor), so that
-//! `--balloons 10000` fits. Every `--stir-every` seconds (60 by default) every
+//! `--balloons 10000` fits. Every `--stir-every` seconds (300 by default) every
 //! tenth balloon is thrown, so a long run keeps waking the pile rather than
 //! watching it sleep. The checks print as a table, one row per check;
 //! the run fails (exit 2) at the end if any check failed.
@@ -59,7 +59,7 @@ pub struct SoakArgs {
     /// Every S simulated seconds, throw every tenth balloon at up to 2 m/s along
     /// each axis, spinning up to 3 rad/s (seeded), so that the run keeps
     /// waking the pile instead of watching it sleep; 0: never.
-    #[arg(long, value_name = "S", default_value_t = 60.0)]
+    #[arg(long, value_name = "S", default_value_t = 300.0)]
     pub stir_every: f64,
     /// Keep every balloon awake (sleep off): the whole pile is simulated at every step.
     #[arg(long)]
