@@ -778,6 +778,20 @@ impl World {
     }
 }
 
+/// Whether the root spheres of bodies `a` and `b`, placed at `centers`, are
+/// within `gap` of touching.
+fn roots_within(
+    shapes: &[ShapeData],
+    shape: &[u32],
+    centers: &[Vec3],
+    a: usize,
+    b: usize,
+    gap: f32,
+) -> bool {
+    let root = |i: usize| shapes[shape[i] as usize].tree.root().radius;
+    centers[a].distance(centers[b]) < root(a) + root(b) + gap
+}
+
 /// A fast body's core, swept against the room: this share of each leaf's radius.
 const CORE_FRACTION: f32 = 0.5;
 /// Bodies that moved more than this share of their smallest leaf radius in a step are swept.
@@ -942,16 +956,15 @@ impl World {
                 continue;
             }
             // Touching, not merely within the speculative margin: root spheres overlap.
-            let reach = self.shapes[self.bodies.shape[awake] as usize]
-                .tree
-                .root()
-                .radius
-                + self.shapes[self.bodies.shape[asleep] as usize]
-                    .tree
-                    .root()
-                    .radius;
-            let d = self.scratch.bound_center[awake].distance(self.scratch.bound_center[asleep]);
-            if d >= reach {
+            let centers = &self.scratch.bound_center;
+            if !roots_within(
+                &self.shapes,
+                &self.bodies.shape,
+                centers,
+                awake,
+                asleep,
+                0.0,
+            ) {
                 continue;
             }
             // margin = speculative distance + this step's motion.
@@ -1299,16 +1312,14 @@ impl World {
             if restless(a) == restless(b) || !awake[a] || !awake[b] {
                 continue;
             }
-            let reach = self.shapes[self.bodies.shape[a] as usize]
-                .tree
-                .root()
-                .radius
-                + self.shapes[self.bodies.shape[b] as usize]
-                    .tree
-                    .root()
-                    .radius
-                + self.def.speculative_distance;
-            if s.bound_center[a].distance(s.bound_center[b]) < reach {
+            if roots_within(
+                &self.shapes,
+                &self.bodies.shape,
+                &s.bound_center,
+                a,
+                b,
+                self.def.speculative_distance,
+            ) {
                 stays[a] = true;
                 stays[b] = true;
             }
