@@ -9,6 +9,8 @@ pub mod fit;
 pub mod pose;
 pub mod query;
 pub mod shape;
+#[cfg(test)]
+mod test_meshes;
 
 pub use contact::Contact;
 pub use glam::{Mat3, Quat, Vec3};

@@ -58,47 +58,13 @@ fn descend(a: &PlacedTree, root: u32, mesh: &TriMesh, margin: f32, out: &mut Vec
 mod tests {
     use super::*;
     use crate::query::contact_sphere_trimesh::sphere_mesh_triangle;
+    use crate::test_meshes::{box_mesh, wall};
     use crate::{Pose, SphereTree, Vec3};
     use proptest::prelude::*;
 
-    /// A wall in the plane z = 0, x and y in [0, 2], normal +Z, made of two
-    /// triangles whose shared edge is the diagonal from (0,0) to (2,2).
-    fn wall() -> TriMesh {
-        let v = vec![
-            Vec3::new(0.0, 0.0, 0.0),
-            Vec3::new(2.0, 0.0, 0.0),
-            Vec3::new(2.0, 2.0, 0.0),
-            Vec3::new(0.0, 2.0, 0.0),
-        ];
-        TriMesh::new(v, vec![[0, 1, 2], [0, 2, 3]]).unwrap()
-    }
-
-    /// A room [0, size]³ with normals pointing in (two triangles per wall).
+    /// A room [0, size]³ with normals pointing in.
     fn room(size: f32) -> TriMesh {
-        let v: Vec<Vec3> = (0..8)
-            .map(|i| {
-                Vec3::new(
-                    if i & 1 != 0 { size } else { 0.0 },
-                    if i & 2 != 0 { size } else { 0.0 },
-                    if i & 4 != 0 { size } else { 0.0 },
-                )
-            })
-            .collect();
-        let quads: [[u32; 4]; 6] = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ];
-        let mut t = Vec::new();
-        for q in quads {
-            // Reversed winding: CCW seen from inside.
-            t.push([q[0], q[2], q[1]]);
-            t.push([q[0], q[3], q[2]]);
-        }
-        TriMesh::new(v, t).unwrap()
+        box_mesh(Vec3::splat(size), true)
     }
 
     fn single(radius: f32) -> SphereTree {

@@ -76,17 +76,8 @@ fn earliest_impact(
 mod tests {
     use super::*;
     use crate::query::toi_bisect::toi_sphere_triangle_bisect;
+    use crate::test_meshes::wall;
     use proptest::prelude::*;
-
-    fn wall() -> TriMesh {
-        let v = vec![
-            Vec3::new(0.0, 0.0, 0.0),
-            Vec3::new(2.0, 0.0, 0.0),
-            Vec3::new(2.0, 2.0, 0.0),
-            Vec3::new(0.0, 2.0, 0.0),
-        ];
-        TriMesh::new(v, vec![[0, 1, 2], [0, 2, 3]]).unwrap()
-    }
 
     #[test]
     fn hits_the_wall_face() {

@@ -424,42 +424,8 @@ fn build_vertex_rings(vertex_count: usize, triangles: &[[u32; 3]]) -> (Vec<u32>,
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_meshes::box_mesh;
     use proptest::prelude::*;
-
-    /// An axis-aligned box [0, s] with normals pointing out (`inward` false)
-    /// or in (a room).
-    pub(crate) fn box_mesh(size: Vec3, inward: bool) -> TriMesh {
-        let v = (0..8)
-            .map(|i| {
-                Vec3::new(
-                    if i & 1 != 0 { size.x } else { 0.0 },
-                    if i & 2 != 0 { size.y } else { 0.0 },
-                    if i & 4 != 0 { size.z } else { 0.0 },
-                )
-            })
-            .collect();
-        // Outward-facing quads, CCW seen from outside.
-        let quads: [[u32; 4]; 6] = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ];
-        let mut t = Vec::new();
-        for q in quads {
-            let (a, b) = ([q[0], q[1], q[2]], [q[0], q[2], q[3]]);
-            if inward {
-                t.push([a[0], a[2], a[1]]);
-                t.push([b[0], b[2], b[1]]);
-            } else {
-                t.push(a);
-                t.push(b);
-            }
-        }
-        TriMesh::new(v, t).unwrap()
-    }
 
     #[test]
     fn validation_errors_name_the_problem() {
