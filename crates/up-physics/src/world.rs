@@ -1129,19 +1129,27 @@ impl World {
         solver.states.push(BodyState::STATIC);
         let room_state = n as u32;
 
-        solver.constraints.clear();
         let narrow = &self.scratch.narrow;
+        let state_of = |body: u32| {
+            if body == STATIC_BODY {
+                room_state
+            } else {
+                body
+            }
+        };
+        let pairs = narrow.runs.iter().flat_map(|&(_, start, count)| {
+            narrow.contacts[start as usize..(start + count) as usize]
+                .iter()
+                .map(|c| (c.body_a, state_of(c.body_b)))
+        });
+        solver.begin_constraints(pairs);
         let nodes = &self.scratch.node_centers;
         let material = (self.def.friction, self.def.restitution);
+        let mut i = 0;
         for &(key, start, count) in &narrow.runs {
             let previous = self.warm.find(key);
             for c in &narrow.contacts[start as usize..(start + count) as usize] {
-                let a = c.body_a;
-                let b = if c.body_b == STATIC_BODY {
-                    room_state
-                } else {
-                    c.body_b
-                };
+                let (a, b) = (c.body_a, state_of(c.body_b));
                 let (leaf_a, leaf_b) = ((c.feature >> 32) as usize, (c.feature as u32) as usize);
                 let sphere_a = nodes[self.scratch.node_start[a as usize] as usize + leaf_a];
                 let (center_b, sphere_b) = if c.body_b == STATIC_BODY {
@@ -1150,7 +1158,7 @@ impl World {
                     let start = self.scratch.node_start[b as usize] as usize;
                     (self.bodies.center[b as usize], nodes[start + leaf_b])
                 };
-                solver.constraints.push(contact_constraint::prepare(
+                let prepared = contact_constraint::prepare(
                     c,
                     a,
                     b,
@@ -1159,10 +1167,11 @@ impl World {
                     (sphere_a, sphere_b),
                     material,
                     previous,
-                ));
+                );
+                solver.set_constraint(i, &prepared);
+                i += 1;
             }
         }
-        solver.color();
 
         let grab = self.grab?;
         let i = self.handles.dense(grab.body)?;
@@ -1192,7 +1201,7 @@ impl World {
                 .runs
                 .push((key, self.warm.impulses.len() as u32, count));
             for i in start as usize..(start + count) as usize {
-                let stored = contact_constraint::stored(solver.constraint(i));
+                let stored = solver.stored(i);
                 self.warm.impulses.push(stored);
             }
         }

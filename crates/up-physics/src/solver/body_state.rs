@@ -2,23 +2,29 @@
 
 use glam::{Mat3, Quat, Vec3};
 
-/// Hot per-body state for the substeps. 104 bytes.
+/// Hot per-body state for the substeps. 112 bytes.
+///
+/// The layout is fixed (`repr(C)`) so that the wide solve reads a body's
+/// velocities, masses and pose as blocks of four floats (`block`): what a
+/// velocity pass needs is the first four blocks, what a position pass needs
+/// block 1 (the inverse mass) and blocks 4 and 5.
 #[derive(Clone, Copy, Debug)]
+#[repr(C)]
 pub(crate) struct BodyState {
     /// m/s, of the centre of mass.
     pub v: Vec3,
     /// rad/s, world frame.
     pub w: Vec3,
+    /// 1 / (mass + added mass); 0 for static or sleeping bodies.
+    pub inv_mass: f32,
+    /// World-frame inverse inertia at the start of the step; 0 for static or sleeping.
+    pub inv_inertia: Mat3,
     /// Displacement of the centre of mass since the step began, m.
     pub dp: Vec3,
     /// Rotation since the step began (world frame, pre-multiplied).
     pub dq: Quat,
     /// Current orientation.
     pub q: Quat,
-    /// 1 / (mass + added mass); 0 for static or sleeping bodies.
-    pub inv_mass: f32,
-    /// World-frame inverse inertia at the start of the step; 0 for static or sleeping.
-    pub inv_inertia: Mat3,
     /// Set when its velocity ran away (`freeze_runaway`): the body sits out
     /// the rest of the step as static and is quarantined at its end.
     pub runaway: bool,
@@ -36,6 +42,27 @@ impl BodyState {
         inv_inertia: Mat3::ZERO,
         runaway: false,
     };
+
+    /// Four consecutive floats of the state, `k` from 0 to 5 (see the layout).
+    #[inline(always)]
+    pub fn block(&self, k: usize) -> [f32; 4] {
+        let (v, w, i, dp, dq) = (self.v, self.w, &self.inv_inertia, self.dp, self.dq);
+        match k {
+            0 => [v.x, v.y, v.z, w.x],
+            1 => [w.y, w.z, self.inv_mass, i.x_axis.x],
+            2 => [i.x_axis.y, i.x_axis.z, i.y_axis.x, i.y_axis.y],
+            3 => [i.y_axis.z, i.z_axis.x, i.z_axis.y, i.z_axis.z],
+            4 => [dp.x, dp.y, dp.z, dq.x],
+            _ => [dq.y, dq.z, dq.w, self.q.x],
+        }
+    }
+
+    /// Sets the velocities from blocks 0 and 1 (the rest of block 1 is left as it is).
+    #[inline(always)]
+    pub fn set_velocity_blocks(&mut self, b0: [f32; 4], b1: [f32; 4]) {
+        self.v = Vec3::new(b0[0], b0[1], b0[2]);
+        self.w = Vec3::new(b0[3], b1[0], b1[1]);
+    }
 
     /// Velocity of a point at `r` from the centre of mass.
     #[inline]

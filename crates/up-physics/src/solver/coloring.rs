@@ -9,89 +9,94 @@
 //! go to a last, overflow group that is solved serially.
 
 use super::body_state::BodyState;
-use super::contact_constraint::ContactConstraint;
+use super::lanes::LANES;
 
 /// Colours a body can carry (bits of a `u64`).
 const COLORS: usize = 64;
 
-/// The constraints' order by colour, reused from step to step.
+/// Where each constraint goes, reused from step to step.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Coloring {
     /// Colour of each constraint, in the narrowphase's order (`COLORS` = overflow).
     color: Vec<u8>,
     /// Colours already used by each body's constraints.
     used: Vec<u64>,
-    /// `[start, end)` of each colour in the sorted constraints; the last is the overflow.
+    /// `[start, end)` of each colour's groups of `LANES` constraints; the
+    /// last is the overflow, one constraint per group so that it runs serially.
     pub ranges: Vec<(u32, u32)>,
-    /// For each constraint in the narrowphase's order, where it went.
-    pub position: Vec<u32>,
-    /// The inverse of `position`.
-    order: Vec<u32>,
-    sorted: Vec<ContactConstraint>,
+    /// For each constraint in the narrowphase's order, its slot: group · `LANES` + lane.
+    pub slot: Vec<u32>,
+    /// Groups in all.
+    pub groups: usize,
 }
 
 impl Coloring {
-    /// Colours `constraints` greedily (lowest free colour, in their given
-    /// order, so room contacts, which come first, are solved first) and
-    /// reorders them by colour, keeping the given order within a colour.
-    pub fn sort(&mut self, constraints: &mut Vec<ContactConstraint>, states: &[BodyState]) {
+    /// Colours the constraints between the body pairs `pairs` greedily
+    /// (lowest free colour, in the given order, so room contacts, which come
+    /// first, are solved first) and gives each a slot: colour by colour,
+    /// `LANES` to a group, in the given order within a colour.
+    pub fn assign(&mut self, pairs: impl Iterator<Item = (u32, u32)>, states: &[BodyState]) {
         self.used.clear();
         self.used.resize(states.len(), 0);
         self.color.clear();
         let mut counts = [0u32; COLORS + 1];
-        for c in constraints.iter() {
-            let moving = |i: u32| states[i as usize].inv_mass > 0.0;
-            let (a, b) = (c.a as usize, c.b as usize);
-            let taken = if moving(c.a) { self.used[a] } else { 0 }
-                | if moving(c.b) { self.used[b] } else { 0 };
+        let moving = |i: u32| states[i as usize].inv_mass > 0.0;
+        for (a, b) in pairs {
+            let taken = if moving(a) { self.used[a as usize] } else { 0 }
+                | if moving(b) { self.used[b as usize] } else { 0 };
             let color = (!taken).trailing_zeros() as usize; // 64 when all are taken
             if color < COLORS {
                 let bit = 1u64 << color;
-                if moving(c.a) {
-                    self.used[a] |= bit;
+                if moving(a) {
+                    self.used[a as usize] |= bit;
                 }
-                if moving(c.b) {
-                    self.used[b] |= bit;
+                if moving(b) {
+                    self.used[b as usize] |= bit;
                 }
             }
             self.color.push(color as u8);
             counts[color] += 1;
         }
 
+        // Each colour's first group; the overflow takes a group per constraint.
         self.ranges.clear();
-        let mut next = [0u32; COLORS + 1];
+        let mut first_group = [0u32; COLORS + 1];
         let mut start = 0u32;
         for (color, &count) in counts.iter().enumerate() {
-            next[color] = start;
+            let groups = if color == COLORS {
+                count
+            } else {
+                count.div_ceil(LANES as u32)
+            };
+            first_group[color] = start;
             if count > 0 || color == COLORS {
-                self.ranges.push((start, start + count));
+                self.ranges.push((start, start + groups));
             }
-            start += count;
+            start += groups;
         }
-        // Counting sort: where each constraint goes, then one gathering copy.
-        self.position.clear();
-        self.order.clear();
-        self.order.resize(constraints.len(), 0);
-        for (i, &color) in self.color.iter().enumerate() {
-            let slot = next[color as usize];
-            next[color as usize] += 1;
-            self.position.push(slot);
-            self.order[slot as usize] = i as u32;
+        self.groups = start as usize;
+
+        self.slot.clear();
+        let mut seen = [0u32; COLORS + 1];
+        for &color in &self.color {
+            let color = color as usize;
+            let k = seen[color];
+            seen[color] += 1;
+            let slot = if color == COLORS {
+                (first_group[color] + k) * LANES as u32
+            } else {
+                first_group[color] * LANES as u32 + k
+            };
+            self.slot.push(slot);
         }
-        self.sorted.clear();
-        self.sorted
-            .extend(self.order.iter().map(|&i| constraints[i as usize]));
-        std::mem::swap(constraints, &mut self.sorted);
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use glam::{Mat3, Vec3};
+    use glam::Mat3;
 
     use super::*;
-    use crate::contact::ContactPoint;
-    use crate::solver::contact_constraint::prepare;
 
     fn moving() -> BodyState {
         BodyState {
@@ -101,18 +106,20 @@ mod tests {
         }
     }
 
-    fn constraint(a: u32, b: u32, states: &[BodyState]) -> ContactConstraint {
-        let point = ContactPoint {
-            body_a: a,
-            body_b: b,
-            normal: Vec3::Y,
-            point_a: Vec3::ZERO,
-            point_b: Vec3::ZERO,
-            separation: 0.0,
-            feature: (a as u64) << 32 | b as u64,
-        };
-        let zero = (Vec3::ZERO, Vec3::ZERO);
-        prepare(&point, a, b, states, zero, zero, (0.5, 0.0), &[])
+    /// The constraints of each group of each colour, as (a, b) pairs.
+    fn colours(coloring: &Coloring, pairs: &[(u32, u32)]) -> Vec<Vec<(u32, u32)>> {
+        coloring
+            .ranges
+            .iter()
+            .map(|&(start, end)| {
+                pairs
+                    .iter()
+                    .zip(&coloring.slot)
+                    .filter(|(_, &slot)| (start..end).contains(&(slot / LANES as u32)))
+                    .map(|(&pair, _)| pair)
+                    .collect()
+            })
+            .collect()
     }
 
     #[test]
@@ -120,50 +127,56 @@ mod tests {
         // A chain 0-1-2-3, a star around 4, and everything against the static room (5).
         let mut states = vec![moving(); 5];
         states.push(BodyState::STATIC);
-        let links = [(0, 1), (1, 2), (2, 3), (4, 0), (4, 1), (4, 2), (4, 3)];
-        let mut constraints: Vec<_> = (0..5).map(|i| constraint(i, 5, &states)).collect();
-        constraints.extend(links.iter().map(|&(a, b)| constraint(a, b, &states)));
-        let original = constraints.clone();
+        let mut pairs: Vec<(u32, u32)> = (0..5).map(|i| (i, 5)).collect();
+        pairs.extend([(0, 1), (1, 2), (2, 3), (4, 0), (4, 1), (4, 2), (4, 3)]);
 
         let mut coloring = Coloring::default();
-        coloring.sort(&mut constraints, &states);
+        coloring.assign(pairs.iter().copied(), &states);
 
-        // Every constraint kept, and `position` says where it went.
-        for (i, c) in original.iter().enumerate() {
-            assert_eq!(
-                constraints[coloring.position[i] as usize].feature,
-                c.feature
-            );
-        }
-        // The five room contacts share colour 0: the room does not count.
-        assert_eq!(coloring.ranges[0], (0, 5));
-        for &(start, end) in &coloring.ranges[..coloring.ranges.len() - 1] {
-            let mut bodies: Vec<u32> = constraints[start as usize..end as usize]
+        // Every constraint has its own slot, inside the groups.
+        let mut slots = coloring.slot.clone();
+        slots.sort_unstable();
+        slots.dedup();
+        assert_eq!(slots.len(), pairs.len());
+        assert!(slots
+            .iter()
+            .all(|&s| (s as usize) < coloring.groups * LANES));
+        // The five room contacts share colour 0 (the room does not count):
+        // two groups, the first full, in the given order.
+        assert_eq!(coloring.ranges[0], (0, 2));
+        assert_eq!(&coloring.slot[..5], &[0, 1, 2, 3, 4]);
+        let by_colour = colours(&coloring, &pairs);
+        for colour in &by_colour[..by_colour.len() - 1] {
+            let mut bodies: Vec<u32> = colour
                 .iter()
-                .flat_map(|c| [c.a, c.b])
+                .flat_map(|&(a, b)| [a, b])
                 .filter(|&i| i != 5)
                 .collect();
             let n = bodies.len();
             bodies.sort_unstable();
             bodies.dedup();
-            assert_eq!(
-                bodies.len(),
-                n,
-                "a body moved twice in colour {start}..{end}"
-            );
+            assert_eq!(bodies.len(), n, "a body moved twice in {colour:?}");
         }
         // Nothing overflowed.
-        assert_eq!(coloring.ranges.last(), Some(&(12, 12)));
+        assert!(by_colour.last().unwrap().is_empty());
     }
 
     #[test]
-    fn a_body_with_more_than_64_contacts_overflows_to_the_serial_group() {
+    fn a_body_with_more_than_64_contacts_overflows_to_one_group_each() {
         let mut states = vec![moving(); 70];
         states.push(BodyState::STATIC);
-        let mut constraints: Vec<_> = (1..70).map(|i| constraint(0, i, &states)).collect();
+        let pairs: Vec<(u32, u32)> = (1..70).map(|i| (0, i)).collect();
         let mut coloring = Coloring::default();
-        coloring.sort(&mut constraints, &states);
+        coloring.assign(pairs.iter().copied(), &states);
+        // 64 colours of one constraint (one group each), then 5 overflow groups.
         assert_eq!(coloring.ranges.len(), 65);
         assert_eq!(coloring.ranges[64], (64, 69));
+        assert_eq!(coloring.groups, 69);
+        // Each overflow constraint alone in lane 0 of its group.
+        let lanes: Vec<u32> = coloring.slot[64..]
+            .iter()
+            .map(|s| s % LANES as u32)
+            .collect();
+        assert_eq!(lanes, vec![0; 5]);
     }
 }

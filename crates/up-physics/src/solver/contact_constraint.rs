@@ -1,21 +1,27 @@
 //! Contact constraints: prepare, warm start, solve (with and without bias),
-//! restitution, and storing impulses for the next step.
+//! restitution, position stabilisation, and storing impulses for the next step.
 //!
 //! Each contact point holds a non-penetration row along the normal and two
 //! friction rows along tangents, clamped to the Coulomb disk μ·λn. Anchors
 //! are fixed at the start of the step; the current separation is updated
 //! from the bodies' motion since then (Box2D v3), so substeps never rerun
 //! collision detection.
+//!
+//! Constraints are prepared one at a time (`prepare`) and solved four at a
+//! time (`ContactGroup`, Box2D v3's wide solve): the four lanes of a group
+//! never move the same body (`coloring`), so a group is solved as four
+//! independent constraints with one stream of SIMD instructions.
 
 use glam::Vec3;
 
 use super::body_state::BodyState;
+use super::lanes::{max, select, F4, LANES, M4, Q4, V4};
 use super::softness::Softness;
 use crate::contact::{ContactPoint, StoredImpulse};
 
-/// 168 bytes.
+/// One prepared contact, before it takes its lane in a group.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct ContactConstraint {
+pub(crate) struct PreparedContact {
     /// Solver state indices (the room is the last, static state).
     pub a: u32,
     pub b: u32,
@@ -36,20 +42,98 @@ pub(crate) struct ContactConstraint {
     pub adjusted_separation: f32,
     pub normal_mass: f32,
     pub tangent_mass: [f32; 2],
+    /// Warm start: last step's impulses.
     pub normal_impulse: f32,
     pub tangent_impulse: [f32; 2],
-    pub max_normal_impulse: f32,
     /// Normal relative velocity before solving, m/s (for restitution).
     pub relative_velocity: f32,
     pub friction: f32,
     pub restitution: f32,
     pub feature: u64,
+}
+
+/// Four contact constraints, field by field (structure of arrays). A lane
+/// left empty has zero masses and the static room on both sides: it takes
+/// and gives no impulse.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct ContactGroup {
+    pub a: [u32; LANES],
+    pub b: [u32; LANES],
+    pub feature: [u64; LANES],
+    normal: V4,
+    tangent: [V4; 2],
+    r_a: V4,
+    r_b: V4,
+    radius_a: F4,
+    radius_b: F4,
+    center_offset: V4,
+    adjusted_separation: F4,
+    normal_mass: F4,
+    tangent_mass: [F4; 2],
+    normal_impulse: F4,
+    tangent_impulse: [F4; 2],
+    /// The largest single push this step (restitution only bounces contacts that pushed).
+    max_normal_impulse: F4,
+    relative_velocity: F4,
+    friction: F4,
+    restitution: F4,
     /// Separation and lever arms at the bodies' current positions: positions
     /// only change between passes, so each is computed once per substep
     /// (`refresh`) and shared by the passes that follow.
-    pub separation: f32,
-    pub arm_a: Vec3,
-    pub arm_b: Vec3,
+    separation: F4,
+    arm_a: V4,
+    arm_b: V4,
+}
+
+impl ContactGroup {
+    /// A group of empty lanes against `room` (the static state).
+    pub fn empty(room: u32) -> ContactGroup {
+        ContactGroup {
+            a: [room; LANES],
+            b: [room; LANES],
+            ..ContactGroup::default()
+        }
+    }
+
+    /// Puts a prepared contact into lane `i`.
+    pub fn set_lane(&mut self, i: usize, c: &PreparedContact) {
+        use super::lanes::set;
+        self.a[i] = c.a;
+        self.b[i] = c.b;
+        self.feature[i] = c.feature;
+        self.normal.set_lane(i, c.normal);
+        self.tangent[0].set_lane(i, c.tangent[0]);
+        self.tangent[1].set_lane(i, c.tangent[1]);
+        self.r_a.set_lane(i, c.r_a);
+        self.r_b.set_lane(i, c.r_b);
+        set(&mut self.radius_a, i, c.radius_a);
+        set(&mut self.radius_b, i, c.radius_b);
+        self.center_offset.set_lane(i, c.center_offset);
+        set(&mut self.adjusted_separation, i, c.adjusted_separation);
+        set(&mut self.normal_mass, i, c.normal_mass);
+        set(&mut self.tangent_mass[0], i, c.tangent_mass[0]);
+        set(&mut self.tangent_mass[1], i, c.tangent_mass[1]);
+        set(&mut self.normal_impulse, i, c.normal_impulse);
+        set(&mut self.tangent_impulse[0], i, c.tangent_impulse[0]);
+        set(&mut self.tangent_impulse[1], i, c.tangent_impulse[1]);
+        set(&mut self.max_normal_impulse, i, 0.0);
+        set(&mut self.relative_velocity, i, c.relative_velocity);
+        set(&mut self.friction, i, c.friction);
+        set(&mut self.restitution, i, c.restitution);
+    }
+
+    /// What lane `i` hands to the next step's warm start.
+    pub fn stored(&self, i: usize) -> StoredImpulse {
+        let ti = [
+            self.tangent_impulse[0].as_array()[i],
+            self.tangent_impulse[1].as_array()[i],
+        ];
+        StoredImpulse {
+            feature: self.feature[i],
+            normal: self.normal_impulse.as_array()[i],
+            tangent: ti[0] * self.tangent[0].lane(i) + ti[1] * self.tangent[1].lane(i),
+        }
+    }
 }
 
 /// A right-handed orthonormal basis around `n`, the same on every platform.
@@ -91,7 +175,7 @@ pub(crate) fn prepare(
     spheres: (Vec3, Vec3),
     material: (f32, f32),
     previous: &[StoredImpulse],
-) -> ContactConstraint {
+) -> PreparedContact {
     let (sa, sb) = (&states[a as usize], &states[b as usize]);
     let n = c.normal;
     let tangent = tangents(n);
@@ -108,7 +192,7 @@ pub(crate) fn prepare(
         tangent_impulse = [p.tangent.dot(tangent[0]), p.tangent.dot(tangent[1])];
     }
     let dv = sb.point_velocity(arm_b) - sa.point_velocity(arm_a);
-    let mut constraint = ContactConstraint {
+    PreparedContact {
         a,
         b,
         normal: n,
@@ -126,23 +210,113 @@ pub(crate) fn prepare(
         ],
         normal_impulse,
         tangent_impulse,
-        max_normal_impulse: 0.0,
         relative_velocity: dv.dot(n),
         friction: material.0,
         restitution: material.1,
         feature: c.feature,
-        separation: 0.0,
-        arm_a: Vec3::ZERO,
-        arm_b: Vec3::ZERO,
-    };
-    refresh(&mut constraint, sa, sb);
-    constraint
+    }
+}
+
+/// Block `k` of four states, transposed: one lane per state (`BodyState::block`).
+#[inline(always)]
+fn gather_block(s: &[&BodyState; LANES], k: usize) -> [F4; 4] {
+    F4::transpose(s.map(|s| F4::new(s.block(k))))
+}
+
+/// The four bodies on one side of a group, as the velocity passes need them.
+pub(crate) struct Velocities {
+    v: V4,
+    w: V4,
+    inv_mass: F4,
+    inv_inertia: M4,
+    /// The rest of block 1, written back as it was read.
+    inertia_xx: F4,
+}
+
+impl Velocities {
+    #[inline]
+    pub fn gather(s: [&BodyState; LANES]) -> Velocities {
+        let [vx, vy, vz, wx] = gather_block(&s, 0);
+        let [wy, wz, inv_mass, ixx] = gather_block(&s, 1);
+        let [ixy, ixz, iyx, iyy] = gather_block(&s, 2);
+        let [iyz, izx, izy, izz] = gather_block(&s, 3);
+        let v4 = |x, y, z| V4 { x, y, z };
+        Velocities {
+            v: v4(vx, vy, vz),
+            w: v4(wx, wy, wz),
+            inv_mass,
+            inv_inertia: M4 {
+                x_axis: v4(ixx, ixy, ixz),
+                y_axis: v4(iyx, iyy, iyz),
+                z_axis: v4(izx, izy, izz),
+            },
+            inertia_xx: ixx,
+        }
+    }
+
+    /// What writes a lane's velocities back to its body.
+    #[inline]
+    pub fn scatter(&self) -> impl Fn(usize, &mut BodyState) {
+        let b0 = F4::transpose([self.v.x, self.v.y, self.v.z, self.w.x]);
+        let b1 = F4::transpose([self.w.y, self.w.z, self.inv_mass, self.inertia_xx]);
+        move |lane, s| s.set_velocity_blocks(b0[lane].to_array(), b1[lane].to_array())
+    }
+
+    /// Velocity of a point at `r` from the centre of mass.
+    #[inline]
+    fn point_velocity(&self, r: V4) -> V4 {
+        self.v + self.w.cross(r)
+    }
+
+    #[inline]
+    fn apply_impulse(&mut self, impulse: V4, r: V4) {
+        self.v = self.v + self.inv_mass * impulse;
+        self.w = self.w + self.inv_inertia.mul(r.cross(impulse));
+    }
+}
+
+/// The four bodies on one side of a group, as the position passes need them.
+pub(crate) struct Poses {
+    dp: V4,
+    dq: Q4,
+    inv_mass: F4,
+}
+
+impl Poses {
+    #[inline]
+    pub fn gather(s: [&BodyState; LANES]) -> Poses {
+        let [_, _, inv_mass, _] = gather_block(&s, 1);
+        let [dpx, dpy, dpz, qx] = gather_block(&s, 4);
+        let [qy, qz, qw, _] = gather_block(&s, 5);
+        Poses {
+            dp: V4 {
+                x: dpx,
+                y: dpy,
+                z: dpz,
+            },
+            dq: Q4 {
+                xyz: V4 {
+                    x: qx,
+                    y: qy,
+                    z: qz,
+                },
+                w: qw,
+            },
+            inv_mass,
+        }
+    }
+
+    /// What writes a lane's displacement back to its body.
+    #[inline]
+    pub fn scatter(&self) -> impl Fn(usize, &mut BodyState) + '_ {
+        |lane, s| s.dp = self.dp.lane(lane)
+    }
 }
 
 /// Recomputes the separation and arms after the positions moved.
 #[inline]
-pub(crate) fn refresh(c: &mut ContactConstraint, sa: &BodyState, sb: &BodyState) {
-    let (separation, arm_a, arm_b) = current_geometry(c, sa, sb);
+pub(crate) fn refresh(c: &mut ContactGroup, a: &Poses, b: &Poses) {
+    let (separation, arm_a, arm_b) = current_geometry(c, a, b);
     c.separation = separation;
     c.arm_a = arm_a;
     c.arm_b = arm_b;
@@ -153,24 +327,24 @@ pub(crate) fn refresh(c: &mut ContactConstraint, sa: &BodyState, sb: &BodyState)
 /// impulse at that one point, so the impulses cancel in the total angular
 /// momentum as well as in the linear one.
 #[inline]
-fn current_geometry(c: &ContactConstraint, sa: &BodyState, sb: &BodyState) -> (f32, Vec3, Vec3) {
-    let ra = sa.dq * c.r_a;
-    let rb = sb.dq * c.r_b;
-    let ab = c.center_offset + sb.dp - sa.dp;
-    let separation = (ab + rb - ra).dot(c.normal) - c.radius_a - c.radius_b + c.adjusted_separation;
+fn current_geometry(c: &ContactGroup, a: &Poses, b: &Poses) -> (F4, V4, V4) {
+    let ra = a.dq.rotate(c.r_a);
+    let rb = b.dq.rotate(c.r_b);
+    let ab = (c.center_offset + b.dp) - a.dp;
+    let separation =
+        (((ab + rb) - ra).dot(c.normal) - c.radius_a) - c.radius_b + c.adjusted_separation;
     // Surface points now, from A's centre: ra + radius_a·n and ab + rb − radius_b·n.
-    let arm_a = 0.5 * (ra + ab + rb + (c.radius_a - c.radius_b) * c.normal);
+    let arm_a = F4::splat(0.5) * (((ra + ab) + rb) + (c.radius_a - c.radius_b) * c.normal);
     (separation, arm_a, arm_a - ab)
 }
 
 /// Applies last step's impulses again (warm start).
 #[inline]
-pub(crate) fn warm_start(c: &mut ContactConstraint, sa: &mut BodyState, sb: &mut BodyState) {
-    let p = c.normal_impulse * c.normal
-        + c.tangent_impulse[0] * c.tangent[0]
+pub(crate) fn warm_start(c: &mut ContactGroup, a: &mut Velocities, b: &mut Velocities) {
+    let p = (c.normal_impulse * c.normal + c.tangent_impulse[0] * c.tangent[0])
         + c.tangent_impulse[1] * c.tangent[1];
-    sa.apply_impulse(-p, c.arm_a);
-    sb.apply_impulse(p, c.arm_b);
+    a.apply_impulse(-p, c.arm_a);
+    b.apply_impulse(p, c.arm_b);
 }
 
 /// How the solve pushes overlap out this substep.
@@ -184,48 +358,44 @@ pub(crate) struct Bias {
     pub use_bias: bool,
 }
 
-/// One Gauss-Seidel update of one contact. With `use_bias` overlap is pushed
+/// One Gauss-Seidel update of four contacts. With `use_bias` overlap is pushed
 /// out softly; without it (the relax pass) only the velocity constraint remains.
 #[inline]
-pub(crate) fn solve(
-    c: &mut ContactConstraint,
-    sa: &mut BodyState,
-    sb: &mut BodyState,
-    bias: &Bias,
-) {
-    let Bias {
-        soft,
-        inv_h,
-        max_push_out,
-        use_bias,
-    } = *bias;
+pub(crate) fn solve(c: &mut ContactGroup, a: &mut Velocities, b: &mut Velocities, bias: &Bias) {
+    let splat = F4::splat;
     // Separation and arms as the last `refresh` left them.
     let (s, arm_a, arm_b) = (c.separation, c.arm_a, c.arm_b);
 
-    let (bias, mass_scale, impulse_scale) = if s > 0.0 {
-        (s * inv_h, 1.0, 0.0) // speculative: close the gap, no more
-    } else if use_bias {
+    // Speculative (s > 0): close the gap, no more. Overlapping: the soft push-out,
+    // or nothing but the velocity constraint in the relax pass.
+    let speculative = s.simd_gt(F4::ZERO);
+    let (push, mass_scale, impulse_scale) = if bias.use_bias {
+        let soft = bias.soft;
         (
-            (soft.bias_rate * s).max(-max_push_out),
-            soft.mass_scale,
-            soft.impulse_scale,
+            max(splat(soft.bias_rate) * s, splat(-bias.max_push_out)),
+            splat(soft.mass_scale),
+            splat(soft.impulse_scale),
         )
     } else {
-        (0.0, 1.0, 0.0)
+        (F4::ZERO, F4::ONE, F4::ZERO)
     };
+    let bias_velocity = select(speculative, s * splat(bias.inv_h), push);
+    let mass_scale = select(speculative, F4::ONE, mass_scale);
+    let impulse_scale = select(speculative, F4::ZERO, impulse_scale);
 
-    let vn = (sb.point_velocity(arm_b) - sa.point_velocity(arm_a)).dot(c.normal);
-    let impulse = -c.normal_mass * mass_scale * (vn + bias) - impulse_scale * c.normal_impulse;
-    let total = (c.normal_impulse + impulse).max(0.0);
+    let vn = (b.point_velocity(arm_b) - a.point_velocity(arm_a)).dot(c.normal);
+    let impulse =
+        -c.normal_mass * mass_scale * (vn + bias_velocity) - impulse_scale * c.normal_impulse;
+    let total = max(c.normal_impulse + impulse, F4::ZERO);
     let applied = total - c.normal_impulse;
     c.normal_impulse = total;
-    c.max_normal_impulse = c.max_normal_impulse.max(applied);
+    c.max_normal_impulse = max(c.max_normal_impulse, applied);
     let p = applied * c.normal;
-    sa.apply_impulse(-p, arm_a);
-    sb.apply_impulse(p, arm_b);
+    a.apply_impulse(-p, arm_a);
+    b.apply_impulse(p, arm_b);
 
     // Friction: both tangent rows, then clamp the pair to the Coulomb disk.
-    let dv = sb.point_velocity(arm_b) - sa.point_velocity(arm_a);
+    let dv = b.point_velocity(arm_b) - a.point_velocity(arm_a);
     let old = c.tangent_impulse;
     let mut new = [
         old[0] - c.tangent_mass[0] * dv.dot(c.tangent[0]),
@@ -233,46 +403,42 @@ pub(crate) fn solve(
     ];
     let limit = c.friction * c.normal_impulse;
     let len_sq = new[0] * new[0] + new[1] * new[1];
-    if len_sq > limit * limit {
-        let scale = limit / len_sq.sqrt();
-        new = [new[0] * scale, new[1] * scale];
-    }
+    let clamp = len_sq.simd_gt(limit * limit);
+    let scale = limit / len_sq.sqrt();
+    new = new.map(|t| select(clamp, t * scale, t));
     c.tangent_impulse = new;
     let p = (new[0] - old[0]) * c.tangent[0] + (new[1] - old[1]) * c.tangent[1];
-    sa.apply_impulse(-p, arm_a);
-    sb.apply_impulse(p, arm_b);
+    a.apply_impulse(-p, arm_a);
+    b.apply_impulse(p, arm_b);
 }
 
 /// Bounces: contacts that approached faster than `threshold` and pushed this
 /// step leave at `restitution` times their approach speed.
 pub(crate) fn apply_restitution(
-    c: &mut ContactConstraint,
-    sa: &mut BodyState,
-    sb: &mut BodyState,
+    c: &mut ContactGroup,
+    a: &mut Velocities,
+    b: &mut Velocities,
     threshold: f32,
 ) {
-    if c.restitution == 0.0 || c.relative_velocity > -threshold || c.max_normal_impulse == 0.0 {
+    let bounces = !c.restitution.simd_eq(F4::ZERO)
+        & !c.relative_velocity.simd_gt(F4::splat(-threshold))
+        & !c.max_normal_impulse.simd_eq(F4::ZERO);
+    if !bounces.any() {
         return;
     }
     let (arm_a, arm_b) = (c.arm_a, c.arm_b);
-    let vn = (sb.point_velocity(arm_b) - sa.point_velocity(arm_a)).dot(c.normal);
+    let vn = (b.point_velocity(arm_b) - a.point_velocity(arm_a)).dot(c.normal);
     let impulse = -c.normal_mass * (vn + c.restitution * c.relative_velocity);
-    let total = (c.normal_impulse + impulse).max(0.0);
+    let total = select(
+        bounces,
+        max(c.normal_impulse + impulse, F4::ZERO),
+        c.normal_impulse,
+    );
     let applied = total - c.normal_impulse;
     c.normal_impulse = total;
     let p = applied * c.normal;
-    sa.apply_impulse(-p, arm_a);
-    sb.apply_impulse(p, arm_b);
-}
-
-/// What a constraint hands to the next step's warm start.
-#[inline]
-pub(crate) fn stored(c: &ContactConstraint) -> StoredImpulse {
-    StoredImpulse {
-        feature: c.feature,
-        normal: c.normal_impulse,
-        tangent: c.tangent_impulse[0] * c.tangent[0] + c.tangent_impulse[1] * c.tangent[1],
-    }
+    a.apply_impulse(-p, arm_a);
+    b.apply_impulse(p, arm_b);
 }
 
 /// Post-stabilisation (Box2D v2's position pass, translation only): overlap
@@ -281,16 +447,15 @@ pub(crate) fn stored(c: &ContactConstraint) -> StoredImpulse {
 /// momentum is added and the centre of mass stays put; the soft solve stays
 /// in charge of the dynamics, this pass only bounds how deep a crowd pressing
 /// on a pile can push balloons into each other.
-pub(crate) fn stabilize(c: &ContactConstraint, sa: &mut BodyState, sb: &mut BodyState, slop: f32) {
-    let inv_mass = sa.inv_mass + sb.inv_mass;
-    if inv_mass == 0.0 {
+pub(crate) fn stabilize(c: &ContactGroup, a: &mut Poses, b: &mut Poses, slop: f32) {
+    let inv_mass = a.inv_mass + b.inv_mass;
+    let (s, _, _) = current_geometry(c, a, b);
+    let slop = F4::splat(slop);
+    let deep = s.simd_lt(-slop) & inv_mass.simd_gt(F4::ZERO);
+    if !deep.any() {
         return;
     }
-    let (s, _, _) = current_geometry(c, sa, sb);
-    if s >= -slop {
-        return;
-    }
-    let push = (-slop - s) / inv_mass * c.normal;
-    sa.dp -= sa.inv_mass * push;
-    sb.dp += sb.inv_mass * push;
+    let push = V4::select(deep, ((-slop - s) / inv_mass) * c.normal, V4::ZERO);
+    a.dp = a.dp - a.inv_mass * push;
+    b.dp = b.dp + b.inv_mass * push;
 }

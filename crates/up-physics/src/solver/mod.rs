@@ -1,9 +1,9 @@
 //! The soft-step solver (Box2D v3, Box3D, Rapier ≥ 0.29), in named stages:
 //!
-//! 1. prepare: contact constraints from the narrowphase, warm-start impulses
-//!    from the last step, forces for each body; then the constraints are
-//!    sorted by colour (`coloring`), so that each pass can run a colour's
-//!    constraints on several threads (`parallel`);
+//! 1. prepare: forces for each body; the contacts are coloured (`coloring`)
+//!    and prepared into groups of four (`lanes`), warm-started from the last
+//!    step, so that each pass solves four constraints with one stream of SIMD
+//!    instructions and can run a colour's groups on several threads (`parallel`);
 //! 2. per substep: integrate velocities (forces), warm start, solve (soft
 //!    push-out of overlap), integrate positions, relax (no push-out, so the
 //!    push-out's velocity does not linger as jitter);
@@ -14,14 +14,18 @@ pub(crate) mod body_state;
 pub(crate) mod coloring;
 pub(crate) mod contact_constraint;
 pub(crate) mod integrate;
+pub(crate) mod lanes;
 pub(crate) mod parallel;
 pub(crate) mod softness;
 
 use body_state::BodyState;
 use coloring::Coloring;
-use contact_constraint::{Bias, ContactConstraint};
+use contact_constraint::{Bias, ContactGroup, Poses, PreparedContact, Velocities};
 use integrate::{BodyForces, GrabSpring};
-use parallel::{for_each_body, for_each_colored, for_each_constraint};
+use lanes::LANES;
+use parallel::{for_each_body, for_each_colored, for_each_group, GroupStates};
+
+use crate::contact::StoredImpulse;
 
 /// Buffers reused from step to step.
 #[derive(Clone, Debug, Default)]
@@ -29,9 +33,10 @@ pub(crate) struct Solver {
     /// One per body (dense order) plus the static room at the end.
     pub states: Vec<BodyState>,
     pub forces: Vec<BodyForces>,
-    /// Sorted by colour once prepared (`coloring.position` maps back).
-    pub constraints: Vec<ContactConstraint>,
-    pub coloring: Coloring,
+    /// The contact constraints, `LANES` to a group, colour by colour
+    /// (`coloring.slot` says where each went).
+    groups: Vec<ContactGroup>,
+    coloring: Coloring,
     /// Dense indices of the awake bodies.
     pub awake: Vec<u32>,
 }
@@ -48,18 +53,46 @@ pub(crate) struct SolveParams {
     pub angular_damping: f32,
 }
 
+/// Runs a velocity pass's kernel on a group: gathers the bodies' velocities
+/// into lanes, and scatters them back.
+#[inline]
+fn on_velocities(
+    g: &mut ContactGroup,
+    mut states: GroupStates,
+    kernel: impl Fn(&mut ContactGroup, &mut Velocities, &mut Velocities),
+) {
+    let mut a = Velocities::gather(states.read(0));
+    let mut b = Velocities::gather(states.read(1));
+    kernel(g, &mut a, &mut b);
+    states.write(0, a.scatter());
+    states.write(1, b.scatter());
+}
+
 impl Solver {
-    /// Orders the prepared constraints by colour; call once they are all pushed.
-    pub fn color(&mut self) {
-        self.coloring.sort(&mut self.constraints, &self.states);
+    /// Colours the constraints of this step from their body pairs (state
+    /// indices, in the narrowphase's order) and makes room for them; then
+    /// `set` each, in the same order. Call after the states are in place.
+    pub fn begin_constraints(&mut self, pairs: impl Iterator<Item = (u32, u32)>) {
+        self.coloring.assign(pairs, &self.states);
+        let room = (self.states.len() - 1) as u32;
+        self.groups.clear();
+        self.groups
+            .resize(self.coloring.groups, ContactGroup::empty(room));
     }
 
-    /// The constraint built from the narrowphase's `i`-th contact.
-    pub fn constraint(&self, i: usize) -> &ContactConstraint {
-        &self.constraints[self.coloring.position[i] as usize]
+    /// Puts the narrowphase's `i`-th contact, prepared, in its slot.
+    pub fn set_constraint(&mut self, i: usize, c: &PreparedContact) {
+        let slot = self.coloring.slot[i] as usize;
+        self.groups[slot / LANES].set_lane(slot % LANES, c);
     }
 
-    /// Runs the substeps over prepared `states`, `forces` and coloured `constraints`.
+    /// What the narrowphase's `i`-th contact hands to the next step.
+    pub fn stored(&self, i: usize) -> StoredImpulse {
+        let slot = self.coloring.slot[i] as usize;
+        self.groups[slot / LANES].stored(slot % LANES)
+    }
+
+    /// Runs the substeps over prepared `states`, `forces` and constraints.
     pub fn solve(&mut self, p: &SolveParams, grab: Option<&GrabSpring>) {
         let h = p.dt / p.substeps as f32;
         let inv_h = 1.0 / h;
@@ -73,7 +106,7 @@ impl Solver {
             use_bias,
         };
         let (push, relax) = (bias(true), bias(false));
-        let ranges = &self.coloring.ranges;
+        self.refresh();
         for _ in 0..p.substeps {
             integrate::integrate_velocities(
                 &mut self.states,
@@ -83,54 +116,56 @@ impl Solver {
                 grab,
                 h,
             );
-            for_each_colored(
-                ranges,
-                &mut self.constraints,
-                &mut self.states,
-                contact_constraint::warm_start,
-            );
+            self.velocity_pass(contact_constraint::warm_start);
             for _ in 0..p.iterations {
-                for_each_colored(
-                    ranges,
-                    &mut self.constraints,
-                    &mut self.states,
-                    |c, a, b| contact_constraint::solve(c, a, b, &push),
-                );
+                self.velocity_pass(|c, a, b| contact_constraint::solve(c, a, b, &push));
             }
             for_each_body(&self.awake, &mut self.states, |_, s| {
                 s.integrate_position(h)
             });
-            for_each_constraint(&mut self.constraints, &self.states, |c, a, b| {
-                contact_constraint::refresh(c, a, b)
-            });
-            for_each_colored(
-                ranges,
-                &mut self.constraints,
-                &mut self.states,
-                |c, a, b| contact_constraint::solve(c, a, b, &relax),
-            );
+            self.refresh();
+            self.velocity_pass(|c, a, b| contact_constraint::solve(c, a, b, &relax));
         }
     }
 
-    pub fn restitution(&mut self, threshold: f32) {
-        let ranges = &self.coloring.ranges;
+    /// Separation and lever arms of every constraint at the current positions.
+    fn refresh(&mut self) {
+        for_each_group(&mut self.groups, &self.states, |c, a, b| {
+            contact_constraint::refresh(c, &Poses::gather(a), &Poses::gather(b))
+        });
+    }
+
+    /// One pass of `kernel` over the constraints, colour after colour.
+    fn velocity_pass<K>(&mut self, kernel: K)
+    where
+        K: Fn(&mut ContactGroup, &mut Velocities, &mut Velocities) + Sync,
+    {
         for_each_colored(
-            ranges,
-            &mut self.constraints,
+            &self.coloring.ranges,
+            &mut self.groups,
             &mut self.states,
-            |c, a, b| contact_constraint::apply_restitution(c, a, b, threshold),
+            |g, sides| on_velocities(g, sides, &kernel),
         );
+    }
+
+    pub fn restitution(&mut self, threshold: f32) {
+        self.velocity_pass(|c, a, b| contact_constraint::apply_restitution(c, a, b, threshold));
     }
 
     /// Removes overlap deeper than `slop` from the positions, `iterations` passes.
     pub fn stabilize(&mut self, slop: f32, iterations: u32) {
-        let ranges = &self.coloring.ranges;
         for _ in 0..iterations {
             for_each_colored(
-                ranges,
-                &mut self.constraints,
+                &self.coloring.ranges,
+                &mut self.groups,
                 &mut self.states,
-                |c, a, b| contact_constraint::stabilize(c, a, b, slop),
+                |g, mut states| {
+                    let mut a = Poses::gather(states.read(0));
+                    let mut b = Poses::gather(states.read(1));
+                    contact_constraint::stabilize(g, &mut a, &mut b, slop);
+                    states.write(0, a.scatter());
+                    states.write(1, b.scatter());
+                },
             );
         }
     }

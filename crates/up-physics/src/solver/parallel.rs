@@ -1,17 +1,23 @@
-//! Running the solver's passes: colour after colour, the constraints of a
+//! Running the solver's passes: colour after colour, the contact groups of a
 //! colour on rayon's threads when the `parallel` feature is on, serially
 //! otherwise. Within a colour no moving body is shared (`coloring`), so both
 //! ways give bit-identical results, whatever the number of threads.
+
+use std::marker::PhantomData;
 
 #[cfg(feature = "parallel")]
 use rayon::prelude::*;
 
 use super::body_state::BodyState;
-use super::contact_constraint::ContactConstraint;
+use super::contact_constraint::ContactGroup;
+use super::lanes::LANES;
 
-/// Constraints or bodies handed to one task; below this a pass stays serial.
+/// Contact groups (of four constraints) handed to one task; below this a pass stays serial.
 #[cfg(feature = "parallel")]
-const CHUNK: usize = 256;
+const GROUP_CHUNK: usize = 64;
+/// Bodies handed to one task.
+#[cfg(feature = "parallel")]
+const BODY_CHUNK: usize = 256;
 
 /// The body states, shared by the tasks of one colour or one body pass.
 #[derive(Clone, Copy)]
@@ -33,38 +39,6 @@ impl SharedStates {
         }
     }
 
-    /// The states of a constraint's two bodies. A static body (the room, a
-    /// sleeping balloon) is copied into `spare` — it takes no impulse, and
-    /// other tasks read it at the same time.
-    ///
-    /// # Safety
-    /// No other task may hold a moving state of this pair at the same time:
-    /// true within one colour, and in a serial loop.
-    unsafe fn pair<'a>(
-        &self,
-        a: u32,
-        b: u32,
-        spare: &'a mut [BodyState; 2],
-    ) -> (&'a mut BodyState, &'a mut BodyState) {
-        let (a, b) = (a as usize, b as usize);
-        assert!(a < self.len && b < self.len && a != b);
-        let [spare_a, spare_b] = spare;
-        let pick = |i: usize, spare: &'a mut BodyState| -> &'a mut BodyState {
-            // SAFETY: in bounds (asserted); a moving state is ours alone (the
-            // caller's contract), a static one is only read.
-            unsafe {
-                let state = self.ptr.add(i);
-                if (*state).inv_mass > 0.0 {
-                    &mut *state
-                } else {
-                    *spare = *state;
-                    spare
-                }
-            }
-        };
-        (pick(a, spare_a), pick(b, spare_b))
-    }
-
     /// # Safety
     /// No other task may use state `i` at the same time.
     #[allow(clippy::mut_from_ref)] // the point of the type: disjoint indices, shared pointer
@@ -75,31 +49,73 @@ impl SharedStates {
     }
 }
 
-/// Runs `kernel` on every constraint, colour by colour (`ranges` from
-/// `Coloring`; the last range, the overflow, always serially).
+/// The states of a contact group's bodies, side A and side B, one per lane,
+/// as a task of `for_each_colored` sees them: every state can be read, only
+/// moving ones written (static ones — the room, sleeping balloons, empty
+/// lanes — are read by other tasks at the same time and take no impulse).
+pub(crate) struct GroupStates<'a> {
+    shared: SharedStates,
+    bodies: [[u32; LANES]; 2],
+    _states: PhantomData<&'a mut [BodyState]>,
+}
+
+impl GroupStates<'_> {
+    /// The states of side `side` (0: A, 1: B).
+    #[inline]
+    pub fn read(&self, side: usize) -> [&BodyState; LANES] {
+        self.bodies[side].map(|i| {
+            assert!((i as usize) < self.shared.len);
+            // SAFETY: in bounds (asserted); nobody writes these states while
+            // this task runs (`for_each_colored`'s contract).
+            unsafe { &*self.shared.ptr.add(i as usize) }
+        })
+    }
+
+    /// Hands `update` each moving state of side `side`, with its lane.
+    #[inline]
+    pub fn write(&mut self, side: usize, mut update: impl FnMut(usize, &mut BodyState)) {
+        for (lane, &i) in self.bodies[side].iter().enumerate() {
+            assert!((i as usize) < self.shared.len);
+            // SAFETY: in bounds (asserted); a moving state belongs to this task
+            // alone (`for_each_colored`'s contract); no reference from `read`
+            // outlives it (`&mut self`).
+            let state = unsafe { &mut *self.shared.ptr.add(i as usize) };
+            if state.inv_mass > 0.0 {
+                update(lane, state);
+            }
+        }
+    }
+}
+
+/// Runs `kernel` on every contact group, colour by colour (`ranges` from
+/// `Coloring`; the last range, the overflow, always serially). Within a
+/// colour no moving body appears twice (`coloring`), so each task owns the
+/// moving states of its groups.
 pub(crate) fn for_each_colored<K>(
     ranges: &[(u32, u32)],
-    constraints: &mut [ContactConstraint],
+    groups: &mut [ContactGroup],
     states: &mut [BodyState],
     kernel: K,
 ) where
-    K: Fn(&mut ContactConstraint, &mut BodyState, &mut BodyState) + Sync,
+    K: Fn(&mut ContactGroup, GroupStates) + Sync,
 {
     let shared = SharedStates::new(states);
-    let run = |chunk: &mut [ContactConstraint]| {
-        let mut spare = [BodyState::STATIC; 2];
-        for c in chunk {
-            // SAFETY: a chunk lies within one colour, or runs alone.
-            let (sa, sb) = unsafe { shared.pair(c.a, c.b, &mut spare) };
-            kernel(c, sa, sb);
+    let run = |chunk: &mut [ContactGroup]| {
+        for g in chunk {
+            let sides = GroupStates {
+                shared,
+                bodies: [g.a, g.b],
+                _states: PhantomData,
+            };
+            kernel(g, sides);
         }
     };
     let overflow = ranges.len().saturating_sub(1);
     for (k, &(start, end)) in ranges.iter().enumerate() {
-        let colour = &mut constraints[start as usize..end as usize];
+        let colour = &mut groups[start as usize..end as usize];
         #[cfg(feature = "parallel")]
-        if k != overflow && colour.len() > CHUNK {
-            colour.par_chunks_mut(CHUNK).for_each(run);
+        if k != overflow && colour.len() > GROUP_CHUNK {
+            colour.par_chunks_mut(GROUP_CHUNK).for_each(run);
             continue;
         }
         let _ = (k, overflow);
@@ -107,25 +123,27 @@ pub(crate) fn for_each_colored<K>(
     }
 }
 
-/// Runs `kernel` on every constraint with read-only states.
-pub(crate) fn for_each_constraint<K>(
-    constraints: &mut [ContactConstraint],
-    states: &[BodyState],
-    kernel: K,
-) where
-    K: Fn(&mut ContactConstraint, &BodyState, &BodyState) + Sync,
+/// Runs `kernel` on every contact group with read-only states.
+pub(crate) fn for_each_group<K>(groups: &mut [ContactGroup], states: &[BodyState], kernel: K)
+where
+    K: Fn(&mut ContactGroup, [&BodyState; LANES], [&BodyState; LANES]) + Sync,
 {
-    let run = |chunk: &mut [ContactConstraint]| {
-        for c in chunk {
-            kernel(c, &states[c.a as usize], &states[c.b as usize]);
+    let run = |chunk: &mut [ContactGroup]| {
+        for g in chunk {
+            let (a, b) = (g.a, g.b);
+            kernel(
+                g,
+                a.map(|i| &states[i as usize]),
+                b.map(|i| &states[i as usize]),
+            );
         }
     };
     #[cfg(feature = "parallel")]
-    if constraints.len() > CHUNK {
-        constraints.par_chunks_mut(CHUNK).for_each(run);
+    if groups.len() > GROUP_CHUNK {
+        groups.par_chunks_mut(GROUP_CHUNK).for_each(run);
         return;
     }
-    run(constraints);
+    run(groups);
 }
 
 /// Runs `kernel` on the state (and index) of every body in `bodies`, which
@@ -142,8 +160,8 @@ where
         }
     };
     #[cfg(feature = "parallel")]
-    if bodies.len() > CHUNK {
-        bodies.par_chunks(CHUNK).for_each(run);
+    if bodies.len() > BODY_CHUNK {
+        bodies.par_chunks(BODY_CHUNK).for_each(run);
         return;
     }
     run(bodies);
