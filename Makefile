@@ -14,7 +14,7 @@ PORT ?= 8080
 CARGO ?= cargo
 WASM_TARGET := wasm32-unknown-unknown
 WASM_OUT := web/public/wasm/up_wasm.wasm
-RUST_SOURCES := $(shell find crates -name '*.rs' -o -name Cargo.toml) Cargo.toml Cargo.lock
+RUST_SOURCES := $(shell find crates -name '*.rs' -o -name Cargo.toml) Cargo.toml Cargo.lock .cargo/config.toml
 WEB_SOURCES := $(shell find web/src web/index.html web/vite.config.* web/tsconfig*.json web/scripts -type f 2>/dev/null) $(shell find assets -type f 2>/dev/null)
 
 .PHONY: run build test lint test-rust test-web test-e2e test-determinism bench measure fuzz soak setup setup-rust setup-web setup-browser setup-bench serve clean
