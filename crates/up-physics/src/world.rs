@@ -827,7 +827,7 @@ impl World {
             contact_hertz: self.def.contact_hertz,
             contact_damping_ratio: self.def.contact_damping_ratio,
             max_push_out: self.def.max_push_out,
-            restitution_threshold: self.def.restitution_threshold,
+            friction: self.def.friction,
             angular_damping: self.def.angular_damping,
         };
         self.scratch.solver.solve(&params, grab.as_ref());
@@ -835,7 +835,7 @@ impl World {
 
         self.scratch
             .solver
-            .restitution(params.restitution_threshold);
+            .restitution(self.def.restitution, self.def.restitution_threshold);
         self.store_impulses();
         let slop = self.def.stabilization_slop;
         let mut passes = self.def.stabilization_iterations;
@@ -1144,7 +1144,6 @@ impl World {
         });
         solver.begin_constraints(pairs);
         let nodes = &self.scratch.node_centers;
-        let material = (self.def.friction, self.def.restitution);
         let mut i = 0;
         for &(key, start, count) in &narrow.runs {
             let previous = self.warm.find(key);
@@ -1165,7 +1164,6 @@ impl World {
                     &solver.states,
                     (self.bodies.center[a as usize], center_b),
                     (sphere_a, sphere_b),
-                    material,
                     previous,
                 );
                 solver.set_constraint(i, &prepared);

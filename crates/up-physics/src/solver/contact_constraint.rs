@@ -47,42 +47,87 @@ pub(crate) struct PreparedContact {
     pub tangent_impulse: [f32; 2],
     /// Normal relative velocity before solving, m/s (for restitution).
     pub relative_velocity: f32,
-    pub friction: f32,
-    pub restitution: f32,
     pub feature: u64,
 }
 
-/// Four contact constraints, field by field (structure of arrays). A lane
-/// left empty has zero masses and the static room on both sides: it takes
-/// and gives no impulse.
+/// Four contact constraints, field by field (structure of arrays): what the
+/// velocity passes read, kept apart from the anchors (`GroupAnchors`) and
+/// the step's records (`GroupRecords`) so that a pass streams no more memory
+/// than it uses. A lane left empty has zero masses and the static room on both
+/// sides: it takes and gives no impulse.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct ContactGroup {
     pub a: [u32; LANES],
     pub b: [u32; LANES],
-    pub feature: [u64; LANES],
     normal: V4,
-    tangent: [V4; 2],
-    r_a: V4,
-    r_b: V4,
-    radius_a: F4,
-    radius_b: F4,
-    center_offset: V4,
-    adjusted_separation: F4,
+    /// The first tangent; the second is normal × tangent (`tangents`).
+    tangent: V4,
     normal_mass: F4,
     tangent_mass: [F4; 2],
     normal_impulse: F4,
     tangent_impulse: [F4; 2],
     /// The largest single push this step (restitution only bounces contacts that pushed).
     max_normal_impulse: F4,
-    relative_velocity: F4,
-    friction: F4,
-    restitution: F4,
     /// Separation and lever arms at the bodies' current positions: positions
     /// only change between passes, so each is computed once per substep
     /// (`refresh`) and shared by the passes that follow.
     separation: F4,
     arm_a: V4,
     arm_b: V4,
+}
+
+/// Where the four contacts' spheres were at the step's start, to track the
+/// separation as the bodies move (`refresh`, `stabilize`).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct GroupAnchors {
+    /// Centres of the touching spheres from each body's centre of mass, world
+    /// frame, at step start (for the room, B's is the point on the triangle).
+    /// Tracking centres, not surface points, keeps the separation exact when a
+    /// balloon spins: a point on a spinning sphere rolls away from the contact.
+    r_a: V4,
+    r_b: V4,
+    /// From each sphere's centre to its surface along the normal, m.
+    radius_a: F4,
+    radius_b: F4,
+    /// Centre of B minus centre of A at step start, m.
+    center_offset: V4,
+    /// Separation minus the surface points' offset along the normal (≈ 0), m.
+    adjusted_separation: F4,
+}
+
+/// What the four contacts were when the step began: which features touched
+/// (for the next warm start) and how fast they approached (for restitution).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct GroupRecords {
+    pub feature: [u64; LANES],
+    relative_velocity: F4,
+}
+
+/// Fills lane `i` of a group's three parts with a prepared contact.
+pub(crate) fn set_lane(
+    (g, anchors, records): (&mut ContactGroup, &mut GroupAnchors, &mut GroupRecords),
+    i: usize,
+    c: &PreparedContact,
+) {
+    use super::lanes::set;
+    g.a[i] = c.a;
+    g.b[i] = c.b;
+    g.normal.set_lane(i, c.normal);
+    g.tangent.set_lane(i, c.tangent[0]);
+    set(&mut g.normal_mass, i, c.normal_mass);
+    set(&mut g.tangent_mass[0], i, c.tangent_mass[0]);
+    set(&mut g.tangent_mass[1], i, c.tangent_mass[1]);
+    set(&mut g.normal_impulse, i, c.normal_impulse);
+    set(&mut g.tangent_impulse[0], i, c.tangent_impulse[0]);
+    set(&mut g.tangent_impulse[1], i, c.tangent_impulse[1]);
+    anchors.r_a.set_lane(i, c.r_a);
+    anchors.r_b.set_lane(i, c.r_b);
+    set(&mut anchors.radius_a, i, c.radius_a);
+    set(&mut anchors.radius_b, i, c.radius_b);
+    anchors.center_offset.set_lane(i, c.center_offset);
+    set(&mut anchors.adjusted_separation, i, c.adjusted_separation);
+    records.feature[i] = c.feature;
+    set(&mut records.relative_velocity, i, c.relative_velocity);
 }
 
 impl ContactGroup {
@@ -95,44 +140,25 @@ impl ContactGroup {
         }
     }
 
-    /// Puts a prepared contact into lane `i`.
-    pub fn set_lane(&mut self, i: usize, c: &PreparedContact) {
-        use super::lanes::set;
-        self.a[i] = c.a;
-        self.b[i] = c.b;
-        self.feature[i] = c.feature;
-        self.normal.set_lane(i, c.normal);
-        self.tangent[0].set_lane(i, c.tangent[0]);
-        self.tangent[1].set_lane(i, c.tangent[1]);
-        self.r_a.set_lane(i, c.r_a);
-        self.r_b.set_lane(i, c.r_b);
-        set(&mut self.radius_a, i, c.radius_a);
-        set(&mut self.radius_b, i, c.radius_b);
-        self.center_offset.set_lane(i, c.center_offset);
-        set(&mut self.adjusted_separation, i, c.adjusted_separation);
-        set(&mut self.normal_mass, i, c.normal_mass);
-        set(&mut self.tangent_mass[0], i, c.tangent_mass[0]);
-        set(&mut self.tangent_mass[1], i, c.tangent_mass[1]);
-        set(&mut self.normal_impulse, i, c.normal_impulse);
-        set(&mut self.tangent_impulse[0], i, c.tangent_impulse[0]);
-        set(&mut self.tangent_impulse[1], i, c.tangent_impulse[1]);
-        set(&mut self.max_normal_impulse, i, 0.0);
-        set(&mut self.relative_velocity, i, c.relative_velocity);
-        set(&mut self.friction, i, c.friction);
-        set(&mut self.restitution, i, c.restitution);
-    }
-
     /// What lane `i` hands to the next step's warm start.
-    pub fn stored(&self, i: usize) -> StoredImpulse {
+    pub fn stored(&self, records: &GroupRecords, i: usize) -> StoredImpulse {
         let ti = [
             self.tangent_impulse[0].as_array()[i],
             self.tangent_impulse[1].as_array()[i],
         ];
+        let normal = self.normal.lane(i);
+        let tangent = self.tangent.lane(i);
         StoredImpulse {
-            feature: self.feature[i],
+            feature: records.feature[i],
             normal: self.normal_impulse.as_array()[i],
-            tangent: ti[0] * self.tangent[0].lane(i) + ti[1] * self.tangent[1].lane(i),
+            tangent: ti[0] * tangent + ti[1] * normal.cross(tangent),
         }
+    }
+
+    /// Both tangents (the second as `tangents` makes it, bit for bit).
+    #[inline]
+    fn tangents(&self) -> [V4; 2] {
+        [self.tangent, self.normal.cross(self.tangent)]
     }
 }
 
@@ -165,7 +191,6 @@ fn effective_mass(a: &BodyState, b: &BodyState, r_a: Vec3, r_b: Vec3, axis: Vec3
 /// Builds a constraint, warm-started from `previous` when the same feature touched last step.
 /// `centers` are the bodies' centres of mass, `spheres` the centres of the
 /// touching spheres (for the room, the point on the triangle), world frame.
-#[allow(clippy::too_many_arguments)]
 pub(crate) fn prepare(
     c: &ContactPoint,
     a: u32,
@@ -173,7 +198,6 @@ pub(crate) fn prepare(
     states: &[BodyState],
     centers: (Vec3, Vec3),
     spheres: (Vec3, Vec3),
-    material: (f32, f32),
     previous: &[StoredImpulse],
 ) -> PreparedContact {
     let (sa, sb) = (&states[a as usize], &states[b as usize]);
@@ -211,8 +235,6 @@ pub(crate) fn prepare(
         normal_impulse,
         tangent_impulse,
         relative_velocity: dv.dot(n),
-        friction: material.0,
-        restitution: material.1,
         feature: c.feature,
     }
 }
@@ -275,17 +297,15 @@ impl Velocities {
     }
 }
 
-/// The four bodies on one side of a group, as the position passes need them.
+/// The four bodies on one side of a group, where they are now.
 pub(crate) struct Poses {
     dp: V4,
     dq: Q4,
-    inv_mass: F4,
 }
 
 impl Poses {
     #[inline]
     pub fn gather(s: [&BodyState; LANES]) -> Poses {
-        let [_, _, inv_mass, _] = gather_block(&s, 1);
         let [dpx, dpy, dpz, qx] = gather_block(&s, 4);
         let [qy, qz, qw, _] = gather_block(&s, 5);
         Poses {
@@ -302,6 +322,24 @@ impl Poses {
                 },
                 w: qw,
             },
+        }
+    }
+}
+
+/// The four bodies on one side of a group, as the position passes (which
+/// only move them) need them.
+pub(crate) struct Displacements {
+    dp: V4,
+    inv_mass: F4,
+}
+
+impl Displacements {
+    #[inline]
+    pub fn gather(s: [&BodyState; LANES]) -> Displacements {
+        let [_, _, inv_mass, _] = gather_block(&s, 1);
+        let [x, y, z, _] = gather_block(&s, 4);
+        Displacements {
+            dp: V4 { x, y, z },
             inv_mass,
         }
     }
@@ -315,8 +353,8 @@ impl Poses {
 
 /// Recomputes the separation and arms after the positions moved.
 #[inline]
-pub(crate) fn refresh(c: &mut ContactGroup, a: &Poses, b: &Poses) {
-    let (separation, arm_a, arm_b) = current_geometry(c, a, b);
+pub(crate) fn refresh(c: &mut ContactGroup, anchors: &GroupAnchors, a: &Poses, b: &Poses) {
+    let (separation, arm_a, arm_b) = current_geometry(c.normal, anchors, a, b);
     c.separation = separation;
     c.arm_a = arm_a;
     c.arm_b = arm_b;
@@ -327,22 +365,41 @@ pub(crate) fn refresh(c: &mut ContactGroup, a: &Poses, b: &Poses) {
 /// impulse at that one point, so the impulses cancel in the total angular
 /// momentum as well as in the linear one.
 #[inline]
-fn current_geometry(c: &ContactGroup, a: &Poses, b: &Poses) -> (F4, V4, V4) {
+fn current_geometry(normal: V4, c: &GroupAnchors, a: &Poses, b: &Poses) -> (F4, V4, V4) {
     let ra = a.dq.rotate(c.r_a);
     let rb = b.dq.rotate(c.r_b);
-    let ab = (c.center_offset + b.dp) - a.dp;
-    let separation =
-        (((ab + rb) - ra).dot(c.normal) - c.radius_a) - c.radius_b + c.adjusted_separation;
+    let (separation, ab) = separation(normal, c, (ra, rb), (a.dp, b.dp));
     // Surface points now, from A's centre: ra + radius_a·n and ab + rb − radius_b·n.
-    let arm_a = F4::splat(0.5) * (((ra + ab) + rb) + (c.radius_a - c.radius_b) * c.normal);
+    let arm_a = F4::splat(0.5) * (((ra + ab) + rb) + (c.radius_a - c.radius_b) * normal);
     (separation, arm_a, arm_a - ab)
+}
+
+/// The separation when the sphere centres are `offsets` from their bodies'
+/// centres, which moved by `dp`; and the centre of B from the centre of A.
+#[inline]
+fn separation(normal: V4, c: &GroupAnchors, offsets: (V4, V4), dp: (V4, V4)) -> (F4, V4) {
+    let (ra, rb) = offsets;
+    let ab = (c.center_offset + dp.1) - dp.0;
+    let separation =
+        (((ab + rb) - ra).dot(normal) - c.radius_a) - c.radius_b + c.adjusted_separation;
+    (separation, ab)
+}
+
+/// Turns the anchors' sphere offsets into those at the bodies' current
+/// orientations, which the position passes (`stabilize`) leave as they are:
+/// the rotations are then done once, not once per pass.
+#[inline]
+pub(crate) fn rotate_to_end(c: &mut GroupAnchors, a: &Poses, b: &Poses) {
+    c.r_a = a.dq.rotate(c.r_a);
+    c.r_b = b.dq.rotate(c.r_b);
 }
 
 /// Applies last step's impulses again (warm start).
 #[inline]
 pub(crate) fn warm_start(c: &mut ContactGroup, a: &mut Velocities, b: &mut Velocities) {
-    let p = (c.normal_impulse * c.normal + c.tangent_impulse[0] * c.tangent[0])
-        + c.tangent_impulse[1] * c.tangent[1];
+    let tangent = c.tangents();
+    let p = (c.normal_impulse * c.normal + c.tangent_impulse[0] * tangent[0])
+        + c.tangent_impulse[1] * tangent[1];
     a.apply_impulse(-p, c.arm_a);
     b.apply_impulse(p, c.arm_b);
 }
@@ -356,6 +413,8 @@ pub(crate) struct Bias {
     pub max_push_out: f32,
     /// False for the relax pass: only the velocity constraint remains.
     pub use_bias: bool,
+    /// Coulomb friction coefficient.
+    pub friction: f32,
 }
 
 /// One Gauss-Seidel update of four contacts. With `use_bias` overlap is pushed
@@ -396,18 +455,19 @@ pub(crate) fn solve(c: &mut ContactGroup, a: &mut Velocities, b: &mut Velocities
 
     // Friction: both tangent rows, then clamp the pair to the Coulomb disk.
     let dv = b.point_velocity(arm_b) - a.point_velocity(arm_a);
+    let tangent = c.tangents();
     let old = c.tangent_impulse;
     let mut new = [
-        old[0] - c.tangent_mass[0] * dv.dot(c.tangent[0]),
-        old[1] - c.tangent_mass[1] * dv.dot(c.tangent[1]),
+        old[0] - c.tangent_mass[0] * dv.dot(tangent[0]),
+        old[1] - c.tangent_mass[1] * dv.dot(tangent[1]),
     ];
-    let limit = c.friction * c.normal_impulse;
+    let limit = splat(bias.friction) * c.normal_impulse;
     let len_sq = new[0] * new[0] + new[1] * new[1];
     let clamp = len_sq.simd_gt(limit * limit);
     let scale = limit / len_sq.sqrt();
     new = new.map(|t| select(clamp, t * scale, t));
     c.tangent_impulse = new;
-    let p = (new[0] - old[0]) * c.tangent[0] + (new[1] - old[1]) * c.tangent[1];
+    let p = (new[0] - old[0]) * tangent[0] + (new[1] - old[1]) * tangent[1];
     a.apply_impulse(-p, arm_a);
     b.apply_impulse(p, arm_b);
 }
@@ -416,19 +476,20 @@ pub(crate) fn solve(c: &mut ContactGroup, a: &mut Velocities, b: &mut Velocities
 /// step leave at `restitution` times their approach speed.
 pub(crate) fn apply_restitution(
     c: &mut ContactGroup,
+    records: &GroupRecords,
     a: &mut Velocities,
     b: &mut Velocities,
-    threshold: f32,
+    (restitution, threshold): (f32, f32),
 ) {
-    let bounces = !c.restitution.simd_eq(F4::ZERO)
-        & !c.relative_velocity.simd_gt(F4::splat(-threshold))
-        & !c.max_normal_impulse.simd_eq(F4::ZERO);
-    if !bounces.any() {
+    let approach = records.relative_velocity;
+    let bounces =
+        !approach.simd_gt(F4::splat(-threshold)) & !c.max_normal_impulse.simd_eq(F4::ZERO);
+    if restitution == 0.0 || !bounces.any() {
         return;
     }
     let (arm_a, arm_b) = (c.arm_a, c.arm_b);
     let vn = (b.point_velocity(arm_b) - a.point_velocity(arm_a)).dot(c.normal);
-    let impulse = -c.normal_mass * (vn + c.restitution * c.relative_velocity);
+    let impulse = -c.normal_mass * (vn + F4::splat(restitution) * approach);
     let total = select(
         bounces,
         max(c.normal_impulse + impulse, F4::ZERO),
@@ -447,9 +508,15 @@ pub(crate) fn apply_restitution(
 /// momentum is added and the centre of mass stays put; the soft solve stays
 /// in charge of the dynamics, this pass only bounds how deep a crowd pressing
 /// on a pile can push balloons into each other.
-pub(crate) fn stabilize(c: &ContactGroup, a: &mut Poses, b: &mut Poses, slop: f32) {
+pub(crate) fn stabilize(
+    c: &ContactGroup,
+    anchors: &GroupAnchors,
+    a: &mut Displacements,
+    b: &mut Displacements,
+    slop: f32,
+) {
     let inv_mass = a.inv_mass + b.inv_mass;
-    let (s, _, _) = current_geometry(c, a, b);
+    let (s, _) = separation(c.normal, anchors, (anchors.r_a, anchors.r_b), (a.dp, b.dp));
     let slop = F4::splat(slop);
     let deep = s.simd_lt(-slop) & inv_mass.simd_gt(F4::ZERO);
     if !deep.any() {

@@ -20,7 +20,10 @@ pub(crate) mod softness;
 
 use body_state::BodyState;
 use coloring::Coloring;
-use contact_constraint::{Bias, ContactGroup, Poses, PreparedContact, Velocities};
+use contact_constraint::{
+    Bias, ContactGroup, Displacements, GroupAnchors, GroupRecords, Poses, PreparedContact,
+    Velocities,
+};
 use integrate::{BodyForces, GrabSpring};
 use lanes::LANES;
 use parallel::{for_each_body, for_each_colored, for_each_group, GroupStates};
@@ -34,8 +37,11 @@ pub(crate) struct Solver {
     pub states: Vec<BodyState>,
     pub forces: Vec<BodyForces>,
     /// The contact constraints, `LANES` to a group, colour by colour
-    /// (`coloring.slot` says where each went).
+    /// (`coloring.slot` says where each went), in three parts: what the
+    /// velocity passes use, the anchors the position passes use, and records.
     groups: Vec<ContactGroup>,
+    anchors: Vec<GroupAnchors>,
+    records: Vec<GroupRecords>,
     coloring: Coloring,
     /// Dense indices of the awake bodies.
     pub awake: Vec<u32>,
@@ -49,21 +55,22 @@ pub(crate) struct SolveParams {
     pub contact_hertz: f32,
     pub contact_damping_ratio: f32,
     pub max_push_out: f32,
-    pub restitution_threshold: f32,
+    pub friction: f32,
     pub angular_damping: f32,
 }
 
 /// Runs a velocity pass's kernel on a group: gathers the bodies' velocities
 /// into lanes, and scatters them back.
 #[inline]
-fn on_velocities(
+fn on_velocities<P>(
     g: &mut ContactGroup,
+    part: &P,
     mut states: GroupStates,
-    kernel: impl Fn(&mut ContactGroup, &mut Velocities, &mut Velocities),
+    kernel: impl Fn(&mut ContactGroup, &P, &mut Velocities, &mut Velocities),
 ) {
     let mut a = Velocities::gather(states.read(0));
     let mut b = Velocities::gather(states.read(1));
-    kernel(g, &mut a, &mut b);
+    kernel(g, part, &mut a, &mut b);
     states.write(0, a.scatter());
     states.write(1, b.scatter());
 }
@@ -75,21 +82,32 @@ impl Solver {
     pub fn begin_constraints(&mut self, pairs: impl Iterator<Item = (u32, u32)>) {
         self.coloring.assign(pairs, &self.states);
         let room = (self.states.len() - 1) as u32;
+        let n = self.coloring.groups;
         self.groups.clear();
-        self.groups
-            .resize(self.coloring.groups, ContactGroup::empty(room));
+        self.groups.resize(n, ContactGroup::empty(room));
+        self.anchors.clear();
+        self.anchors.resize(n, GroupAnchors::default());
+        self.records.clear();
+        self.records.resize(n, GroupRecords::default());
     }
 
     /// Puts the narrowphase's `i`-th contact, prepared, in its slot.
     pub fn set_constraint(&mut self, i: usize, c: &PreparedContact) {
         let slot = self.coloring.slot[i] as usize;
-        self.groups[slot / LANES].set_lane(slot % LANES, c);
+        let g = slot / LANES;
+        let parts = (
+            &mut self.groups[g],
+            &mut self.anchors[g],
+            &mut self.records[g],
+        );
+        contact_constraint::set_lane(parts, slot % LANES, c);
     }
 
     /// What the narrowphase's `i`-th contact hands to the next step.
     pub fn stored(&self, i: usize) -> StoredImpulse {
         let slot = self.coloring.slot[i] as usize;
-        self.groups[slot / LANES].stored(slot % LANES)
+        let g = slot / LANES;
+        self.groups[g].stored(&self.records[g], slot % LANES)
     }
 
     /// Runs the substeps over prepared `states`, `forces` and constraints.
@@ -104,6 +122,7 @@ impl Solver {
             inv_h,
             max_push_out: p.max_push_out,
             use_bias,
+            friction: p.friction,
         };
         let (push, relax) = (bias(true), bias(false));
         self.refresh();
@@ -116,53 +135,72 @@ impl Solver {
                 grab,
                 h,
             );
-            self.velocity_pass(contact_constraint::warm_start);
+            self.velocity_pass(|c, _, a, b| contact_constraint::warm_start(c, a, b));
             for _ in 0..p.iterations {
-                self.velocity_pass(|c, a, b| contact_constraint::solve(c, a, b, &push));
+                self.velocity_pass(|c, _, a, b| contact_constraint::solve(c, a, b, &push));
             }
             for_each_body(&self.awake, &mut self.states, |_, s| {
                 s.integrate_position(h)
             });
             self.refresh();
-            self.velocity_pass(|c, a, b| contact_constraint::solve(c, a, b, &relax));
+            self.velocity_pass(|c, _, a, b| contact_constraint::solve(c, a, b, &relax));
         }
     }
 
     /// Separation and lever arms of every constraint at the current positions.
     fn refresh(&mut self) {
-        for_each_group(&mut self.groups, &self.states, |c, a, b| {
-            contact_constraint::refresh(c, &Poses::gather(a), &Poses::gather(b))
-        });
+        for_each_group(
+            &mut self.groups,
+            &mut self.anchors,
+            &self.states,
+            |c, anchors, a, b| {
+                contact_constraint::refresh(c, anchors, &Poses::gather(a), &Poses::gather(b))
+            },
+        );
     }
 
     /// One pass of `kernel` over the constraints, colour after colour.
     fn velocity_pass<K>(&mut self, kernel: K)
     where
-        K: Fn(&mut ContactGroup, &mut Velocities, &mut Velocities) + Sync,
+        K: Fn(&mut ContactGroup, &GroupRecords, &mut Velocities, &mut Velocities) + Sync,
     {
         for_each_colored(
             &self.coloring.ranges,
             &mut self.groups,
+            &self.records,
             &mut self.states,
-            |g, sides| on_velocities(g, sides, &kernel),
+            |g, records, sides| on_velocities(g, records, sides, &kernel),
         );
     }
 
-    pub fn restitution(&mut self, threshold: f32) {
-        self.velocity_pass(|c, a, b| contact_constraint::apply_restitution(c, a, b, threshold));
+    /// Bounces at `restitution` for contacts that approached faster than `threshold`.
+    pub fn restitution(&mut self, restitution: f32, threshold: f32) {
+        self.velocity_pass(|c, records, a, b| {
+            contact_constraint::apply_restitution(c, records, a, b, (restitution, threshold))
+        });
     }
 
     /// Removes overlap deeper than `slop` from the positions, `iterations` passes.
     pub fn stabilize(&mut self, slop: f32, iterations: u32) {
+        // The passes move the bodies, never turn them.
+        for_each_group(
+            &mut self.groups,
+            &mut self.anchors,
+            &self.states,
+            |_, anchors, a, b| {
+                contact_constraint::rotate_to_end(anchors, &Poses::gather(a), &Poses::gather(b))
+            },
+        );
         for _ in 0..iterations {
             for_each_colored(
                 &self.coloring.ranges,
                 &mut self.groups,
+                &self.anchors,
                 &mut self.states,
-                |g, mut states| {
-                    let mut a = Poses::gather(states.read(0));
-                    let mut b = Poses::gather(states.read(1));
-                    contact_constraint::stabilize(g, &mut a, &mut b, slop);
+                |g, anchors, mut states| {
+                    let mut a = Displacements::gather(states.read(0));
+                    let mut b = Displacements::gather(states.read(1));
+                    contact_constraint::stabilize(g, anchors, &mut a, &mut b, slop);
                     states.write(0, a.scatter());
                     states.write(1, b.scatter());
                 },

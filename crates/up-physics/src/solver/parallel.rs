@@ -87,52 +87,66 @@ impl GroupStates<'_> {
     }
 }
 
-/// Runs `kernel` on every contact group, colour by colour (`ranges` from
-/// `Coloring`; the last range, the overflow, always serially). Within a
-/// colour no moving body appears twice (`coloring`), so each task owns the
-/// moving states of its groups.
-pub(crate) fn for_each_colored<K>(
+/// Runs `kernel` on every contact group, with the group's entry in `parts`
+/// (its anchors or records), colour by colour (`ranges` from `Coloring`; the
+/// last range, the overflow, always serially). Within a colour no moving body
+/// appears twice (`coloring`), so each task owns the moving states of its groups.
+pub(crate) fn for_each_colored<P, K>(
     ranges: &[(u32, u32)],
     groups: &mut [ContactGroup],
+    parts: &[P],
     states: &mut [BodyState],
     kernel: K,
 ) where
-    K: Fn(&mut ContactGroup, GroupStates) + Sync,
+    P: Sync,
+    K: Fn(&mut ContactGroup, &P, GroupStates) + Sync,
 {
+    assert_eq!(groups.len(), parts.len());
     let shared = SharedStates::new(states);
-    let run = |chunk: &mut [ContactGroup]| {
-        for g in chunk {
+    let run = |(chunk, parts): (&mut [ContactGroup], &[P])| {
+        for (g, part) in chunk.iter_mut().zip(parts) {
             let sides = GroupStates {
                 shared,
                 bodies: [g.a, g.b],
                 _states: PhantomData,
             };
-            kernel(g, sides);
+            kernel(g, part, sides);
         }
     };
     let overflow = ranges.len().saturating_sub(1);
     for (k, &(start, end)) in ranges.iter().enumerate() {
-        let colour = &mut groups[start as usize..end as usize];
+        let range = start as usize..end as usize;
+        let (colour, parts) = (&mut groups[range.clone()], &parts[range]);
         #[cfg(feature = "parallel")]
         if k != overflow && colour.len() > GROUP_CHUNK {
-            colour.par_chunks_mut(GROUP_CHUNK).for_each(run);
+            colour
+                .par_chunks_mut(GROUP_CHUNK)
+                .zip(parts.par_chunks(GROUP_CHUNK))
+                .for_each(run);
             continue;
         }
         let _ = (k, overflow);
-        run(colour);
+        run((colour, parts));
     }
 }
 
-/// Runs `kernel` on every contact group with read-only states.
-pub(crate) fn for_each_group<K>(groups: &mut [ContactGroup], states: &[BodyState], kernel: K)
-where
-    K: Fn(&mut ContactGroup, [&BodyState; LANES], [&BodyState; LANES]) + Sync,
+/// Runs `kernel` on every contact group and its entry in `parts`, with read-only states.
+pub(crate) fn for_each_group<P, K>(
+    groups: &mut [ContactGroup],
+    parts: &mut [P],
+    states: &[BodyState],
+    kernel: K,
+) where
+    P: Send,
+    K: Fn(&mut ContactGroup, &mut P, [&BodyState; LANES], [&BodyState; LANES]) + Sync,
 {
-    let run = |chunk: &mut [ContactGroup]| {
-        for g in chunk {
+    assert_eq!(groups.len(), parts.len());
+    let run = |(chunk, parts): (&mut [ContactGroup], &mut [P])| {
+        for (g, part) in chunk.iter_mut().zip(parts) {
             let (a, b) = (g.a, g.b);
             kernel(
                 g,
+                part,
                 a.map(|i| &states[i as usize]),
                 b.map(|i| &states[i as usize]),
             );
@@ -140,10 +154,13 @@ where
     };
     #[cfg(feature = "parallel")]
     if groups.len() > GROUP_CHUNK {
-        groups.par_chunks_mut(GROUP_CHUNK).for_each(run);
+        groups
+            .par_chunks_mut(GROUP_CHUNK)
+            .zip(parts.par_chunks_mut(GROUP_CHUNK))
+            .for_each(run);
         return;
     }
-    run(groups);
+    run((groups, parts));
 }
 
 /// Runs `kernel` on the state (and index) of every body in `bodies`, which
