@@ -141,6 +141,57 @@ impl BroadPhase {
     }
 }
 
+impl BroadPhase {
+    /// After bodies woke (`awake` now, `was_awake` at the last `update`, the
+    /// grid and the bodies' spheres unchanged since): adds the pairs the
+    /// update skipped because both bodies slept then, and one of them is now
+    /// awake. Appended after the update's pairs, in the same fixed order.
+    /// Returns false, doing nothing, when there are large bodies: their pairs
+    /// need the whole `update` again.
+    pub fn add_woken_pairs(
+        &mut self,
+        center: &[Vec3],
+        radius: &[f32],
+        was_awake: &[bool],
+        awake: &[bool],
+    ) -> bool {
+        if !self.large.is_empty() {
+            return false;
+        }
+        let mask = self.start.len().saturating_sub(2);
+        for i in 0..center.len() {
+            if !awake[i] || was_awake[i] {
+                continue;
+            }
+            let [x, y, z] = self.cell_of[i];
+            for dx in -1..=1 {
+                for dy in -1..=1 {
+                    for dz in -1..=1 {
+                        let target = [x + dx, y + dy, z + dz];
+                        let b = hash_cell(target) & mask;
+                        for k in self.start[b]..self.start[b + 1] {
+                            let j = self.items[k as usize] as usize;
+                            // Slept at the update; two woken bodies meet once.
+                            let new = !was_awake[j] && (j > i || !awake[j]);
+                            if new && self.cell_of[j] == target {
+                                consider(
+                                    &mut self.pairs,
+                                    i as u32,
+                                    j as u32,
+                                    center,
+                                    radius,
+                                    awake,
+                                );
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        true
+    }
+}
+
 #[inline]
 fn consider(
     pairs: &mut Vec<(u32, u32)>,
@@ -185,14 +236,18 @@ fn hash_cell([x, y, z]: [i32; 3]) -> usize {
 mod tests {
     use super::*;
 
+    fn random(seed: u64) -> impl FnMut() -> f32 {
+        let mut seed = seed;
+        move || {
+            seed = mix64(seed.wrapping_add(0x9e37_79b9_7f4a_7c15));
+            (seed >> 40) as f32 / (1u64 << 24) as f32
+        }
+    }
+
     /// Brute-force reference on random clouds: the grid finds exactly the overlapping pairs.
     #[test]
     fn grid_pairs_equal_all_pairs_reference() {
-        let mut seed = 12345u64;
-        let mut rnd = move || {
-            seed = mix64(seed.wrapping_add(0x9e37_79b9_7f4a_7c15));
-            (seed >> 40) as f32 / (1u64 << 24) as f32
-        };
+        let mut rnd = random(12345);
         for round in 0..20 {
             let n = 50 + round * 20;
             let center: Vec<Vec3> = (0..n)
@@ -222,5 +277,41 @@ mod tests {
             want.sort_unstable();
             assert_eq!(got, want, "round {round}");
         }
+    }
+
+    #[test]
+    fn woken_pairs_complete_the_update_as_a_new_update_would() {
+        let mut rnd = random(777);
+        for round in 0..20 {
+            let n = 60 + round * 25;
+            let center: Vec<Vec3> = (0..n)
+                .map(|_| Vec3::new(rnd() * 3.0, rnd() * 3.0, rnd() * 3.0))
+                .collect();
+            let radius: Vec<f32> = (0..n).map(|_| 0.05 + 0.15 * rnd()).collect();
+            let was_awake: Vec<bool> = (0..n).map(|_| rnd() < 0.3).collect();
+            // Some sleepers wake, neighbours of each other among them.
+            let awake: Vec<bool> = was_awake.iter().map(|&w| w || rnd() < 0.4).collect();
+            let mut bp = BroadPhase::default();
+            bp.update(&center, &radius, &was_awake, 0.2);
+            assert!(bp.add_woken_pairs(&center, &radius, &was_awake, &awake));
+            let mut got = bp.pairs.clone();
+            let count = got.len();
+            got.sort_unstable();
+            got.dedup();
+            assert_eq!(got.len(), count, "a pair found twice, round {round}");
+            bp.update(&center, &radius, &awake, 0.2);
+            let mut want = bp.pairs.clone();
+            want.sort_unstable();
+            assert_eq!(got, want, "round {round}");
+        }
+    }
+
+    #[test]
+    fn woken_pairs_defer_to_a_full_update_when_large_bodies_are_about() {
+        let center = vec![Vec3::ZERO, Vec3::X * 0.3];
+        let radius = vec![1.0, 0.1];
+        let mut bp = BroadPhase::default();
+        bp.update(&center, &radius, &[false, false], 0.2);
+        assert!(!bp.add_woken_pairs(&center, &radius, &[false, false], &[true, false]));
     }
 }

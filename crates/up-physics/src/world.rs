@@ -166,6 +166,8 @@ struct Scratch {
     islands: UnionFind,
     /// Per body, in `update_sleep`: which stay awake, then which fall asleep.
     stays_awake: Vec<bool>,
+    /// Which bodies were awake before `wake_touched_bodies`.
+    was_awake: Vec<bool>,
     wake: Vec<u32>,
     wake_islands: Vec<u32>,
     non_finite: Vec<usize>,
@@ -808,9 +810,18 @@ impl World {
         self.place_bodies(false);
         self.find_pairs();
         if self.wake_touched_bodies() {
-            // Woken bodies need their own pairs and placements.
-            self.place_bodies(false);
-            self.find_pairs();
+            // Woken bodies sleep where they were placed, with a sleeper's
+            // margin (no velocity): only their pairs with other sleepers are new.
+            let s = &mut self.scratch;
+            if !s.broad.add_woken_pairs(
+                &s.bound_center,
+                &s.bound_radius,
+                &s.was_awake,
+                &self.bodies.awake,
+            ) {
+                self.place_bodies(false);
+                self.find_pairs();
+            }
         }
         counters.broadphase_ms = clock.lap();
 
@@ -949,6 +960,7 @@ impl World {
     /// body is static to its awake neighbours, and a slow shuffle in a big
     /// pile wakes only what it moves.
     fn wake_touched_bodies(&mut self) -> bool {
+        self.scratch.was_awake.clone_from(&self.bodies.awake);
         let mut woken = std::mem::take(&mut self.scratch.wake);
         woken.clear();
         let mut islands = std::mem::take(&mut self.scratch.wake_islands);
