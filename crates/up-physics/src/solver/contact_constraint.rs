@@ -472,21 +472,24 @@ pub(crate) fn solve(c: &mut ContactGroup, a: &mut Velocities, b: &mut Velocities
     b.apply_impulse(p, arm_b);
 }
 
-/// Bounces: contacts that approached faster than `threshold` and pushed this
-/// step leave at `restitution` times their approach speed.
+/// The lanes that bounce: contacts that approached faster than `threshold`
+/// and pushed this step.
+#[inline]
+pub(crate) fn bounces(c: &ContactGroup, records: &GroupRecords, threshold: f32) -> F4 {
+    !records.relative_velocity.simd_gt(F4::splat(-threshold))
+        & !c.max_normal_impulse.simd_eq(F4::ZERO)
+}
+
+/// Bounces: the `bounces` lanes leave at `restitution` times their approach speed.
 pub(crate) fn apply_restitution(
     c: &mut ContactGroup,
     records: &GroupRecords,
     a: &mut Velocities,
     b: &mut Velocities,
-    (restitution, threshold): (f32, f32),
+    restitution: f32,
+    bounces: F4,
 ) {
     let approach = records.relative_velocity;
-    let bounces =
-        !approach.simd_gt(F4::splat(-threshold)) & !c.max_normal_impulse.simd_eq(F4::ZERO);
-    if restitution == 0.0 || !bounces.any() {
-        return;
-    }
     let (arm_a, arm_b) = (c.arm_a, c.arm_b);
     let vn = (b.point_velocity(arm_b) - a.point_velocity(arm_a)).dot(c.normal);
     let impulse = -c.normal_mass * (vn + F4::splat(restitution) * approach);

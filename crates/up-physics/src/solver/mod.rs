@@ -62,15 +62,14 @@ pub(crate) struct SolveParams {
 /// Runs a velocity pass's kernel on a group: gathers the bodies' velocities
 /// into lanes, and scatters them back.
 #[inline]
-fn on_velocities<P>(
+fn on_velocities(
     g: &mut ContactGroup,
-    part: &P,
     mut states: GroupStates,
-    kernel: impl Fn(&mut ContactGroup, &P, &mut Velocities, &mut Velocities),
+    kernel: impl Fn(&mut ContactGroup, &mut Velocities, &mut Velocities),
 ) {
     let mut a = Velocities::gather(states.read(0));
     let mut b = Velocities::gather(states.read(1));
-    kernel(g, part, &mut a, &mut b);
+    kernel(g, &mut a, &mut b);
     states.write(0, a.scatter());
     states.write(1, b.scatter());
 }
@@ -78,7 +77,7 @@ fn on_velocities<P>(
 impl Solver {
     /// Colours the constraints of this step from their body pairs (state
     /// indices, in the narrowphase's order) and makes room for them; then
-    /// `set` each, in the same order. Call after the states are in place.
+    /// `set_constraint` each, in the same order. Call after the states are in place.
     pub fn begin_constraints(&mut self, pairs: impl Iterator<Item = (u32, u32)>) {
         self.coloring.assign(pairs, &self.states);
         let room = (self.states.len() - 1) as u32;
@@ -135,15 +134,15 @@ impl Solver {
                 grab,
                 h,
             );
-            self.velocity_pass(|c, _, a, b| contact_constraint::warm_start(c, a, b));
+            self.velocity_pass(contact_constraint::warm_start);
             for _ in 0..p.iterations {
-                self.velocity_pass(|c, _, a, b| contact_constraint::solve(c, a, b, &push));
+                self.velocity_pass(|c, a, b| contact_constraint::solve(c, a, b, &push));
             }
             for_each_body(&self.awake, &mut self.states, |_, s| {
                 s.integrate_position(h)
             });
             self.refresh();
-            self.velocity_pass(|c, _, a, b| contact_constraint::solve(c, a, b, &relax));
+            self.velocity_pass(|c, a, b| contact_constraint::solve(c, a, b, &relax));
         }
     }
 
@@ -162,22 +161,44 @@ impl Solver {
     /// One pass of `kernel` over the constraints, colour after colour.
     fn velocity_pass<K>(&mut self, kernel: K)
     where
-        K: Fn(&mut ContactGroup, &GroupRecords, &mut Velocities, &mut Velocities) + Sync,
+        K: Fn(&mut ContactGroup, &mut Velocities, &mut Velocities) + Sync,
     {
         for_each_colored(
             &self.coloring.ranges,
             &mut self.groups,
-            &self.records,
+            &self.records, // not used
             &mut self.states,
-            |g, records, sides| on_velocities(g, records, sides, &kernel),
+            |g, _, sides| on_velocities(g, sides, &kernel),
         );
     }
 
     /// Bounces at `restitution` for contacts that approached faster than `threshold`.
     pub fn restitution(&mut self, restitution: f32, threshold: f32) {
-        self.velocity_pass(|c, records, a, b| {
-            contact_constraint::apply_restitution(c, records, a, b, (restitution, threshold))
-        });
+        if restitution == 0.0 {
+            return;
+        }
+        // Most groups have nothing to bounce: test before gathering their bodies.
+        for_each_colored(
+            &self.coloring.ranges,
+            &mut self.groups,
+            &self.records,
+            &mut self.states,
+            |g, records, sides| {
+                let bounces = contact_constraint::bounces(g, records, threshold);
+                if bounces.any() {
+                    on_velocities(g, sides, |c, a, b| {
+                        contact_constraint::apply_restitution(
+                            c,
+                            records,
+                            a,
+                            b,
+                            restitution,
+                            bounces,
+                        )
+                    });
+                }
+            },
+        );
     }
 
     /// Removes overlap deeper than `slop` from the positions, `iterations` passes.
