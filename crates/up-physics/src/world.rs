@@ -1171,9 +1171,7 @@ impl World {
                 };
                 let prepared = contact_constraint::prepare(
                     c,
-                    a,
-                    b,
-                    &solver.states,
+                    (a, b),
                     (self.bodies.center[a as usize], center_b),
                     (sphere_a, sphere_b),
                     previous,

@@ -40,13 +40,9 @@ pub(crate) struct PreparedContact {
     pub center_offset: Vec3,
     /// Separation minus the surface points' offset along the normal (≈ 0), m.
     pub adjusted_separation: f32,
-    pub normal_mass: f32,
-    pub tangent_mass: [f32; 2],
     /// Warm start: last step's impulses.
     pub normal_impulse: f32,
     pub tangent_impulse: [f32; 2],
-    /// Normal relative velocity before solving, m/s (for restitution).
-    pub relative_velocity: f32,
     pub feature: u64,
 }
 
@@ -77,7 +73,8 @@ pub(crate) struct ContactGroup {
 }
 
 /// Where the four contacts' spheres were at the step's start, to track the
-/// separation as the bodies move (`refresh`, `stabilize`).
+/// separation as the bodies move (`refresh`, `stabilize`), and how fast they
+/// approached then (`apply_restitution`).
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct GroupAnchors {
     /// Centres of the touching spheres from each body's centre of mass, world
@@ -93,14 +90,15 @@ pub(crate) struct GroupAnchors {
     center_offset: V4,
     /// Separation minus the surface points' offset along the normal (≈ 0), m.
     adjusted_separation: F4,
+    /// Normal relative velocity before solving, m/s (for restitution).
+    relative_velocity: F4,
 }
 
-/// What the four contacts were when the step began: which features touched
-/// (for the next warm start) and how fast they approached (for restitution).
+/// Which features of the bodies the four contacts are between (for the next
+/// step's warm start).
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct GroupRecords {
     pub feature: [u64; LANES],
-    relative_velocity: F4,
 }
 
 /// Fills lane `i` of a group's three parts with a prepared contact.
@@ -114,9 +112,6 @@ pub(crate) fn set_lane(
     g.b[i] = c.b;
     g.normal.set_lane(i, c.normal);
     g.tangent.set_lane(i, c.tangent[0]);
-    set(&mut g.normal_mass, i, c.normal_mass);
-    set(&mut g.tangent_mass[0], i, c.tangent_mass[0]);
-    set(&mut g.tangent_mass[1], i, c.tangent_mass[1]);
     set(&mut g.normal_impulse, i, c.normal_impulse);
     set(&mut g.tangent_impulse[0], i, c.tangent_impulse[0]);
     set(&mut g.tangent_impulse[1], i, c.tangent_impulse[1]);
@@ -127,7 +122,6 @@ pub(crate) fn set_lane(
     anchors.center_offset.set_lane(i, c.center_offset);
     set(&mut anchors.adjusted_separation, i, c.adjusted_separation);
     records.feature[i] = c.feature;
-    set(&mut records.relative_velocity, i, c.relative_velocity);
 }
 
 impl ContactGroup {
@@ -175,37 +169,18 @@ pub(crate) fn tangents(n: Vec3) -> [Vec3; 2] {
     [t1, n.cross(t1)]
 }
 
-#[inline]
-fn effective_mass(a: &BodyState, b: &BodyState, r_a: Vec3, r_b: Vec3, axis: Vec3) -> f32 {
-    let ra_x = r_a.cross(axis);
-    let rb_x = r_b.cross(axis);
-    let k =
-        a.inv_mass + b.inv_mass + ra_x.dot(a.inv_inertia * ra_x) + rb_x.dot(b.inv_inertia * rb_x);
-    if k > 0.0 {
-        1.0 / k
-    } else {
-        0.0
-    }
-}
-
 /// Builds a constraint, warm-started from `previous` when the same feature touched last step.
 /// `centers` are the bodies' centres of mass, `spheres` the centres of the
 /// touching spheres (for the room, the point on the triangle), world frame.
 pub(crate) fn prepare(
     c: &ContactPoint,
-    a: u32,
-    b: u32,
-    states: &[BodyState],
+    (a, b): (u32, u32),
     centers: (Vec3, Vec3),
     spheres: (Vec3, Vec3),
     previous: &[StoredImpulse],
 ) -> PreparedContact {
-    let (sa, sb) = (&states[a as usize], &states[b as usize]);
     let n = c.normal;
     let tangent = tangents(n);
-    // Impulses act at the surface points; effective masses use those arms.
-    let arm_a = c.point_a - centers.0;
-    let arm_b = c.point_b - centers.1;
     let radius_a = (c.point_a - spheres.0).dot(n);
     let radius_b = (spheres.1 - c.point_b).dot(n);
     let tracked = (spheres.1 - spheres.0).dot(n) - radius_a - radius_b;
@@ -215,7 +190,6 @@ pub(crate) fn prepare(
         normal_impulse = p.normal;
         tangent_impulse = [p.tangent.dot(tangent[0]), p.tangent.dot(tangent[1])];
     }
-    let dv = sb.point_velocity(arm_b) - sa.point_velocity(arm_a);
     PreparedContact {
         a,
         b,
@@ -227,16 +201,37 @@ pub(crate) fn prepare(
         radius_b,
         center_offset: centers.1 - centers.0,
         adjusted_separation: c.separation - tracked,
-        normal_mass: effective_mass(sa, sb, arm_a, arm_b, n),
-        tangent_mass: [
-            effective_mass(sa, sb, arm_a, arm_b, tangent[0]),
-            effective_mass(sa, sb, arm_a, arm_b, tangent[1]),
-        ],
         normal_impulse,
         tangent_impulse,
-        relative_velocity: dv.dot(n),
         feature: c.feature,
     }
+}
+
+/// Effective masses along the normal and the tangents, and the approach
+/// speed, at the start of the step (after its first `refresh`): impulses act
+/// at the arms `refresh` gives, so the masses use those arms too.
+#[inline]
+pub(crate) fn prepare_masses(
+    c: &mut ContactGroup,
+    anchors: &mut GroupAnchors,
+    a: &Velocities,
+    b: &Velocities,
+) {
+    let (arm_a, arm_b) = (c.arm_a, c.arm_b);
+    let effective_mass = |axis: V4| {
+        let ra_x = arm_a.cross(axis);
+        let rb_x = arm_b.cross(axis);
+        let k = a.inv_mass
+            + b.inv_mass
+            + ra_x.dot(a.inv_inertia.mul(ra_x))
+            + rb_x.dot(b.inv_inertia.mul(rb_x));
+        select(k.simd_gt(F4::ZERO), F4::ONE / k, F4::ZERO)
+    };
+    let tangent = c.tangents();
+    c.normal_mass = effective_mass(c.normal);
+    c.tangent_mass = tangent.map(effective_mass);
+    let dv = b.point_velocity(arm_b) - a.point_velocity(arm_a);
+    anchors.relative_velocity = dv.dot(c.normal);
 }
 
 /// Block `k` of four states, transposed: one lane per state (`BodyState::block`).
@@ -475,21 +470,21 @@ pub(crate) fn solve(c: &mut ContactGroup, a: &mut Velocities, b: &mut Velocities
 /// The lanes that bounce: contacts that approached faster than `threshold`
 /// and pushed this step.
 #[inline]
-pub(crate) fn bounces(c: &ContactGroup, records: &GroupRecords, threshold: f32) -> F4 {
-    !records.relative_velocity.simd_gt(F4::splat(-threshold))
+pub(crate) fn bounces(c: &ContactGroup, anchors: &GroupAnchors, threshold: f32) -> F4 {
+    !anchors.relative_velocity.simd_gt(F4::splat(-threshold))
         & !c.max_normal_impulse.simd_eq(F4::ZERO)
 }
 
 /// Bounces: the `bounces` lanes leave at `restitution` times their approach speed.
 pub(crate) fn apply_restitution(
     c: &mut ContactGroup,
-    records: &GroupRecords,
+    anchors: &GroupAnchors,
     a: &mut Velocities,
     b: &mut Velocities,
     restitution: f32,
     bounces: F4,
 ) {
-    let approach = records.relative_velocity;
+    let approach = anchors.relative_velocity;
     let (arm_a, arm_b) = (c.arm_a, c.arm_b);
     let vn = (b.point_velocity(arm_b) - a.point_velocity(arm_a)).dot(c.normal);
     let impulse = -c.normal_mass * (vn + F4::splat(restitution) * approach);

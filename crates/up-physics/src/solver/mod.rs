@@ -124,7 +124,16 @@ impl Solver {
             friction: p.friction,
         };
         let (push, relax) = (bias(true), bias(false));
-        self.refresh();
+        for_each_group(
+            &mut self.groups,
+            &mut self.anchors,
+            &self.states,
+            |c, anchors, a, b| {
+                contact_constraint::refresh(c, anchors, &Poses::gather(a), &Poses::gather(b));
+                let (a, b) = (Velocities::gather(a), Velocities::gather(b));
+                contact_constraint::prepare_masses(c, anchors, &a, &b);
+            },
+        );
         for _ in 0..p.substeps {
             integrate::integrate_velocities(
                 &mut self.states,
@@ -181,15 +190,15 @@ impl Solver {
         for_each_colored(
             &self.coloring.ranges,
             &mut self.groups,
-            &self.records,
+            &self.anchors,
             &mut self.states,
-            |g, records, sides| {
-                let bounces = contact_constraint::bounces(g, records, threshold);
+            |g, anchors, sides| {
+                let bounces = contact_constraint::bounces(g, anchors, threshold);
                 if bounces.any() {
                     on_velocities(g, sides, |c, a, b| {
                         contact_constraint::apply_restitution(
                             c,
-                            records,
+                            anchors,
                             a,
                             b,
                             restitution,
