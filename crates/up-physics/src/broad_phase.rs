@@ -79,26 +79,16 @@ impl BroadPhase {
         // bodies is found from the lower index, an awake-asleep pair from
         // the awake one; two sleepers make no pair, so a sleeping pile costs
         // only its place in the grid.
+        let grid = Grid::of(&self.cell_of, &self.start, &self.items);
         for i in 0..n {
             if radius[i] > cell_radius || !awake[i] {
                 continue;
             }
-            let [x, y, z] = self.cell_of[i];
-            for dx in -1..=1 {
-                for dy in -1..=1 {
-                    for dz in -1..=1 {
-                        let target = [x + dx, y + dy, z + dz];
-                        let b = hash_cell(target) & mask;
-                        for k in self.start[b]..self.start[b + 1] {
-                            let j = self.items[k as usize];
-                            let ju = j as usize;
-                            if (ju > i || !awake[ju]) && self.cell_of[ju] == target {
-                                consider(&mut self.pairs, i as u32, j, center, radius, awake);
-                            }
-                        }
-                    }
+            grid.near(i, |j| {
+                if j > i || !awake[j] {
+                    consider(&mut self.pairs, i as u32, j as u32, center, radius, awake);
                 }
-            }
+            });
         }
 
         // Large bodies against ordinary ones: every cell their sphere can reach.
@@ -158,37 +148,59 @@ impl BroadPhase {
         if !self.large.is_empty() {
             return false;
         }
-        let mask = self.start.len().saturating_sub(2);
+        let grid = Grid::of(&self.cell_of, &self.start, &self.items);
         for i in 0..center.len() {
             if !awake[i] || was_awake[i] {
                 continue;
             }
-            let [x, y, z] = self.cell_of[i];
-            for dx in -1..=1 {
-                for dy in -1..=1 {
-                    for dz in -1..=1 {
-                        let target = [x + dx, y + dy, z + dz];
-                        let b = hash_cell(target) & mask;
-                        for k in self.start[b]..self.start[b + 1] {
-                            let j = self.items[k as usize] as usize;
-                            // Slept at the update; two woken bodies meet once.
-                            let new = !was_awake[j] && (j > i || !awake[j]);
-                            if new && self.cell_of[j] == target {
-                                consider(
-                                    &mut self.pairs,
-                                    i as u32,
-                                    j as u32,
-                                    center,
-                                    radius,
-                                    awake,
-                                );
-                            }
+            grid.near(i, |j| {
+                // Slept at the update; two woken bodies meet once.
+                if !was_awake[j] && (j > i || !awake[j]) {
+                    consider(&mut self.pairs, i as u32, j as u32, center, radius, awake);
+                }
+            });
+        }
+        true
+    }
+}
+
+/// The grid as `update` left it, for looking up a body's neighbours.
+struct Grid<'a> {
+    cell_of: &'a [[i32; 3]],
+    start: &'a [u32],
+    items: &'a [u32],
+    mask: usize,
+}
+
+impl<'a> Grid<'a> {
+    /// The grid of `BroadPhase`'s fields (borrowed apart, so that `pairs` stays free).
+    fn of(cell_of: &'a [[i32; 3]], start: &'a [u32], items: &'a [u32]) -> Grid<'a> {
+        Grid {
+            cell_of,
+            start,
+            items,
+            mask: start.len().saturating_sub(2),
+        }
+    }
+
+    /// Calls `visit` with each ordinary body in the 27 cells around body `i`'s cell.
+    #[inline]
+    fn near(&self, i: usize, mut visit: impl FnMut(usize)) {
+        let [x, y, z] = self.cell_of[i];
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    let target = [x + dx, y + dy, z + dz];
+                    let b = hash_cell(target) & self.mask;
+                    for k in self.start[b]..self.start[b + 1] {
+                        let j = self.items[k as usize] as usize;
+                        if self.cell_of[j] == target {
+                            visit(j);
                         }
                     }
                 }
             }
         }
-        true
     }
 }
 

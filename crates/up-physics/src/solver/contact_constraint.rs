@@ -257,15 +257,14 @@ impl Velocities {
         let [wy, wz, inv_mass, ixx] = gather_block(&s, 1);
         let [ixy, ixz, iyx, iyy] = gather_block(&s, 2);
         let [iyz, izx, izy, izz] = gather_block(&s, 3);
-        let v4 = |x, y, z| V4 { x, y, z };
         Velocities {
-            v: v4(vx, vy, vz),
-            w: v4(wx, wy, wz),
+            v: V4::new(vx, vy, vz),
+            w: V4::new(wx, wy, wz),
             inv_mass,
             inv_inertia: M4 {
-                x_axis: v4(ixx, ixy, ixz),
-                y_axis: v4(iyx, iyy, iyz),
-                z_axis: v4(izx, izy, izz),
+                x_axis: V4::new(ixx, ixy, ixz),
+                y_axis: V4::new(iyx, iyy, iyz),
+                z_axis: V4::new(izx, izy, izz),
             },
             inertia_xx: ixx,
         }
@@ -304,17 +303,9 @@ impl Poses {
         let [dpx, dpy, dpz, qx] = gather_block(&s, 4);
         let [qy, qz, qw, _] = gather_block(&s, 5);
         Poses {
-            dp: V4 {
-                x: dpx,
-                y: dpy,
-                z: dpz,
-            },
+            dp: V4::new(dpx, dpy, dpz),
             dq: Q4 {
-                xyz: V4 {
-                    x: qx,
-                    y: qy,
-                    z: qz,
-                },
+                xyz: V4::new(qx, qy, qz),
                 w: qw,
             },
         }
@@ -334,7 +325,7 @@ impl Displacements {
         let [_, _, inv_mass, _] = gather_block(&s, 1);
         let [x, y, z, _] = gather_block(&s, 4);
         Displacements {
-            dp: V4 { x, y, z },
+            dp: V4::new(x, y, z),
             inv_mass,
         }
     }

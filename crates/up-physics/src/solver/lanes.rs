@@ -36,11 +36,12 @@ pub(crate) struct V4 {
 }
 
 impl V4 {
-    pub const ZERO: V4 = V4 {
-        x: F4::ZERO,
-        y: F4::ZERO,
-        z: F4::ZERO,
-    };
+    pub const ZERO: V4 = V4::new(F4::ZERO, F4::ZERO, F4::ZERO);
+
+    #[inline]
+    pub const fn new(x: F4, y: F4, z: F4) -> V4 {
+        V4 { x, y, z }
+    }
 
     #[cfg(test)]
     pub fn from_lanes(v: [Vec3; LANES]) -> V4 {
