@@ -76,12 +76,16 @@ impl GroupStates<'_> {
     pub fn write(&mut self, side: usize, mut update: impl FnMut(usize, &mut BodyState)) {
         for (lane, &i) in self.bodies[side].iter().enumerate() {
             assert!((i as usize) < self.shared.len);
-            // SAFETY: in bounds (asserted); a moving state belongs to this task
-            // alone (`for_each_colored`'s contract); no reference from `read`
-            // outlives it (`&mut self`).
-            let state = unsafe { &mut *self.shared.ptr.add(i as usize) };
-            if state.inv_mass > 0.0 {
-                update(lane, state);
+            // SAFETY: in bounds (asserted). Only a moving state is borrowed
+            // mutably: it belongs to this task alone (`for_each_colored`'s
+            // contract), and no reference from `read` outlives `&mut self`.
+            // A static one, which other tasks read, is only read here, through
+            // the pointer.
+            unsafe {
+                let state = self.shared.ptr.add(i as usize);
+                if (*state).inv_mass > 0.0 {
+                    update(lane, &mut *state);
+                }
             }
         }
     }
