@@ -53,7 +53,8 @@ impl BodyState {
             2 => [i.x_axis.y, i.x_axis.z, i.y_axis.x, i.y_axis.y],
             3 => [i.y_axis.z, i.z_axis.x, i.z_axis.y, i.z_axis.z],
             4 => [dp.x, dp.y, dp.z, dq.x],
-            _ => [dq.y, dq.z, dq.w, self.q.x],
+            5 => [dq.y, dq.z, dq.w, self.q.x],
+            _ => panic!("a BodyState has blocks 0 to 5, not {k}"),
         }
     }
 

@@ -175,9 +175,8 @@ impl Solver {
         for_each_colored(
             &self.coloring.ranges,
             &mut self.groups,
-            &self.records, // not used
             &mut self.states,
-            |g, _, sides| on_velocities(g, sides, &kernel),
+            |_, g, sides| on_velocities(g, sides, &kernel),
         );
     }
 
@@ -187,12 +186,13 @@ impl Solver {
             return;
         }
         // Most groups have nothing to bounce: test before gathering their bodies.
+        let anchors = &self.anchors;
         for_each_colored(
             &self.coloring.ranges,
             &mut self.groups,
-            &self.anchors,
             &mut self.states,
-            |g, anchors, sides| {
+            |i, g, sides| {
+                let anchors = &anchors[i];
                 let bounces = contact_constraint::bounces(g, anchors, threshold);
                 if bounces.any() {
                     on_velocities(g, sides, |c, a, b| {
@@ -222,12 +222,13 @@ impl Solver {
             },
         );
         for _ in 0..iterations {
+            let anchors = &self.anchors;
             for_each_colored(
                 &self.coloring.ranges,
                 &mut self.groups,
-                &self.anchors,
                 &mut self.states,
-                |g, anchors, mut states| {
+                |i, g, mut states| {
+                    let anchors = &anchors[i];
                     let mut a = Displacements::gather(states.read(0));
                     let mut b = Displacements::gather(states.read(1));
                     contact_constraint::stabilize(g, anchors, &mut a, &mut b, slop);

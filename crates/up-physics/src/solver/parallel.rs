@@ -91,46 +91,43 @@ impl GroupStates<'_> {
     }
 }
 
-/// Runs `kernel` on every contact group, with the group's entry in `parts`
-/// (its anchors or records), colour by colour (`ranges` from `Coloring`; the
-/// last range, the overflow, always serially). Within a colour no moving body
-/// appears twice (`coloring`), so each task owns the moving states of its groups.
-pub(crate) fn for_each_colored<P, K>(
+/// Runs `kernel` on every contact group, with its index (for the group's
+/// other parts), colour by colour (`ranges` from `Coloring`; the last range,
+/// the overflow, always serially). Within a colour no moving body appears
+/// twice (`coloring`), so each task owns the moving states of its groups.
+pub(crate) fn for_each_colored<K>(
     ranges: &[(u32, u32)],
     groups: &mut [ContactGroup],
-    parts: &[P],
     states: &mut [BodyState],
     kernel: K,
 ) where
-    P: Sync,
-    K: Fn(&mut ContactGroup, &P, GroupStates) + Sync,
+    K: Fn(usize, &mut ContactGroup, GroupStates) + Sync,
 {
-    assert_eq!(groups.len(), parts.len());
     let shared = SharedStates::new(states);
-    let run = |(chunk, parts): (&mut [ContactGroup], &[P])| {
-        for (g, part) in chunk.iter_mut().zip(parts) {
+    let run = |first: usize, chunk: &mut [ContactGroup]| {
+        for (k, g) in chunk.iter_mut().enumerate() {
             let sides = GroupStates {
                 shared,
                 bodies: [g.a, g.b],
                 _states: PhantomData,
             };
-            kernel(g, part, sides);
+            kernel(first + k, g, sides);
         }
     };
     let overflow = ranges.len().saturating_sub(1);
     for (k, &(start, end)) in ranges.iter().enumerate() {
-        let range = start as usize..end as usize;
-        let (colour, parts) = (&mut groups[range.clone()], &parts[range]);
+        let (start, end) = (start as usize, end as usize);
+        let colour = &mut groups[start..end];
         #[cfg(feature = "parallel")]
         if k != overflow && colour.len() > GROUP_CHUNK {
             colour
                 .par_chunks_mut(GROUP_CHUNK)
-                .zip(parts.par_chunks(GROUP_CHUNK))
-                .for_each(run);
+                .enumerate()
+                .for_each(|(c, chunk)| run(start + c * GROUP_CHUNK, chunk));
             continue;
         }
         let _ = (k, overflow);
-        run((colour, parts));
+        run(start, colour);
     }
 }
 
