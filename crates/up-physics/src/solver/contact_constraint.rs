@@ -235,9 +235,18 @@ pub(crate) fn prepare_masses(
 }
 
 /// Block `k` of four states, transposed: one lane per state (`BodyState::block`).
+/// Written out lane by lane, not with `array::map`, whose closure the
+/// compiler left out of line: `k` then stayed a variable and each block went
+/// through the stack as four scalar stores read back as one vector.
 #[inline(always)]
 fn gather_block(s: &[&BodyState; LANES], k: usize) -> [F4; 4] {
-    F4::transpose(s.map(|s| F4::new(s.block(k))))
+    let [s0, s1, s2, s3] = s;
+    F4::transpose([
+        F4::new(s0.block(k)),
+        F4::new(s1.block(k)),
+        F4::new(s2.block(k)),
+        F4::new(s3.block(k)),
+    ])
 }
 
 /// The four bodies on one side of a group, as the velocity passes need them.
