@@ -804,6 +804,18 @@ const FAST_FRACTION: f32 = 0.25;
 impl World {
     /// Advances the world by `def.dt` seconds.
     pub fn step(&mut self) {
+        // Called from outside rayon's pool, the whole step moves onto one of
+        // its threads: otherwise every parallel pass (hundreds a step) would
+        // hand its work across threads and put this one to sleep until done.
+        #[cfg(feature = "parallel")]
+        if rayon::current_thread_index().is_none() {
+            return rayon::scope(|_| self.step_here());
+        }
+        self.step_here()
+    }
+
+    /// `step`, on the calling thread.
+    fn step_here(&mut self) {
         let mut clock = Stopwatch::start();
         let mut counters = Counters::default();
 

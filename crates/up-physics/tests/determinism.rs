@@ -100,7 +100,8 @@ fn bodies_added_and_removed_while_running() {
 
 /// With the `parallel` feature the colours of the solve, and the body passes,
 /// run on rayon's threads; a crowd large enough to split into many tasks
-/// must end bit for bit the same on 1, 2 and 4 threads.
+/// must end bit for bit the same on 1, 2 and 4 threads, and when stepped
+/// from a thread outside any pool.
 #[cfg(feature = "parallel")]
 #[test]
 fn the_state_hash_does_not_depend_on_the_thread_count() {
@@ -141,6 +142,13 @@ fn the_state_hash_does_not_depend_on_the_thread_count() {
     let one = run(1);
     assert_eq!(run(2), one);
     assert_eq!(run(4), one);
+    // Stepped from outside any pool (as the CLI does): `step` moves onto
+    // the global pool's threads.
+    let mut world = crowd();
+    for _ in 0..150 {
+        world.step();
+    }
+    assert_eq!(world.state_hash(), one);
 }
 
 #[test]

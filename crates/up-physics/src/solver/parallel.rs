@@ -19,6 +19,14 @@ const GROUP_CHUNK: usize = 64;
 #[cfg(feature = "parallel")]
 const BODY_CHUNK: usize = 256;
 
+/// Whether `len` items are worth splitting into tasks of `chunk`: more than
+/// one task, and more than one thread to take them (on one thread rayon's
+/// splitting is pure overhead).
+#[cfg(feature = "parallel")]
+fn worth_splitting(len: usize, chunk: usize) -> bool {
+    len > chunk && rayon::current_num_threads() > 1
+}
+
 /// The body states, shared by the tasks of one colour or one body pass.
 #[derive(Clone, Copy)]
 struct SharedStates {
@@ -119,7 +127,7 @@ pub(crate) fn for_each_colored<K>(
         let (start, end) = (start as usize, end as usize);
         let colour = &mut groups[start..end];
         #[cfg(feature = "parallel")]
-        if k != overflow && colour.len() > GROUP_CHUNK {
+        if k != overflow && worth_splitting(colour.len(), GROUP_CHUNK) {
             colour
                 .par_chunks_mut(GROUP_CHUNK)
                 .enumerate()
@@ -154,7 +162,7 @@ pub(crate) fn for_each_group<P, K>(
         }
     };
     #[cfg(feature = "parallel")]
-    if groups.len() > GROUP_CHUNK {
+    if worth_splitting(groups.len(), GROUP_CHUNK) {
         groups
             .par_chunks_mut(GROUP_CHUNK)
             .zip(parts.par_chunks_mut(GROUP_CHUNK))
@@ -178,7 +186,7 @@ where
         }
     };
     #[cfg(feature = "parallel")]
-    if bodies.len() > BODY_CHUNK {
+    if worth_splitting(bodies.len(), BODY_CHUNK) {
         bodies.par_chunks(BODY_CHUNK).for_each(run);
         return;
     }
