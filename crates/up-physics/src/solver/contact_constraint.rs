@@ -229,7 +229,7 @@ pub(crate) fn prepare_masses(
     };
     let tangent = c.tangents();
     c.normal_mass = effective_mass(c.normal);
-    c.tangent_mass = tangent.map(effective_mass);
+    c.tangent_mass = [effective_mass(tangent[0]), effective_mass(tangent[1])];
     let dv = b.point_velocity(arm_b) - a.point_velocity(arm_a);
     anchors.relative_velocity = dv.dot(c.normal);
 }
@@ -467,8 +467,8 @@ pub(crate) fn solve(c: &mut ContactGroup, a: &mut Velocities, b: &mut Velocities
     b.apply_impulse(p, arm_b);
 }
 
-/// The lanes that bounce: contacts that approached faster than `threshold`
-/// and pushed this step.
+/// The lanes that approached faster than `threshold` and pushed this step
+/// (those that bounce, for restitution's threshold).
 #[inline]
 pub(crate) fn bounces(c: &ContactGroup, anchors: &GroupAnchors, threshold: f32) -> F4 {
     !anchors.relative_velocity.simd_gt(F4::splat(-threshold))
