@@ -144,6 +144,9 @@ pub struct StepStats {
     pub awake_count: u32,
     /// Bodies quarantined (taken out as non-finite) since the world was made.
     pub quarantined_count: u64,
+    /// Position passes the step ran: `stabilization_iterations`, twice that
+    /// after an impact.
+    pub position_passes: u32,
 }
 
 /// The most bodies a world holds (handles and buffers are sized by u32).
@@ -862,14 +865,16 @@ impl World {
         self.store_impulses();
         let slop = self.def.stabilization_slop;
         let mut passes = self.def.stabilization_iterations;
-        // An impact (a body moving more than the speculative distance this
-        // step) crushes balloons between others: twice the passes then.
-        let spec = self.def.speculative_distance;
-        let fastest = self.scratch.margin.iter().fold(spec, |m, &x| m.max(x)) - spec;
-        if fastest > spec {
+        // An impact (a contact that closed faster than the speculative
+        // distance a step, and pushed) crushes balloons between others: twice
+        // the passes then. Bodies that are merely fast (rising side by side,
+        // or drifting free) do not count.
+        let impact_speed = self.def.speculative_distance / self.def.dt;
+        if self.scratch.solver.any_impact(impact_speed) {
             passes *= 2;
         }
         self.scratch.solver.stabilize(slop, passes);
+        self.stats.position_passes = passes;
         self.finish_motion();
         counters.restitution_ms = clock.lap();
 
@@ -1107,6 +1112,7 @@ impl World {
             contact_count: s.narrow.contacts.len() as u32,
             awake_count: self.bodies.awake.iter().filter(|&&a| a).count() as u32,
             quarantined_count: self.stats.quarantined_count,
+            position_passes: 0,
         };
     }
 

@@ -210,6 +210,15 @@ impl Solver {
         );
     }
 
+    /// Whether some contact approached faster than `speed` and pushed this
+    /// step (an impact, as opposed to bodies that only pass by or move together).
+    pub fn any_impact(&self, speed: f32) -> bool {
+        self.groups
+            .iter()
+            .zip(&self.anchors)
+            .any(|(g, anchors)| contact_constraint::bounces(g, anchors, speed).any())
+    }
+
     /// Removes overlap deeper than `slop` from the positions, `iterations` passes.
     pub fn stabilize(&mut self, slop: f32, iterations: u32) {
         // The passes move the bodies, never turn them.
