@@ -283,7 +283,7 @@ pub struct SimSpec {
     pub added_mass_coefficient: f32,
     /// Rotational air drag, 1/s; 2. Range [0, 1000].
     pub angular_damping: f32,
-    /// Contact stiffness, Hz; 30. Range (0, 10000].
+    /// Contact stiffness, Hz; 60. Range (0, 10000].
     pub contact_hertz: f32,
     /// Contact damping ratio; 10. Range [0, 1000].
     pub contact_damping_ratio: f32,
