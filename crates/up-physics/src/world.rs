@@ -1168,12 +1168,13 @@ impl World {
                 body
             }
         };
-        let pairs = narrow.runs.iter().flat_map(|&(_, start, count)| {
-            narrow.contacts[start as usize..(start + count) as usize]
+        // The runs cover the contacts in order: coloured in the order prepared below.
+        solver.begin_constraints(
+            narrow
+                .contacts
                 .iter()
-                .map(|c| (c.body_a, state_of(c.body_b)))
-        });
-        solver.begin_constraints(pairs);
+                .map(|c| (c.body_a, state_of(c.body_b))),
+        );
         let nodes = &self.scratch.node_centers;
         let mut i = 0;
         for &(key, start, count) in &narrow.runs {

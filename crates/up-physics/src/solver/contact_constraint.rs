@@ -460,7 +460,10 @@ pub(crate) fn solve(c: &mut ContactGroup, a: &mut Velocities, b: &mut Velocities
     let len_sq = new[0] * new[0] + new[1] * new[1];
     let clamp = len_sq.simd_gt(limit * limit);
     let scale = limit / len_sq.sqrt();
-    new = new.map(|t| select(clamp, t * scale, t));
+    new = [
+        select(clamp, new[0] * scale, new[0]),
+        select(clamp, new[1] * scale, new[1]),
+    ];
     c.tangent_impulse = new;
     let p = (new[0] - old[0]) * tangent[0] + (new[1] - old[1]) * tangent[1];
     a.apply_impulse(-p, arm_a);

@@ -6,7 +6,8 @@
 //!    instructions and can run a colour's groups on several threads (`parallel`);
 //! 2. per substep: integrate velocities (forces), warm start, solve (soft
 //!    push-out of overlap), integrate positions, relax (no push-out, so the
-//!    push-out's velocity does not linger as jitter);
+//!    push-out's velocity does not linger as jitter; each contact's separation
+//!    is first brought to the new positions in the same pass);
 //! 3. restitution (bounces), and store impulses for the next step;
 //! 4. stabilise: overlap beyond a slop is removed from the positions directly.
 
@@ -159,31 +160,35 @@ impl Solver {
     /// constraints instead of two, with the same results: relaxing changes
     /// only velocities, and a refresh reads only positions.
     fn refresh_and_relax(&mut self, relax: &Bias) {
+        self.colour_pass(|g, anchors, sides| {
+            let (a, b) = (Poses::gather(sides.read(0)), Poses::gather(sides.read(1)));
+            contact_constraint::refresh(g, anchors, &a, &b);
+            on_velocities(g, sides, |c, a, b| {
+                contact_constraint::solve(c, a, b, relax)
+            });
+        });
+    }
+
+    /// One pass of `kernel` over the constraints' velocities, colour after colour.
+    fn velocity_pass<K>(&mut self, kernel: K)
+    where
+        K: Fn(&mut ContactGroup, &mut Velocities, &mut Velocities) + Sync,
+    {
+        self.colour_pass(|g, _, sides| on_velocities(g, sides, &kernel));
+    }
+
+    /// One pass of `kernel` over the groups, colour after colour, each with
+    /// its anchors and its bodies' states.
+    fn colour_pass<K>(&mut self, kernel: K)
+    where
+        K: Fn(&mut ContactGroup, &GroupAnchors, GroupStates) + Sync,
+    {
         let anchors = &self.anchors;
         for_each_colored(
             &self.coloring.ranges,
             &mut self.groups,
             &mut self.states,
-            |i, g, sides| {
-                let (a, b) = (Poses::gather(sides.read(0)), Poses::gather(sides.read(1)));
-                contact_constraint::refresh(g, &anchors[i], &a, &b);
-                on_velocities(g, sides, |c, a, b| {
-                    contact_constraint::solve(c, a, b, relax)
-                });
-            },
-        );
-    }
-
-    /// One pass of `kernel` over the constraints, colour after colour.
-    fn velocity_pass<K>(&mut self, kernel: K)
-    where
-        K: Fn(&mut ContactGroup, &mut Velocities, &mut Velocities) + Sync,
-    {
-        for_each_colored(
-            &self.coloring.ranges,
-            &mut self.groups,
-            &mut self.states,
-            |_, g, sides| on_velocities(g, sides, &kernel),
+            |i, g, sides| kernel(g, &anchors[i], sides),
         );
     }
 
@@ -193,28 +198,14 @@ impl Solver {
             return;
         }
         // Most groups have nothing to bounce: test before gathering their bodies.
-        let anchors = &self.anchors;
-        for_each_colored(
-            &self.coloring.ranges,
-            &mut self.groups,
-            &mut self.states,
-            |i, g, sides| {
-                let anchors = &anchors[i];
-                let bounces = contact_constraint::bounces(g, anchors, threshold);
-                if bounces.any() {
-                    on_velocities(g, sides, |c, a, b| {
-                        contact_constraint::apply_restitution(
-                            c,
-                            anchors,
-                            a,
-                            b,
-                            restitution,
-                            bounces,
-                        )
-                    });
-                }
-            },
-        );
+        self.colour_pass(|g, anchors, sides| {
+            let bounces = contact_constraint::bounces(g, anchors, threshold);
+            if bounces.any() {
+                on_velocities(g, sides, |c, a, b| {
+                    contact_constraint::apply_restitution(c, anchors, a, b, restitution, bounces)
+                });
+            }
+        });
     }
 
     /// Whether some contact approached faster than `speed` and pushed this
@@ -238,20 +229,13 @@ impl Solver {
             },
         );
         for _ in 0..iterations {
-            let anchors = &self.anchors;
-            for_each_colored(
-                &self.coloring.ranges,
-                &mut self.groups,
-                &mut self.states,
-                |i, g, mut states| {
-                    let anchors = &anchors[i];
-                    let mut a = Displacements::gather(states.read(0));
-                    let mut b = Displacements::gather(states.read(1));
-                    contact_constraint::stabilize(g, anchors, &mut a, &mut b, slop);
-                    states.write(0, a.scatter());
-                    states.write(1, b.scatter());
-                },
-            );
+            self.colour_pass(|g, anchors, mut states| {
+                let mut a = Displacements::gather(states.read(0));
+                let mut b = Displacements::gather(states.read(1));
+                contact_constraint::stabilize(g, anchors, &mut a, &mut b, slop);
+                states.write(0, a.scatter());
+                states.write(1, b.scatter());
+            });
         }
     }
 }
