@@ -57,6 +57,32 @@ impl WarmStartCache {
         self.impulses.clear();
     }
 
+    /// Appends a pair's impulses (call `index` once done).
+    pub fn push_run(&mut self, key: u64, impulses: &[StoredImpulse]) {
+        let start = self.impulses.len() as u32;
+        self.runs.push((key, start, impulses.len() as u32));
+        self.impulses.extend_from_slice(impulses);
+    }
+
+    /// Drops the pairs of the body with handle index `handle` (removed: its
+    /// index may be handed to a new body).
+    pub fn forget(&mut self, handle: u32) {
+        let involves = |key: u64| (key >> 32) as u32 == handle || key as u32 == handle;
+        if !self.runs.iter().any(|&(key, _, _)| involves(key)) {
+            return;
+        }
+        let (runs, impulses) = (
+            std::mem::take(&mut self.runs),
+            std::mem::take(&mut self.impulses),
+        );
+        for (key, start, count) in runs {
+            if !involves(key) {
+                self.push_run(key, &impulses[start as usize..(start + count) as usize]);
+            }
+        }
+        self.index();
+    }
+
     /// Rebuilds the lookup table after `runs` changed.
     pub fn index(&mut self) {
         let capacity = (self.runs.len() * 2).next_power_of_two().max(16);

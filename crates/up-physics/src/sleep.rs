@@ -13,6 +13,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::body::BodyId;
+use crate::contact::WarmStartCache;
 
 /// Union-find over dense body indices; reused buffers.
 #[derive(Clone, Debug, Default)]
@@ -45,16 +46,28 @@ impl UnionFind {
     }
 }
 
-/// The groups of bodies asleep together.
+/// The groups of bodies asleep together, and the impulses that held them.
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub(crate) struct SleepingIslands {
     /// Island index → its bodies (empty when the slot is free).
     pub members: Vec<Vec<BodyId>>,
     pub free: Vec<u32>,
+    /// Warm-start impulses of the contacts between sleepers, and between a
+    /// sleeper and the room, as they were when the bodies fell asleep. The
+    /// narrowphase skips those pairs, so the step-to-step cache forgets them;
+    /// a pile woken without them starts from no contact force at all, rises
+    /// by a substep's lift before the solver catches it, and its 1–3 cm/s
+    /// jolt wakes the next groups in turn.
+    pub impulses: WarmStartCache,
+    /// Whether membership changed since `impulses` was last sorted out.
+    changed: bool,
+    #[serde(skip)]
+    spare: WarmStartCache,
 }
 
 impl SleepingIslands {
     pub fn add(&mut self, bodies: Vec<BodyId>) -> u32 {
+        self.changed = true;
         if let Some(slot) = self.free.pop() {
             self.members[slot as usize] = bodies;
             slot
@@ -69,6 +82,7 @@ impl SleepingIslands {
         let Some(members) = self.members.get_mut(island as usize) else {
             return;
         };
+        self.changed = true;
         members.retain(|&id| still_asleep(id));
         if members.is_empty() {
             self.free.push(island);
@@ -77,8 +91,40 @@ impl SleepingIslands {
 
     /// Empties an island and returns its bodies.
     pub fn take(&mut self, island: u32) -> Vec<BodyId> {
+        self.changed = true;
         let bodies = std::mem::take(&mut self.members[island as usize]);
         self.free.push(island);
         bodies
+    }
+
+    /// Once the sleepers changed, keeps the impulses of exactly the pairs
+    /// whose bodies both sleep now (`asleep`, by handle index; the room
+    /// counts as asleep): this step's (`warm`) for the pairs the narrowphase
+    /// saw, the kept ones for the others. Bodies woken this step have
+    /// already started from theirs.
+    pub fn keep_impulses(&mut self, warm: &WarmStartCache, asleep: impl Fn(u32) -> bool) {
+        if !self.changed {
+            return;
+        }
+        self.changed = false;
+        let sleeping_pair = |key: u64| asleep((key >> 32) as u32) && asleep(key as u32);
+        let mut kept = std::mem::take(&mut self.spare);
+        kept.clear();
+        for &(key, start, count) in &warm.runs {
+            if sleeping_pair(key) {
+                kept.push_run(
+                    key,
+                    &warm.impulses[start as usize..(start + count) as usize],
+                );
+            }
+        }
+        let old = &self.impulses;
+        for &(key, start, count) in &old.runs {
+            if sleeping_pair(key) && warm.find(key).is_empty() {
+                kept.push_run(key, &old.impulses[start as usize..(start + count) as usize]);
+            }
+        }
+        kept.index();
+        self.spare = std::mem::replace(&mut self.impulses, kept);
     }
 }

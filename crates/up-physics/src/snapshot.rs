@@ -11,8 +11,8 @@ use crate::hash::Fnv1a;
 use crate::world::World;
 
 const MAGIC: &[u8; 6] = b"UPSNAP";
-/// 2: `StepStats` counts quarantined bodies.
-const VERSION: u16 = 2;
+/// 2: `StepStats` counts quarantined bodies. 3: sleeping islands keep their impulses.
+const VERSION: u16 = 3;
 const HEADER: usize = 6 + 2 + 8;
 
 #[derive(Debug, Error, PartialEq)]

@@ -426,6 +426,9 @@ impl World {
         self.scratch.narrow.contacts.clear();
         self.scratch.placed_asleep.clear();
         self.scratch.narrow.runs.clear();
+        // Its handle index may be given to a new body: forget its pairs' impulses.
+        self.warm.forget(id.index);
+        self.sleeping.impulses.forget(id.index);
         let last = self.bodies.len() - 1;
         self.bodies.swap_remove(i);
         self.handles.release(id);
@@ -739,6 +742,7 @@ impl World {
             .map_err(|e| SnapshotError::Invalid(e.to_string()))?;
         world.check_consistency().map_err(SnapshotError::Invalid)?;
         world.warm.index();
+        world.sleeping.impulses.index();
         Ok(world)
     }
 
@@ -1178,7 +1182,11 @@ impl World {
         let nodes = &self.scratch.node_centers;
         let mut i = 0;
         for &(key, start, count) in &narrow.runs {
-            let previous = self.warm.find(key);
+            // A pair with a sleeper just woken starts from its impulses when it fell asleep.
+            let previous = match self.warm.find(key) {
+                [] => self.sleeping.impulses.find(key),
+                found => found,
+            };
             for c in &narrow.contacts[start as usize..(start + count) as usize] {
                 let (a, b) = (c.body_a, state_of(c.body_b));
                 let (leaf_a, leaf_b) = ((c.feature >> 32) as usize, (c.feature as u32) as usize);
@@ -1405,6 +1413,13 @@ impl World {
         }
         s.handle = island_of_root;
         s.stays_awake = falls_asleep;
+        let (slots, awake) = (&self.handles.slots, &self.bodies.awake);
+        self.sleeping.keep_impulses(&self.warm, |handle| {
+            handle == STATIC_BODY
+                || slots
+                    .get(handle as usize)
+                    .is_some_and(|&(_, dense)| dense != u32::MAX && !awake[dense as usize])
+        });
     }
 }
 
