@@ -973,11 +973,11 @@ impl World {
         );
     }
 
-    /// Wakes what a restless body's root sphere reaches. A body moving more
-    /// than the stabilisation slop per step is an impact, whose push must
-    /// travel through the pile at once: it wakes the touched body's whole
-    /// island, as a user action does. A slower one wakes only the bodies it
-    /// touches, and they keep their rest time, so they fall asleep again as
+    /// Wakes what a restless body's root sphere reaches. A body whose surface
+    /// moves faster than the restitution threshold is an impact, whose push
+    /// must travel through the pile at once: it wakes the whole island of
+    /// every body it can reach this step, as a user action does. A slower one
+    /// wakes only the bodies it touches, and they keep their rest time, so they fall asleep again as
     /// soon as nothing restless reaches them (see `update_sleep`): a sleeping
     /// body is static to its awake neighbours, and a slow shuffle in a big
     /// pile wakes only what it moves.
@@ -987,6 +987,9 @@ impl World {
         woken.clear();
         let mut islands = std::mem::take(&mut self.scratch.wake_islands);
         islands.clear();
+        // A surface point at the speed from which contacts bounce: anything
+        // slower is a shuffle, which a sleeping neighbour may take standing.
+        let impact_motion = self.def.restitution_threshold * self.def.dt;
         for &(a, b) in &self.scratch.broad.pairs {
             let (a, b) = (a as usize, b as usize);
             if self.bodies.awake[a] == self.bodies.awake[b] {
@@ -996,7 +999,13 @@ impl World {
             if self.bodies.sleep_time[awake] >= self.def.time_to_sleep {
                 continue;
             }
-            // Touching, not merely within the speculative margin: root spheres overlap.
+            // margin = speculative distance + this step's motion.
+            let margin = self.scratch.margin[awake];
+            let impact = margin - self.def.speculative_distance > impact_motion;
+            // A slow body wakes what it touches (root spheres overlap); an
+            // impact whatever it can reach this step, which would otherwise
+            // stand still for a step as it is struck.
+            let reach = if impact { margin } else { 0.0 };
             let centers = &self.scratch.bound_center;
             if !roots_within(
                 &self.shapes,
@@ -1004,13 +1013,11 @@ impl World {
                 centers,
                 awake,
                 asleep,
-                0.0,
+                reach,
             ) {
                 continue;
             }
-            // margin = speculative distance + this step's motion.
-            let motion = self.scratch.margin[awake] - self.def.speculative_distance;
-            if motion > self.def.stabilization_slop {
+            if impact {
                 islands.push(self.bodies.island[asleep]);
             } else {
                 woken.push(asleep as u32);

@@ -153,3 +153,44 @@ fn a_woken_pile_resumes_without_a_jolt() {
     // starts at 1.4 mm/s (a big one at 10-30 mm/s), with them at 3 µm/s.
     assert!(fastest < 0.0005, "woken, the pile jolts at {fastest} m/s");
 }
+
+/// A balloon thrown at a sleeping one wakes it before they meet, in the step
+/// it will reach it (its motion plus the speculative distance), so that the
+/// struck one gives way at once instead of standing still, static, for a step.
+/// A slow one wakes only what it touches.
+#[test]
+fn a_thrown_balloon_wakes_what_it_will_reach_this_step() {
+    for (speed, wakes) in [(1.0, true), (0.05, false)] {
+        let def = WorldDef {
+            room: Some(room(2.0, 2.0, 2.0, None)),
+            ..WorldDef::default()
+        };
+        let (mut world, shape) = world_with(def);
+        let root = world.shape(shape).unwrap().tree.root().radius;
+        // Root spheres 5 mm apart: not touching, within a 1 m/s step's reach (27 mm).
+        let gap = 0.005;
+        let struck = add(&mut world, shape, Vec3::new(0.0, 1.5, 0.0), Quat::IDENTITY);
+        let x = -(2.0 * root + gap);
+        let thrown = add(&mut world, shape, Vec3::new(x, 1.5, 0.0), Quat::IDENTITY);
+        for _ in 0..(10 * 60) {
+            world.step();
+        }
+        assert_eq!(world.stats().awake_count, 0, "both asleep");
+        let apart = world.center_of_mass(struck).unwrap() - world.center_of_mass(thrown).unwrap();
+        assert!(
+            (apart.length() - (2.0 * root + gap)).abs() < 1e-3,
+            "still {apart} apart"
+        );
+
+        world
+            .set_velocity(thrown, Vec3::new(speed, 0.0, 0.0), Vec3::ZERO)
+            .unwrap();
+        world.step();
+        assert_eq!(
+            world.is_awake(struck),
+            Some(wakes),
+            "thrown at {speed} m/s, the sleeper {}",
+            if wakes { "stayed asleep" } else { "woke" }
+        );
+    }
+}
