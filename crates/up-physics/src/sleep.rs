@@ -6,9 +6,10 @@
 //! stay awake between it and the sleepers. A sleeping body is static to its
 //! awake neighbours. A slow restless body wakes only the sleepers it
 //! touches, and they keep their rest time (so a slow shuffle in a big pile
-//! wakes just what it moves); a fast one (an impact) wakes the touched
-//! bodies' whole groups, as the user does (an impulse, a grab, a removal
-//! next door).
+//! wakes just what it moves); a fast one (an impact: faster than the
+//! restitution threshold) wakes whole the groups of all it can reach this
+//! step, as the user does (an impulse, a grab, a removal next door). A group
+//! keeps its contacts' impulses while it sleeps, so it wakes without a jolt.
 
 use serde::{Deserialize, Serialize};
 
