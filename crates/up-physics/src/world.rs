@@ -977,10 +977,10 @@ impl World {
     /// moves faster than the restitution threshold is an impact, whose push
     /// must travel through the pile at once: it wakes the whole island of
     /// every body it can reach this step, as a user action does. A slower one
-    /// wakes only the bodies it touches, and they keep their rest time, so they fall asleep again as
-    /// soon as nothing restless reaches them (see `update_sleep`): a sleeping
-    /// body is static to its awake neighbours, and a slow shuffle in a big
-    /// pile wakes only what it moves.
+    /// wakes only the bodies it touches, and they keep their rest time, so
+    /// they fall asleep again as soon as nothing restless reaches them (see
+    /// `update_sleep`): a sleeping body is static to its awake neighbours,
+    /// and a slow shuffle in a big pile wakes only what it moves.
     fn wake_touched_bodies(&mut self) -> bool {
         self.scratch.was_awake.clone_from(&self.bodies.awake);
         let mut woken = std::mem::take(&mut self.scratch.wake);
