@@ -176,8 +176,18 @@ impl HandleMap {
     }
 
     pub fn dense(&self, id: BodyId) -> Option<usize> {
-        let &(generation, dense) = self.slots.get(id.index as usize)?;
-        (generation == id.generation && dense != u32::MAX).then_some(dense as usize)
+        let &(generation, _) = self.slots.get(id.index as usize)?;
+        if generation != id.generation {
+            return None;
+        }
+        self.dense_at(id.index)
+    }
+
+    /// The dense index of the live body holding handle index `index`, if any
+    /// (for keys that carry the index without its generation).
+    pub fn dense_at(&self, index: u32) -> Option<usize> {
+        let &(_, dense) = self.slots.get(index as usize)?;
+        (dense != u32::MAX).then_some(dense as usize)
     }
 
     pub fn release(&mut self, id: BodyId) {

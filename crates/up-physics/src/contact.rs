@@ -71,15 +71,20 @@ impl WarmStartCache {
         if !self.runs.iter().any(|&(key, _, _)| involves(key)) {
             return;
         }
-        let (runs, impulses) = (
-            std::mem::take(&mut self.runs),
-            std::mem::take(&mut self.impulses),
-        );
-        for (key, start, count) in runs {
-            if !involves(key) {
-                self.push_run(key, &impulses[start as usize..(start + count) as usize]);
+        // Compacted in place: the runs lie in order, so each moves down.
+        let (mut kept, mut end) = (0, 0u32);
+        for r in 0..self.runs.len() {
+            let (key, start, count) = self.runs[r];
+            if involves(key) {
+                continue;
             }
+            let from = start as usize..(start + count) as usize;
+            self.impulses.copy_within(from, end as usize);
+            self.runs[kept] = (key, end, count);
+            (kept, end) = (kept + 1, end + count);
         }
+        self.runs.truncate(kept);
+        self.impulses.truncate(end as usize);
         self.index();
     }
 
@@ -123,4 +128,35 @@ impl WarmStartCache {
 #[inline]
 pub(crate) fn pair_key(handle_a: u32, handle_b: u32) -> u64 {
     ((handle_a as u64) << 32) | handle_b as u64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn impulse(normal: f32) -> StoredImpulse {
+        StoredImpulse {
+            normal,
+            ..StoredImpulse::default()
+        }
+    }
+
+    #[test]
+    fn forgetting_a_body_keeps_the_other_pairs_whole() {
+        let mut cache = WarmStartCache::default();
+        cache.push_run(pair_key(0, 1), &[impulse(1.0), impulse(2.0)]);
+        cache.push_run(pair_key(1, 2), &[impulse(3.0)]);
+        cache.push_run(pair_key(0, 2), &[impulse(4.0), impulse(5.0)]);
+        cache.push_run(pair_key(2, u32::MAX), &[impulse(6.0)]);
+        cache.index();
+
+        cache.forget(1);
+
+        let normals = |key| cache.find(key).iter().map(|i| i.normal).collect::<Vec<_>>();
+        assert!(cache.find(pair_key(0, 1)).is_empty());
+        assert!(cache.find(pair_key(1, 2)).is_empty());
+        assert_eq!(normals(pair_key(0, 2)), [4.0, 5.0]);
+        assert_eq!(normals(pair_key(2, u32::MAX)), [6.0]);
+        assert_eq!(cache.impulses.len(), 3);
+    }
 }

@@ -1420,12 +1420,9 @@ impl World {
         }
         s.handle = island_of_root;
         s.stays_awake = falls_asleep;
-        let (slots, awake) = (&self.handles.slots, &self.bodies.awake);
+        let (handles, awake) = (&self.handles, &self.bodies.awake);
         self.sleeping.keep_impulses(&self.warm, |handle| {
-            handle == STATIC_BODY
-                || slots
-                    .get(handle as usize)
-                    .is_some_and(|&(_, dense)| dense != u32::MAX && !awake[dense as usize])
+            handle == STATIC_BODY || handles.dense_at(handle).is_some_and(|i| !awake[i])
         });
     }
 }
