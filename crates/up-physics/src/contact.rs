@@ -1,6 +1,8 @@
 //! Contact points as the narrowphase hands them to the solver, and the
 //! impulses kept from one step to the next for warm starting.
 
+use std::ops::Range;
+
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
@@ -124,6 +126,47 @@ impl WarmStartCache {
     }
 }
 
+/// Where this step's contacts find the impulses they resume from: the last
+/// step's, or for a pair of sleepers (or a sleeper and the room) just woken,
+/// those kept from when it fell asleep.
+pub(crate) struct ResumeFrom<'a> {
+    pub fresh: &'a WarmStartCache,
+    pub kept: &'a WarmStartCache,
+}
+
+impl ResumeFrom<'_> {
+    /// The stored impulses of a pair.
+    pub fn find(&self, key: u64) -> &[StoredImpulse] {
+        match self.fresh.find(key) {
+            [] => self.kept.find(key),
+            found => found,
+        }
+    }
+
+    /// Calls `visit(i, previous)` for each contact `i` of `contacts`, in
+    /// order, with the stored impulses of its pair (`runs` cover the
+    /// contacts in order, as the narrowphase gives them): one lookup a pair.
+    pub fn each(
+        &self,
+        runs: &[(u64, u32, u32)],
+        contacts: Range<usize>,
+        mut visit: impl FnMut(usize, &[StoredImpulse]),
+    ) {
+        let mut run =
+            runs.partition_point(|&(_, start, count)| (start + count) as usize <= contacts.start);
+        let mut i = contacts.start;
+        while i < contacts.end {
+            let (key, start, count) = runs[run];
+            let previous = self.find(key);
+            let end = ((start + count) as usize).min(contacts.end);
+            for i in i..end {
+                visit(i, previous);
+            }
+            (i, run) = (end, run + 1);
+        }
+    }
+}
+
 /// Key of a body pair from the handle indices of its bodies (`u32::MAX` for the room).
 #[inline]
 pub(crate) fn pair_key(handle_a: u32, handle_b: u32) -> u64 {
@@ -139,6 +182,45 @@ mod tests {
             normal,
             ..StoredImpulse::default()
         }
+    }
+
+    #[test]
+    fn each_contact_resumes_from_its_pair_this_step_or_when_it_fell_asleep() {
+        let mut fresh = WarmStartCache::default();
+        fresh.push_run(pair_key(0, 1), &[impulse(1.0), impulse(2.0)]);
+        fresh.index();
+        let mut kept = WarmStartCache::default();
+        kept.push_run(pair_key(0, 1), &[impulse(9.0)]); // older: not used
+        kept.push_run(pair_key(2, 3), &[impulse(3.0)]);
+        kept.index();
+        let resume = ResumeFrom {
+            fresh: &fresh,
+            kept: &kept,
+        };
+        // Three pairs over six contacts: (0, 1) ×3, (2, 3) ×1, (4, 5) ×2.
+        let runs = [
+            (pair_key(0, 1), 0, 3),
+            (pair_key(2, 3), 3, 1),
+            (pair_key(4, 5), 4, 2),
+        ];
+        let visited = |range| {
+            let mut seen = Vec::new();
+            resume.each(&runs, range, |i, previous| {
+                seen.push((i, previous.iter().map(|p| p.normal).collect::<Vec<_>>()));
+            });
+            seen
+        };
+        let all = visited(0..6);
+        assert_eq!(
+            all.iter().map(|(i, _)| *i).collect::<Vec<_>>(),
+            [0, 1, 2, 3, 4, 5]
+        );
+        assert_eq!(all[0].1, [1.0, 2.0]);
+        assert_eq!(all[2].1, [1.0, 2.0]);
+        assert_eq!(all[3].1, [3.0]);
+        assert!(all[4].1.is_empty() && all[5].1.is_empty());
+        // A task's range may start and end inside a pair's run.
+        assert_eq!(visited(2..5), all[2..5]);
     }
 
     #[test]

@@ -19,6 +19,7 @@ mod quarantine;
 mod sleep;
 mod snapshot;
 mod solver;
+mod tasks;
 mod world;
 
 pub use body::{BalloonShape, BodyDef, BodyId, ShapeId};

@@ -2,15 +2,27 @@
 //! against sphere tree) and for every awake body against the room (sphere
 //! tree against triangle mesh), with a speculative margin that grows with the
 //! bodies' motion so that fast bodies meet what lies in their way this step.
+//!
+//! With the `parallel` feature and more than one thread, the tests are split
+//! into tasks of consecutive bodies and pairs, each with its own list, joined
+//! in task order afterwards: the contacts come out in the same order, so the
+//! step's results are bit-identical whatever the number of threads.
 
 use glam::Vec3;
+#[cfg(feature = "parallel")]
+use rayon::prelude::*;
 use up_geom::query::contact_tree_tree::contact_tree_tree;
 use up_geom::query::contact_tree_trimesh::contact_tree_trimesh;
 use up_geom::{Contact, PlacedTree, TriMesh};
 
 use crate::body::ShapeData;
-
 use crate::contact::{pair_key, ContactPoint, STATIC_BODY};
+#[cfg(feature = "parallel")]
+use crate::tasks::worth_splitting;
+
+/// Room tests and pairs handed to one task.
+#[cfg(feature = "parallel")]
+const TASK_ITEMS: usize = 256;
 
 /// What the narrowphase reads about the bodies (all dense-indexed).
 pub(crate) struct NarrowInput<'a> {
@@ -35,37 +47,45 @@ impl NarrowInput<'_> {
     }
 }
 
+/// Contact points grouped by pair.
 #[derive(Clone, Debug, Default)]
-pub(crate) struct NarrowPhase {
-    scratch: Vec<Contact>,
-    /// Output: contact points, grouped by pair.
+pub(crate) struct ContactList {
     pub contacts: Vec<ContactPoint>,
-    /// Output: (pair key, first contact, count), one per pair with contacts.
+    /// (pair key, first contact, count), one per pair with contacts.
     pub runs: Vec<(u64, u32, u32)>,
-    /// Output: deepest overlap, m.
+    /// Deepest overlap, m.
     pub max_penetration: f32,
 }
 
-impl NarrowPhase {
-    pub fn update(&mut self, input: &NarrowInput, pairs: &[(u32, u32)], room: Option<&TriMesh>) {
+impl ContactList {
+    pub fn clear(&mut self) {
         self.contacts.clear();
         self.runs.clear();
         self.max_penetration = 0.0;
+    }
 
-        // The room first: it anchors the pile, and Gauss-Seidel converges
-        // fastest from the anchor outwards.
+    /// Appends the contacts of `bodies` with the room, then of `pairs`.
+    fn collect(
+        &mut self,
+        scratch: &mut Vec<Contact>,
+        input: &NarrowInput,
+        room: Option<&TriMesh>,
+        bodies: &[u32],
+        pairs: &[(u32, u32)],
+    ) {
         if let Some(room) = room {
-            for a in 0..input.awake.len() {
-                if !input.awake[a] {
-                    continue;
-                }
-                self.scratch.clear();
-                contact_tree_trimesh(input.placed(a), room, input.margin[a], &mut self.scratch);
-                let key = pair_key(input.handle[a], STATIC_BODY);
-                self.push_run(key, a as u32, STATIC_BODY);
+            for &a in bodies {
+                scratch.clear();
+                contact_tree_trimesh(
+                    input.placed(a as usize),
+                    room,
+                    input.margin[a as usize],
+                    scratch,
+                );
+                let key = pair_key(input.handle[a as usize], STATIC_BODY);
+                self.push_run(scratch, key, a, STATIC_BODY);
             }
         }
-
         for &(i, j) in pairs {
             // Order each pair by handle index: the warm-start key must not
             // depend on dense order, which removal changes.
@@ -75,24 +95,24 @@ impl NarrowPhase {
                 (j, i)
             };
             let margin = input.margin[a as usize] + input.margin[b as usize];
-            self.scratch.clear();
+            scratch.clear();
             contact_tree_tree(
                 input.placed(a as usize),
                 input.placed(b as usize),
                 margin,
-                &mut self.scratch,
+                scratch,
             );
             let key = pair_key(input.handle[a as usize], input.handle[b as usize]);
-            self.push_run(key, a, b);
+            self.push_run(scratch, key, a, b);
         }
     }
 
-    fn push_run(&mut self, key: u64, a: u32, b: u32) {
-        if self.scratch.is_empty() {
+    fn push_run(&mut self, found: &[Contact], key: u64, a: u32, b: u32) {
+        if found.is_empty() {
             return;
         }
         let start = self.contacts.len() as u32;
-        for c in &self.scratch {
+        for c in found {
             self.max_penetration = self.max_penetration.max(c.depth());
             self.contacts.push(ContactPoint {
                 body_a: a,
@@ -104,6 +124,90 @@ impl NarrowPhase {
                 feature: ((c.feature_a as u64) << 32) | c.feature_b as u64,
             });
         }
-        self.runs.push((key, start, self.scratch.len() as u32));
+        self.runs.push((key, start, found.len() as u32));
+    }
+
+    /// Appends another list (its runs moved past this one's contacts).
+    #[cfg(feature = "parallel")]
+    fn append(&mut self, other: &ContactList) {
+        let offset = self.contacts.len() as u32;
+        self.contacts.extend_from_slice(&other.contacts);
+        self.runs.extend(
+            other
+                .runs
+                .iter()
+                .map(|&(key, start, count)| (key, start + offset, count)),
+        );
+        self.max_penetration = self.max_penetration.max(other.max_penetration);
+    }
+}
+
+#[derive(Clone, Debug, Default)]
+pub(crate) struct NarrowPhase {
+    /// Output: this step's contacts.
+    pub found: ContactList,
+    scratch: Vec<Contact>,
+    /// Awake bodies, tested against the room.
+    room_tests: Vec<u32>,
+    /// Each task's scratch and contacts (kept between steps for their buffers).
+    #[cfg(feature = "parallel")]
+    tasks: Vec<(Vec<Contact>, ContactList)>,
+}
+
+impl NarrowPhase {
+    pub fn update(&mut self, input: &NarrowInput, pairs: &[(u32, u32)], room: Option<&TriMesh>) {
+        self.found.clear();
+        // The room first: it anchors the pile, and Gauss-Seidel converges
+        // fastest from the anchor outwards.
+        self.room_tests.clear();
+        if room.is_some() {
+            let awake = input.awake.iter().enumerate().filter(|(_, &awake)| awake);
+            self.room_tests.extend(awake.map(|(a, _)| a as u32));
+        }
+        #[cfg(feature = "parallel")]
+        if worth_splitting(self.room_tests.len() + pairs.len(), TASK_ITEMS) {
+            return self.update_in_tasks(input, pairs, room);
+        }
+        self.found
+            .collect(&mut self.scratch, input, room, &self.room_tests, pairs);
+    }
+
+    #[cfg(feature = "parallel")]
+    fn update_in_tasks(
+        &mut self,
+        input: &NarrowInput,
+        pairs: &[(u32, u32)],
+        room: Option<&TriMesh>,
+    ) {
+        let bodies = &self.room_tests;
+        let items = bodies.len() + pairs.len();
+        let task_count = items.div_ceil(TASK_ITEMS);
+        if self.tasks.len() < task_count {
+            self.tasks.resize_with(task_count, Default::default);
+        }
+        let tasks = &mut self.tasks[..task_count];
+        tasks
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(t, (scratch, list))| {
+                // Items [first, end) of the bodies followed by the pairs.
+                let (first, end) = (t * TASK_ITEMS, ((t + 1) * TASK_ITEMS).min(items));
+                let split = |at: usize| at.min(bodies.len());
+                let pair_range =
+                    first.max(bodies.len()) - bodies.len()..end.max(bodies.len()) - bodies.len();
+                list.clear();
+                list.collect(
+                    scratch,
+                    input,
+                    room,
+                    &bodies[split(first)..split(end)],
+                    &pairs[pair_range],
+                );
+            });
+        let total = tasks.iter().map(|(_, list)| list.contacts.len()).sum();
+        self.found.contacts.reserve(total);
+        for (_, list) in tasks.iter() {
+            self.found.append(list);
+        }
     }
 }

@@ -8,7 +8,7 @@ use up_geom::{Pose, Sphere, TriMesh};
 
 use crate::body::{BalloonShape, Bodies, BodyDef, BodyId, HandleMap, ShapeData, ShapeId};
 use crate::broad_phase::BroadPhase;
-use crate::contact::{WarmStartCache, STATIC_BODY};
+use crate::contact::{ResumeFrom, StoredImpulse, WarmStartCache, STATIC_BODY};
 use crate::counters::{Counters, Stopwatch};
 use crate::forces::atmosphere::Atmosphere;
 use crate::forces::buoyancy::buoyancy_force;
@@ -22,8 +22,16 @@ use crate::sleep::{SleepingIslands, UnionFind};
 use crate::snapshot::{self, SnapshotError};
 use crate::solver::body_state::{world_inverse_inertia, BodyState};
 use crate::solver::contact_constraint;
+#[cfg(feature = "parallel")]
+use crate::solver::contact_constraint::PreparedContact;
 use crate::solver::integrate::{BodyForces, GrabSpring};
 use crate::solver::{SolveParams, Solver};
+#[cfg(feature = "parallel")]
+use crate::tasks::{fill_chunks, worth_splitting};
+
+/// Contacts one task prepares.
+#[cfg(feature = "parallel")]
+const PREPARE_CHUNK: usize = 1024;
 
 /// Everything that defines a world, with documented defaults (`Default`).
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -166,6 +174,9 @@ struct Scratch {
     handle: Vec<u32>,
     broad: BroadPhase,
     narrow: NarrowPhase,
+    /// The contacts prepared in tasks, before they are gathered into groups.
+    #[cfg(feature = "parallel")]
+    prepared: Vec<PreparedContact>,
     solver: Solver,
     islands: UnionFind,
     /// Per body, in `update_sleep`: which stay awake, then which fall asleep.
@@ -423,9 +434,8 @@ impl World {
         }
         // Dense indices shift: last step's contacts no longer describe this
         // world, nor do the placed nodes of the sleepers.
-        self.scratch.narrow.contacts.clear();
+        self.scratch.narrow.found.clear();
         self.scratch.placed_asleep.clear();
-        self.scratch.narrow.runs.clear();
         // Its handle index may be given to a new body: forget its pairs' impulses.
         self.warm.forget(id.index);
         self.sleeping.impulses.forget(id.index);
@@ -703,7 +713,7 @@ impl World {
     pub fn max_penetration_now(&mut self) -> f32 {
         self.place_bodies(true);
         self.find_contacts(true);
-        self.scratch.narrow.max_penetration
+        self.scratch.narrow.found.max_penetration
     }
 
     /// FNV-1a over every body's handle, pose, velocity and sleep state, in dense order.
@@ -1119,9 +1129,9 @@ impl World {
         s.narrow
             .update(&input, &s.broad.pairs, self.def.room.as_ref());
         self.stats = StepStats {
-            max_penetration: s.narrow.max_penetration,
+            max_penetration: s.narrow.found.max_penetration,
             pair_count: s.broad.pairs.len() as u32,
-            contact_count: s.narrow.contacts.len() as u32,
+            contact_count: s.narrow.found.contacts.len() as u32,
             awake_count: self.bodies.awake.iter().filter(|&&a| a).count() as u32,
             quarantined_count: self.stats.quarantined_count,
             position_passes: 0,
@@ -1169,52 +1179,7 @@ impl World {
         }
         // The room: one static state after the bodies.
         solver.states.push(BodyState::STATIC);
-        let room_state = n as u32;
-
-        let narrow = &self.scratch.narrow;
-        let state_of = |body: u32| {
-            if body == STATIC_BODY {
-                room_state
-            } else {
-                body
-            }
-        };
-        // The runs cover the contacts in order: coloured in the order prepared below.
-        solver.begin_constraints(
-            narrow
-                .contacts
-                .iter()
-                .map(|c| (c.body_a, state_of(c.body_b))),
-        );
-        let nodes = &self.scratch.node_centers;
-        let mut i = 0;
-        for &(key, start, count) in &narrow.runs {
-            // A pair with a sleeper just woken starts from its impulses when it fell asleep.
-            let previous = match self.warm.find(key) {
-                [] => self.sleeping.impulses.find(key),
-                found => found,
-            };
-            for c in &narrow.contacts[start as usize..(start + count) as usize] {
-                let (a, b) = (c.body_a, state_of(c.body_b));
-                let (leaf_a, leaf_b) = ((c.feature >> 32) as usize, (c.feature as u32) as usize);
-                let sphere_a = nodes[self.scratch.node_start[a as usize] as usize + leaf_a];
-                let (center_b, sphere_b) = if c.body_b == STATIC_BODY {
-                    (c.point_b, c.point_b)
-                } else {
-                    let start = self.scratch.node_start[b as usize] as usize;
-                    (self.bodies.center[b as usize], nodes[start + leaf_b])
-                };
-                let prepared = contact_constraint::prepare(
-                    c,
-                    (a, b),
-                    (self.bodies.center[a as usize], center_b),
-                    (sphere_a, sphere_b),
-                    previous,
-                );
-                solver.set_constraint(i, &prepared);
-                i += 1;
-            }
-        }
+        self.prepare_contacts(n as u32);
 
         let grab = self.grab?;
         let i = self.handles.dense(grab.body)?;
@@ -1235,19 +1200,80 @@ impl World {
         })
     }
 
-    fn store_impulses(&mut self) {
-        self.warm.clear();
-        let narrow = &self.scratch.narrow;
-        let solver = &self.scratch.solver;
-        for &(key, start, count) in &narrow.runs {
-            self.warm
-                .runs
-                .push((key, self.warm.impulses.len() as u32, count));
-            for i in start as usize..(start + count) as usize {
-                let stored = solver.stored(i);
-                self.warm.impulses.push(stored);
+    /// The contact constraints, each warm-started from its impulse last
+    /// step; the room is solver state `room_state`. With several threads the
+    /// contacts are prepared in tasks (in the narrowphase's order, one lookup
+    /// a pair), then gathered into their groups in tasks; on one, each goes
+    /// straight to its slot.
+    fn prepare_contacts(&mut self, room_state: u32) {
+        let found = &self.scratch.narrow.found;
+        let state_of = |body: u32| {
+            if body == STATIC_BODY {
+                room_state
+            } else {
+                body
             }
+        };
+        // A pair with a sleeper just woken resumes from its impulses when it fell asleep.
+        let resume = ResumeFrom {
+            fresh: &self.warm,
+            kept: &self.sleeping.impulses,
+        };
+        let (nodes, node_start) = (&self.scratch.node_centers, &self.scratch.node_start);
+        let center = &self.bodies.center;
+        let prepare = |i: usize, previous: &[StoredImpulse]| {
+            let c = &found.contacts[i];
+            let (a, b) = (c.body_a, state_of(c.body_b));
+            let (leaf_a, leaf_b) = ((c.feature >> 32) as usize, (c.feature as u32) as usize);
+            let sphere_a = nodes[node_start[a as usize] as usize + leaf_a];
+            let (center_b, sphere_b) = if c.body_b == STATIC_BODY {
+                (c.point_b, c.point_b)
+            } else {
+                (
+                    center[b as usize],
+                    nodes[node_start[b as usize] as usize + leaf_b],
+                )
+            };
+            contact_constraint::prepare(
+                c,
+                (a, b),
+                (center[a as usize], center_b),
+                (sphere_a, sphere_b),
+                previous,
+            )
+        };
+        let pairs = found
+            .contacts
+            .iter()
+            .map(|c| (c.body_a, state_of(c.body_b)));
+        let (count, solver) = (found.contacts.len(), &mut self.scratch.solver);
+        #[cfg(feature = "parallel")]
+        if worth_splitting(count, PREPARE_CHUNK) {
+            let prepared = &mut self.scratch.prepared;
+            prepared.resize(count, PreparedContact::default());
+            fill_chunks(prepared, PREPARE_CHUNK, |first, out| {
+                resume.each(&found.runs, first..first + out.len(), |i, previous| {
+                    out[i - first] = prepare(i, previous);
+                });
+            });
+            solver.set_constraints(pairs, prepared);
+            return;
         }
+        // The runs cover the contacts in order: coloured in the order prepared below.
+        solver.begin_constraints(pairs);
+        resume.each(&found.runs, 0..count, |i, previous| {
+            solver.set_constraint(i, &prepare(i, previous));
+        });
+    }
+
+    fn store_impulses(&mut self) {
+        // One impulse per contact, in order: the runs stay as they are.
+        let found = &self.scratch.narrow.found;
+        self.warm.runs.clone_from(&found.runs);
+        self.warm
+            .impulses
+            .resize(found.contacts.len(), StoredImpulse::default());
+        self.scratch.solver.store_all(&mut self.warm.impulses);
         self.warm.index();
     }
 
@@ -1389,7 +1415,7 @@ impl World {
         }
         let falls_asleep = stays;
         s.islands.reset(n);
-        for c in &s.narrow.contacts {
+        for c in &s.narrow.found.contacts {
             let (a, b) = (c.body_a as usize, c.body_b as usize);
             if c.body_b != STATIC_BODY
                 && c.separation < self.def.speculative_distance
@@ -1445,7 +1471,7 @@ impl World {
     /// The contact points of the last step (empty after a body was removed since).
     pub fn contact_points(&self) -> impl Iterator<Item = ContactInfo> + '_ {
         let n = self.bodies.len();
-        let contacts = &self.scratch.narrow.contacts;
+        let contacts = &self.scratch.narrow.found.contacts;
         let valid = contacts.iter().all(|c| {
             (c.body_a as usize) < n && (c.body_b == STATIC_BODY || (c.body_b as usize) < n)
         });

@@ -11,6 +11,10 @@
 use super::body_state::BodyState;
 use super::lanes::LANES;
 
+/// Marks a slot that holds no constraint.
+#[cfg(feature = "parallel")]
+pub(crate) const EMPTY_LANE: u32 = u32::MAX;
+
 /// Colours a body can carry (bits of a `u64`).
 const COLORS: usize = 64;
 
@@ -26,6 +30,9 @@ pub(crate) struct Coloring {
     pub ranges: Vec<(u32, u32)>,
     /// For each constraint in the narrowphase's order, its slot: group · `LANES` + lane.
     pub slot: Vec<u32>,
+    /// For each slot, its constraint (`EMPTY_LANE` if none): `slot` inverted.
+    #[cfg(feature = "parallel")]
+    constraint_at: Vec<u32>,
     /// Groups in all.
     pub groups: usize,
 }
@@ -90,6 +97,17 @@ impl Coloring {
             self.slot.push(slot);
         }
     }
+
+    /// For each slot, its constraint (`EMPTY_LANE` if none): `slot` inverted.
+    #[cfg(feature = "parallel")]
+    pub fn constraint_at(&mut self) -> &[u32] {
+        self.constraint_at.clear();
+        self.constraint_at.resize(self.groups * LANES, EMPTY_LANE);
+        for (i, &slot) in self.slot.iter().enumerate() {
+            self.constraint_at[slot as usize] = i as u32;
+        }
+        &self.constraint_at
+    }
 }
 
 #[cfg(test)]
@@ -138,6 +156,17 @@ mod tests {
         slots.sort_unstable();
         slots.dedup();
         assert_eq!(slots.len(), pairs.len());
+        #[cfg(feature = "parallel")]
+        {
+            // ... and is found there.
+            let slot = coloring.slot.clone();
+            let constraint_at = coloring.constraint_at();
+            for (i, &slot) in slot.iter().enumerate() {
+                assert_eq!(constraint_at[slot as usize], i as u32);
+            }
+            let empty = constraint_at.iter().filter(|&&i| i == EMPTY_LANE);
+            assert_eq!(empty.count(), coloring.groups * LANES - pairs.len());
+        }
         assert!(slots
             .iter()
             .all(|&s| (s as usize) < coloring.groups * LANES));

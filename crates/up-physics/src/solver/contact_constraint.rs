@@ -20,7 +20,7 @@ use super::softness::Softness;
 use crate::contact::{ContactPoint, StoredImpulse};
 
 /// One prepared contact, before it takes its lane in a group.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct PreparedContact {
     /// Solver state indices (the room is the last, static state).
     pub a: u32,
@@ -44,6 +44,18 @@ pub(crate) struct PreparedContact {
     pub normal_impulse: f32,
     pub tangent_impulse: [f32; 2],
     pub feature: u64,
+}
+
+impl PreparedContact {
+    /// An empty lane: the static room on both sides, nothing else.
+    #[cfg(feature = "parallel")]
+    pub fn empty(room: u32) -> PreparedContact {
+        PreparedContact {
+            a: room,
+            b: room,
+            ..PreparedContact::default()
+        }
+    }
 }
 
 /// Four contact constraints, field by field (structure of arrays): what the
@@ -122,6 +134,37 @@ pub(crate) fn set_lane(
     anchors.center_offset.set_lane(i, c.center_offset);
     set(&mut anchors.adjusted_separation, i, c.adjusted_separation);
     records.feature[i] = c.feature;
+}
+
+/// A group's three parts from its four lanes' prepared contacts, as
+/// `set_lane` on an empty group would leave them (an empty lane is
+/// `PreparedContact::empty`).
+#[cfg(feature = "parallel")]
+pub(crate) fn assemble(c: [&PreparedContact; LANES]) -> (ContactGroup, GroupAnchors, GroupRecords) {
+    let v = |f: fn(&PreparedContact) -> Vec3| V4::from_lanes([f(c[0]), f(c[1]), f(c[2]), f(c[3])]);
+    let s = |f: fn(&PreparedContact) -> f32| F4::new([f(c[0]), f(c[1]), f(c[2]), f(c[3])]);
+    let group = ContactGroup {
+        a: [c[0].a, c[1].a, c[2].a, c[3].a],
+        b: [c[0].b, c[1].b, c[2].b, c[3].b],
+        normal: v(|c| c.normal),
+        tangent: v(|c| c.tangent[0]),
+        normal_impulse: s(|c| c.normal_impulse),
+        tangent_impulse: [s(|c| c.tangent_impulse[0]), s(|c| c.tangent_impulse[1])],
+        ..ContactGroup::default()
+    };
+    let anchors = GroupAnchors {
+        r_a: v(|c| c.r_a),
+        r_b: v(|c| c.r_b),
+        radius_a: s(|c| c.radius_a),
+        radius_b: s(|c| c.radius_b),
+        center_offset: v(|c| c.center_offset),
+        adjusted_separation: s(|c| c.adjusted_separation),
+        ..GroupAnchors::default()
+    };
+    let records = GroupRecords {
+        feature: [c[0].feature, c[1].feature, c[2].feature, c[3].feature],
+    };
+    (group, anchors, records)
 }
 
 impl ContactGroup {

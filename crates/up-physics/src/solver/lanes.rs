@@ -43,7 +43,8 @@ impl V4 {
         V4 { x, y, z }
     }
 
-    #[cfg(test)]
+    #[cfg(any(test, feature = "parallel"))]
+    #[inline]
     pub fn from_lanes(v: [Vec3; LANES]) -> V4 {
         V4 {
             x: F4::new([v[0].x, v[1].x, v[2].x, v[3].x]),

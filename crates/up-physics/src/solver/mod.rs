@@ -30,6 +30,10 @@ use lanes::LANES;
 use parallel::{for_each_body, for_each_colored, for_each_group, GroupStates};
 
 use crate::contact::StoredImpulse;
+use crate::tasks::fill_chunks;
+
+/// Constraints whose impulses one task stores.
+const STORE_CHUNK: usize = 1024;
 
 /// Buffers reused from step to step.
 #[derive(Clone, Debug, Default)]
@@ -103,8 +107,49 @@ impl Solver {
         contact_constraint::set_lane(parts, slot % LANES, c);
     }
 
+    /// `begin_constraints` and `set_constraint` for all the `prepared`
+    /// constraints at once, group by group on rayon's threads: each group is
+    /// gathered from its lanes' constraints and written whole by one task.
+    #[cfg(feature = "parallel")]
+    pub fn set_constraints(
+        &mut self,
+        pairs: impl Iterator<Item = (u32, u32)>,
+        prepared: &[PreparedContact],
+    ) {
+        self.coloring.assign(pairs, &self.states);
+        let room = (self.states.len() - 1) as u32;
+        let n = self.coloring.groups;
+        // Each group is written whole below: only the lengths matter here.
+        self.groups.resize(n, ContactGroup::default());
+        self.anchors.resize(n, GroupAnchors::default());
+        self.records.resize(n, GroupRecords::default());
+        let constraint_at = self.coloring.constraint_at();
+        let empty = PreparedContact::empty(room);
+        parallel::fill_groups(
+            (&mut self.groups, &mut self.anchors, &mut self.records),
+            |g, (group, anchors, records)| {
+                let lane = |k: usize| match constraint_at[g * LANES + k] {
+                    coloring::EMPTY_LANE => &empty,
+                    i => &prepared[i as usize],
+                };
+                (*group, *anchors, *records) =
+                    contact_constraint::assemble([lane(0), lane(1), lane(2), lane(3)]);
+            },
+        );
+    }
+
+    /// What every constraint hands to the next step, in the narrowphase's
+    /// order (`out` holds one per constraint).
+    pub fn store_all(&self, out: &mut [StoredImpulse]) {
+        fill_chunks(out, STORE_CHUNK, |first, out| {
+            for (k, stored) in out.iter_mut().enumerate() {
+                *stored = self.stored(first + k);
+            }
+        });
+    }
+
     /// What the narrowphase's `i`-th contact hands to the next step.
-    pub fn stored(&self, i: usize) -> StoredImpulse {
+    fn stored(&self, i: usize) -> StoredImpulse {
         let slot = self.coloring.slot[i] as usize;
         let g = slot / LANES;
         self.groups[g].stored(&self.records[g], slot % LANES)

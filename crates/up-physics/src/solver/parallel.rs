@@ -10,7 +10,11 @@ use rayon::prelude::*;
 
 use super::body_state::BodyState;
 use super::contact_constraint::ContactGroup;
+#[cfg(feature = "parallel")]
+use super::contact_constraint::{GroupAnchors, GroupRecords};
 use super::lanes::LANES;
+#[cfg(feature = "parallel")]
+use crate::tasks::worth_splitting;
 
 /// Contact groups (of four constraints) handed to one task; below this a pass stays serial.
 #[cfg(feature = "parallel")]
@@ -18,14 +22,6 @@ const GROUP_CHUNK: usize = 64;
 /// Bodies handed to one task.
 #[cfg(feature = "parallel")]
 const BODY_CHUNK: usize = 256;
-
-/// Whether `len` items are worth splitting into tasks of `chunk`: more than
-/// one task, and more than one thread to take them (on one thread rayon's
-/// splitting is pure overhead).
-#[cfg(feature = "parallel")]
-fn worth_splitting(len: usize, chunk: usize) -> bool {
-    len > chunk && rayon::current_num_threads() > 1
-}
 
 /// The body states, shared by the tasks of one colour or one body pass.
 #[derive(Clone, Copy)]
@@ -170,6 +166,39 @@ pub(crate) fn for_each_group<P, K>(
         return;
     }
     run((groups, parts));
+}
+
+/// The three parts of a run of contact groups (see `Solver`).
+#[cfg(feature = "parallel")]
+type GroupParts<'a> = (
+    &'a mut [ContactGroup],
+    &'a mut [GroupAnchors],
+    &'a mut [GroupRecords],
+);
+
+/// Runs `fill` on every contact group's three parts, with the group's index.
+#[cfg(feature = "parallel")]
+pub(crate) fn fill_groups<F>((groups, anchors, records): GroupParts, fill: F)
+where
+    F: Fn(usize, (&mut ContactGroup, &mut GroupAnchors, &mut GroupRecords)) + Sync,
+{
+    assert!(groups.len() == anchors.len() && groups.len() == records.len());
+    let run = |first: usize, (groups, anchors, records): GroupParts| {
+        let parts = groups.iter_mut().zip(anchors).zip(records);
+        for (k, ((g, anchors), records)) in parts.enumerate() {
+            fill(first + k, (g, anchors, records));
+        }
+    };
+    if worth_splitting(groups.len(), GROUP_CHUNK) {
+        groups
+            .par_chunks_mut(GROUP_CHUNK)
+            .zip(anchors.par_chunks_mut(GROUP_CHUNK))
+            .zip(records.par_chunks_mut(GROUP_CHUNK))
+            .enumerate()
+            .for_each(|(c, ((g, a), r))| run(c * GROUP_CHUNK, (g, a, r)));
+        return;
+    }
+    run(0, (groups, anchors, records));
 }
 
 /// Runs `kernel` on the state (and index) of every body in `bodies`, which
