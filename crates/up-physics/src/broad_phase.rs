@@ -13,11 +13,16 @@
 //! covers, and large bodies meet each other by sweep and prune along x.
 //!
 //! Pairs come out in a fixed order (by body, then cell, then body) so the
-//! step is deterministic.
+//! step is deterministic, also when the bodies' lookups run in tasks on
+//! several threads (`parallel` feature).
 
 use glam::Vec3;
 
 use crate::hash::mix64;
+use crate::tasks::collect_in_order;
+
+/// Bodies whose neighbours one task looks up.
+const BODY_CHUNK: usize = 512;
 
 #[derive(Clone, Debug, Default)]
 pub(crate) struct BroadPhase {
@@ -29,6 +34,8 @@ pub(crate) struct BroadPhase {
     large: Vec<u32>,
     /// Output: dense index pairs (a < b), at least one of them awake.
     pub pairs: Vec<(u32, u32)>,
+    /// Each task's pairs (kept between steps for their buffers).
+    task_pairs: Vec<Vec<(u32, u32)>>,
 }
 
 impl BroadPhase {
@@ -79,17 +86,26 @@ impl BroadPhase {
         // bodies is found from the lower index, an awake-asleep pair from
         // the awake one; two sleepers make no pair, so a sleeping pile costs
         // only its place in the grid.
+        // In tasks of consecutive bodies, joined in body order.
         let grid = Grid::of(&self.cell_of, &self.start, &self.items);
-        for i in 0..n {
-            if radius[i] > cell_radius || !awake[i] {
-                continue;
-            }
-            grid.near(i, |j| {
-                if j > i || !awake[j] {
-                    consider(&mut self.pairs, i as u32, j as u32, center, radius, awake);
+        collect_in_order(
+            n,
+            BODY_CHUNK,
+            &mut self.task_pairs,
+            &mut self.pairs,
+            |bodies, pairs| {
+                for i in bodies {
+                    if radius[i] > cell_radius || !awake[i] {
+                        continue;
+                    }
+                    grid.near(i, |j| {
+                        if j > i || !awake[j] {
+                            consider(pairs, i as u32, j as u32, center, radius, awake);
+                        }
+                    });
                 }
-            });
-        }
+            },
+        );
 
         // Large bodies against ordinary ones: every cell their sphere can reach.
         for &l in &self.large {

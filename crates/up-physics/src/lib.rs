@@ -9,6 +9,7 @@
 
 mod body;
 mod broad_phase;
+mod buffers;
 mod contact;
 mod counters;
 pub mod forces;

@@ -16,6 +16,7 @@ use up_geom::query::contact_tree_trimesh::contact_tree_trimesh;
 use up_geom::{Contact, PlacedTree, TriMesh};
 
 use crate::body::ShapeData;
+use crate::buffers::{clear_to_refill, with_headroom};
 use crate::contact::{pair_key, ContactPoint, STATIC_BODY};
 #[cfg(feature = "parallel")]
 use crate::tasks::worth_splitting;
@@ -61,6 +62,16 @@ impl ContactList {
     pub fn clear(&mut self) {
         self.contacts.clear();
         self.runs.clear();
+        self.max_penetration = 0.0;
+    }
+
+    /// Empties the list, with room for the contacts and runs it held and
+    /// the headroom: pushed one by one, they would otherwise double the
+    /// buffers whenever they outgrow them.
+    fn clear_to_refill(&mut self) {
+        let (contacts, runs) = (self.contacts.len(), self.runs.len());
+        clear_to_refill(&mut self.contacts, with_headroom(contacts));
+        clear_to_refill(&mut self.runs, with_headroom(runs));
         self.max_penetration = 0.0;
     }
 
@@ -156,7 +167,8 @@ pub(crate) struct NarrowPhase {
 
 impl NarrowPhase {
     pub fn update(&mut self, input: &NarrowInput, pairs: &[(u32, u32)], room: Option<&TriMesh>) {
-        self.found.clear();
+        // The contacts change little from one step to the next.
+        self.found.clear_to_refill();
         // The room first: it anchors the pile, and Gauss-Seidel converges
         // fastest from the anchor outwards.
         self.room_tests.clear();
@@ -190,22 +202,18 @@ impl NarrowPhase {
             .par_iter_mut()
             .enumerate()
             .for_each(|(t, (scratch, list))| {
-                // Items [first, end) of the bodies followed by the pairs.
+                // Items [first, end): the room tests first, then the pairs.
                 let (first, end) = (t * TASK_ITEMS, ((t + 1) * TASK_ITEMS).min(items));
-                let split = |at: usize| at.min(bodies.len());
-                let pair_range =
-                    first.max(bodies.len()) - bodies.len()..end.max(bodies.len()) - bodies.len();
+                let tests = bodies.len();
+                let room_tests = &bodies[first.min(tests)..end.min(tests)];
+                let pairs = &pairs[first.max(tests) - tests..end.max(tests) - tests];
                 list.clear();
-                list.collect(
-                    scratch,
-                    input,
-                    room,
-                    &bodies[split(first)..split(end)],
-                    &pairs[pair_range],
-                );
+                list.collect(scratch, input, room, room_tests, pairs);
             });
-        let total = tasks.iter().map(|(_, list)| list.contacts.len()).sum();
-        self.found.contacts.reserve(total);
+        let contacts = tasks.iter().map(|(_, list)| list.contacts.len()).sum();
+        let runs = tasks.iter().map(|(_, list)| list.runs.len()).sum();
+        clear_to_refill(&mut self.found.contacts, contacts);
+        clear_to_refill(&mut self.found.runs, runs);
         for (_, list) in tasks.iter() {
             self.found.append(list);
         }

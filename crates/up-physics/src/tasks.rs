@@ -1,6 +1,8 @@
 //! Splitting a pass into tasks for rayon's threads (`parallel` feature), or
 //! running it whole on the calling thread.
 
+use std::ops::Range;
+
 #[cfg(feature = "parallel")]
 use rayon::prelude::*;
 
@@ -30,4 +32,41 @@ where
     }
     let _ = chunk;
     fill(0, items);
+}
+
+/// Appends to `out` what `collect(range, out)` pushes for `0..len`: split
+/// into runs of `chunk` on rayon's threads when worth it, each pushing into a
+/// list of its own (from `lists`, kept for their buffers), joined in order,
+/// so `out` ends the same as with one call over `0..len`.
+pub(crate) fn collect_in_order<T, F>(
+    len: usize,
+    chunk: usize,
+    lists: &mut Vec<Vec<T>>,
+    out: &mut Vec<T>,
+    collect: F,
+) where
+    T: Copy + Send,
+    F: Fn(Range<usize>, &mut Vec<T>) + Sync,
+{
+    #[cfg(feature = "parallel")]
+    if worth_splitting(len, chunk) {
+        let tasks = len.div_ceil(chunk);
+        if lists.len() < tasks {
+            lists.resize_with(tasks, Vec::new);
+        }
+        lists[..tasks]
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(k, list)| {
+                list.clear();
+                collect(k * chunk..((k + 1) * chunk).min(len), list);
+            });
+        out.reserve(lists[..tasks].iter().map(Vec::len).sum());
+        for list in &lists[..tasks] {
+            out.extend_from_slice(list);
+        }
+        return;
+    }
+    let _ = (chunk, lists);
+    collect(0..len, out);
 }

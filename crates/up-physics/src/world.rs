@@ -8,6 +8,7 @@ use up_geom::{Pose, Sphere, TriMesh};
 
 use crate::body::{BalloonShape, Bodies, BodyDef, BodyId, HandleMap, ShapeData, ShapeId};
 use crate::broad_phase::BroadPhase;
+use crate::buffers::{clear_to_refill, resize_to_overwrite};
 use crate::contact::{ResumeFrom, StoredImpulse, WarmStartCache, STATIC_BODY};
 use crate::counters::{Counters, Stopwatch};
 use crate::forces::atmosphere::Atmosphere;
@@ -26,8 +27,12 @@ use crate::solver::contact_constraint;
 use crate::solver::contact_constraint::PreparedContact;
 use crate::solver::integrate::{BodyForces, GrabSpring};
 use crate::solver::{SolveParams, Solver};
+use crate::tasks::collect_in_order;
 #[cfg(feature = "parallel")]
 use crate::tasks::{fill_chunks, worth_splitting};
+
+/// Awake bodies one task sweeps.
+const SWEEP_CHUNK: usize = 256;
 
 /// Contacts one task prepares.
 #[cfg(feature = "parallel")]
@@ -185,6 +190,10 @@ struct Scratch {
     was_awake: Vec<bool>,
     wake: Vec<u32>,
     wake_islands: Vec<u32>,
+    /// Continuous sweeps: (body, time of impact, normal) of the bodies that
+    /// hit the room, and each task's hits.
+    sweep_hits: Vec<(u32, f32, Vec3)>,
+    task_hits: Vec<Vec<(u32, f32, Vec3)>>,
     non_finite: Vec<usize>,
 }
 
@@ -1250,7 +1259,7 @@ impl World {
         #[cfg(feature = "parallel")]
         if worth_splitting(count, PREPARE_CHUNK) {
             let prepared = &mut self.scratch.prepared;
-            prepared.resize(count, PreparedContact::default());
+            resize_to_overwrite(prepared, count, PreparedContact::default());
             fill_chunks(prepared, PREPARE_CHUNK, |first, out| {
                 resume.each(&found.runs, first..first + out.len(), |i, previous| {
                     out[i - first] = prepare(i, previous);
@@ -1269,10 +1278,10 @@ impl World {
     fn store_impulses(&mut self) {
         // One impulse per contact, in order: the runs stay as they are.
         let found = &self.scratch.narrow.found;
-        self.warm.runs.clone_from(&found.runs);
-        self.warm
-            .impulses
-            .resize(found.contacts.len(), StoredImpulse::default());
+        clear_to_refill(&mut self.warm.runs, found.runs.len());
+        self.warm.runs.extend_from_slice(&found.runs);
+        let impulses = &mut self.warm.impulses;
+        resize_to_overwrite(impulses, found.contacts.len(), StoredImpulse::default());
         self.scratch.solver.store_all(&mut self.warm.impulses);
         self.warm.index();
     }
@@ -1317,43 +1326,62 @@ impl World {
             return;
         };
         let solver = &self.scratch.solver;
-        for &i in &solver.awake {
-            let i = i as usize;
-            let s = &solver.states[i];
-            let shape = &self.shapes[self.bodies.shape[i] as usize];
-            let moved = s.dp.length() + s.w.length() * shape.bound_radius * self.def.dt;
-            if moved <= FAST_FRACTION * shape.min_leaf_radius {
-                continue;
-            }
-            let end = self.bodies.center[i];
-            let begin = end - s.dp;
-            let q0 = (s.dq.inverse() * s.q).normalize();
-            let mut earliest: Option<(f32, Vec3)> = None;
-            for leaf in shape.tree.leaf_spheres() {
-                let from = begin + q0 * leaf.center;
-                let to = end + s.q * leaf.center;
-                let core = Sphere::new(from, leaf.radius * CORE_FRACTION);
-                // Triangles the core is in already are the solver's to push
-                // out of: stopping at them would freeze the body in place,
-                // step after step.
-                if let Some((t, _, normal)) = toi_sphere_trimesh_new_contact(core, to - from, room)
-                {
-                    if earliest.is_none_or(|(te, _)| t < te) {
-                        earliest = Some((t, normal));
+        let (bodies, shapes, dt) = (&self.bodies, &self.shapes, self.def.dt);
+        // The sweeps (read-only, in tasks of awake bodies), then their hits.
+        let mut hits = std::mem::take(&mut self.scratch.sweep_hits);
+        hits.clear();
+        collect_in_order(
+            solver.awake.len(),
+            SWEEP_CHUNK,
+            &mut self.scratch.task_hits,
+            &mut hits,
+            |range, hits| {
+                for &i in &solver.awake[range] {
+                    let i = i as usize;
+                    let s = &solver.states[i];
+                    let shape = &shapes[bodies.shape[i] as usize];
+                    let moved = s.dp.length() + s.w.length() * shape.bound_radius * dt;
+                    if moved <= FAST_FRACTION * shape.min_leaf_radius {
+                        continue;
+                    }
+                    let end = bodies.center[i];
+                    let begin = end - s.dp;
+                    let q0 = (s.dq.inverse() * s.q).normalize();
+                    let mut earliest: Option<(f32, Vec3)> = None;
+                    for leaf in shape.tree.leaf_spheres() {
+                        let from = begin + q0 * leaf.center;
+                        let to = end + s.q * leaf.center;
+                        let core = Sphere::new(from, leaf.radius * CORE_FRACTION);
+                        // Triangles the core is in already are the solver's to push
+                        // out of: stopping at them would freeze the body in place,
+                        // step after step.
+                        if let Some((t, _, normal)) =
+                            toi_sphere_trimesh_new_contact(core, to - from, room)
+                        {
+                            if earliest.is_none_or(|(te, _)| t < te) {
+                                earliest = Some((t, normal));
+                            }
+                        }
+                    }
+                    if let Some((t, normal)) = earliest {
+                        hits.push((i as u32, t, normal));
                     }
                 }
-            }
-            if let Some((t, normal)) = earliest {
-                self.bodies.center[i] = begin + t * s.dp;
-                self.bodies.rotation[i] = q0.lerp(s.q, t).normalize();
-                let v = self.bodies.linear_velocity[i];
-                let into = v.dot(normal);
-                if into > 0.0 {
-                    self.bodies.linear_velocity[i] =
-                        v - (1.0 + self.def.restitution) * into * normal;
-                }
+            },
+        );
+        for &(i, t, normal) in &hits {
+            let (i, s) = (i as usize, &solver.states[i as usize]);
+            let begin = self.bodies.center[i] - s.dp;
+            let q0 = (s.dq.inverse() * s.q).normalize();
+            self.bodies.center[i] = begin + t * s.dp;
+            self.bodies.rotation[i] = q0.lerp(s.q, t).normalize();
+            let v = self.bodies.linear_velocity[i];
+            let into = v.dot(normal);
+            if into > 0.0 {
+                self.bodies.linear_velocity[i] = v - (1.0 + self.def.restitution) * into * normal;
             }
         }
+        self.scratch.sweep_hits = hits;
     }
 
     /// Sleep timers, then the rested bodies that fall asleep.
