@@ -9,7 +9,6 @@
 
 mod body;
 mod broad_phase;
-mod buffers;
 mod contact;
 mod counters;
 pub mod forces;

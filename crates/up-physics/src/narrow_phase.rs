@@ -16,7 +16,6 @@ use up_geom::query::contact_tree_trimesh::contact_tree_trimesh;
 use up_geom::{Contact, PlacedTree, TriMesh};
 
 use crate::body::ShapeData;
-use crate::buffers::{clear_to_refill, with_headroom};
 use crate::contact::{pair_key, ContactPoint, STATIC_BODY};
 #[cfg(feature = "parallel")]
 use crate::tasks::worth_splitting;
@@ -62,16 +61,6 @@ impl ContactList {
     pub fn clear(&mut self) {
         self.contacts.clear();
         self.runs.clear();
-        self.max_penetration = 0.0;
-    }
-
-    /// Empties the list, with room for the contacts and runs it held and
-    /// the headroom: pushed one by one, they would otherwise double the
-    /// buffers whenever they outgrow them.
-    fn clear_to_refill(&mut self) {
-        let (contacts, runs) = (self.contacts.len(), self.runs.len());
-        clear_to_refill(&mut self.contacts, with_headroom(contacts));
-        clear_to_refill(&mut self.runs, with_headroom(runs));
         self.max_penetration = 0.0;
     }
 
@@ -167,8 +156,7 @@ pub(crate) struct NarrowPhase {
 
 impl NarrowPhase {
     pub fn update(&mut self, input: &NarrowInput, pairs: &[(u32, u32)], room: Option<&TriMesh>) {
-        // The contacts change little from one step to the next.
-        self.found.clear_to_refill();
+        self.found.clear();
         // The room first: it anchors the pile, and Gauss-Seidel converges
         // fastest from the anchor outwards.
         self.room_tests.clear();
@@ -212,8 +200,8 @@ impl NarrowPhase {
             });
         let contacts = tasks.iter().map(|(_, list)| list.contacts.len()).sum();
         let runs = tasks.iter().map(|(_, list)| list.runs.len()).sum();
-        clear_to_refill(&mut self.found.contacts, contacts);
-        clear_to_refill(&mut self.found.runs, runs);
+        self.found.contacts.reserve(contacts);
+        self.found.runs.reserve(runs);
         for (_, list) in tasks.iter() {
             self.found.append(list);
         }

@@ -8,7 +8,6 @@ use up_geom::{Pose, Sphere, TriMesh};
 
 use crate::body::{BalloonShape, Bodies, BodyDef, BodyId, HandleMap, ShapeData, ShapeId};
 use crate::broad_phase::BroadPhase;
-use crate::buffers::{clear_to_refill, resize_to_overwrite};
 use crate::contact::{ResumeFrom, StoredImpulse, WarmStartCache, STATIC_BODY};
 use crate::counters::{Counters, Stopwatch};
 use crate::forces::atmosphere::Atmosphere;
@@ -1259,7 +1258,7 @@ impl World {
         #[cfg(feature = "parallel")]
         if worth_splitting(count, PREPARE_CHUNK) {
             let prepared = &mut self.scratch.prepared;
-            resize_to_overwrite(prepared, count, PreparedContact::default());
+            prepared.resize(count, PreparedContact::default());
             fill_chunks(prepared, PREPARE_CHUNK, |first, out| {
                 resume.each(&found.runs, first..first + out.len(), |i, previous| {
                     out[i - first] = prepare(i, previous);
@@ -1278,10 +1277,10 @@ impl World {
     fn store_impulses(&mut self) {
         // One impulse per contact, in order: the runs stay as they are.
         let found = &self.scratch.narrow.found;
-        clear_to_refill(&mut self.warm.runs, found.runs.len());
-        self.warm.runs.extend_from_slice(&found.runs);
-        let impulses = &mut self.warm.impulses;
-        resize_to_overwrite(impulses, found.contacts.len(), StoredImpulse::default());
+        self.warm.runs.clone_from(&found.runs);
+        self.warm
+            .impulses
+            .resize(found.contacts.len(), StoredImpulse::default());
         self.scratch.solver.store_all(&mut self.warm.impulses);
         self.warm.index();
     }

@@ -10,7 +10,6 @@
 
 use super::body_state::BodyState;
 use super::lanes::LANES;
-use crate::buffers::clear_to_refill;
 
 /// Marks a slot that holds no constraint.
 #[cfg(feature = "parallel")]
@@ -43,14 +42,10 @@ impl Coloring {
     /// (lowest free colour, in the given order, so room contacts, which come
     /// first, are solved first) and gives each a slot: colour by colour,
     /// `LANES` to a group, in the given order within a colour.
-    pub fn assign(
-        &mut self,
-        pairs: impl ExactSizeIterator<Item = (u32, u32)>,
-        states: &[BodyState],
-    ) {
+    pub fn assign(&mut self, pairs: impl Iterator<Item = (u32, u32)>, states: &[BodyState]) {
         self.used.clear();
         self.used.resize(states.len(), 0);
-        clear_to_refill(&mut self.color, pairs.len());
+        self.color.clear();
         let mut counts = [0u32; COLORS + 1];
         let moving = |i: u32| states[i as usize].inv_mass > 0.0;
         for (a, b) in pairs {
@@ -88,7 +83,7 @@ impl Coloring {
         }
         self.groups = start as usize;
 
-        clear_to_refill(&mut self.slot, self.color.len());
+        self.slot.clear();
         let mut seen = [0u32; COLORS + 1];
         for &color in &self.color {
             let color = color as usize;
@@ -106,7 +101,7 @@ impl Coloring {
     /// For each slot, its constraint (`EMPTY_LANE` if none): `slot` inverted.
     #[cfg(feature = "parallel")]
     pub fn constraint_at(&mut self) -> &[u32] {
-        clear_to_refill(&mut self.constraint_at, self.groups * LANES);
+        self.constraint_at.clear();
         self.constraint_at.resize(self.groups * LANES, EMPTY_LANE);
         for (i, &slot) in self.slot.iter().enumerate() {
             self.constraint_at[slot as usize] = i as u32;

@@ -29,9 +29,6 @@ use integrate::{BodyForces, GrabSpring};
 use lanes::LANES;
 use parallel::{for_each_body, for_each_colored, for_each_group, GroupStates};
 
-use crate::buffers::clear_to_refill;
-#[cfg(feature = "parallel")]
-use crate::buffers::resize_to_overwrite;
 use crate::contact::StoredImpulse;
 use crate::tasks::fill_chunks;
 
@@ -86,15 +83,15 @@ impl Solver {
     /// Colours the constraints of this step from their body pairs (state
     /// indices, in the narrowphase's order) and makes room for them; then
     /// `set_constraint` each, in the same order. Call after the states are in place.
-    pub fn begin_constraints(&mut self, pairs: impl ExactSizeIterator<Item = (u32, u32)>) {
+    pub fn begin_constraints(&mut self, pairs: impl Iterator<Item = (u32, u32)>) {
         self.coloring.assign(pairs, &self.states);
         let room = (self.states.len() - 1) as u32;
         let n = self.coloring.groups;
-        clear_to_refill(&mut self.groups, n);
+        self.groups.clear();
         self.groups.resize(n, ContactGroup::empty(room));
-        clear_to_refill(&mut self.anchors, n);
+        self.anchors.clear();
         self.anchors.resize(n, GroupAnchors::default());
-        clear_to_refill(&mut self.records, n);
+        self.records.clear();
         self.records.resize(n, GroupRecords::default());
     }
 
@@ -116,16 +113,16 @@ impl Solver {
     #[cfg(feature = "parallel")]
     pub fn set_constraints(
         &mut self,
-        pairs: impl ExactSizeIterator<Item = (u32, u32)>,
+        pairs: impl Iterator<Item = (u32, u32)>,
         prepared: &[PreparedContact],
     ) {
         self.coloring.assign(pairs, &self.states);
         let room = (self.states.len() - 1) as u32;
         let n = self.coloring.groups;
         // Each group is written whole below: only the lengths matter here.
-        resize_to_overwrite(&mut self.groups, n, ContactGroup::default());
-        resize_to_overwrite(&mut self.anchors, n, GroupAnchors::default());
-        resize_to_overwrite(&mut self.records, n, GroupRecords::default());
+        self.groups.resize(n, ContactGroup::default());
+        self.anchors.resize(n, GroupAnchors::default());
+        self.records.resize(n, GroupRecords::default());
         let constraint_at = self.coloring.constraint_at();
         let empty = PreparedContact::empty(room);
         parallel::fill_groups(
