@@ -136,7 +136,7 @@ pub(crate) struct ResumeFrom<'a> {
 
 impl ResumeFrom<'_> {
     /// The stored impulses of a pair.
-    pub fn find(&self, key: u64) -> &[StoredImpulse] {
+    fn find(&self, key: u64) -> &[StoredImpulse] {
         match self.fresh.find(key) {
             [] => self.kept.find(key),
             found => found,

@@ -5,23 +5,20 @@
 //!
 //! With the `parallel` feature and more than one thread, the tests are split
 //! into tasks of consecutive bodies and pairs, each with its own list, joined
-//! in task order afterwards: the contacts come out in the same order, so the
-//! step's results are bit-identical whatever the number of threads.
+//! in task order afterwards (`tasks::collect_in_order`): the contacts come
+//! out in the same order, so the step's results are bit-identical whatever
+//! the number of threads.
 
 use glam::Vec3;
-#[cfg(feature = "parallel")]
-use rayon::prelude::*;
 use up_geom::query::contact_tree_tree::contact_tree_tree;
 use up_geom::query::contact_tree_trimesh::contact_tree_trimesh;
 use up_geom::{Contact, PlacedTree, TriMesh};
 
 use crate::body::ShapeData;
 use crate::contact::{pair_key, ContactPoint, STATIC_BODY};
-#[cfg(feature = "parallel")]
-use crate::tasks::worth_splitting;
+use crate::tasks::{collect_in_order, TaskList};
 
 /// Room tests and pairs handed to one task.
-#[cfg(feature = "parallel")]
 const TASK_ITEMS: usize = 256;
 
 /// What the narrowphase reads about the bodies (all dense-indexed).
@@ -55,6 +52,8 @@ pub(crate) struct ContactList {
     pub runs: Vec<(u64, u32, u32)>,
     /// Deepest overlap, m.
     pub max_penetration: f32,
+    /// A query's contacts, before they become points of the list.
+    scratch: Vec<Contact>,
 }
 
 impl ContactList {
@@ -67,12 +66,12 @@ impl ContactList {
     /// Appends the contacts of `bodies` with the room, then of `pairs`.
     fn collect(
         &mut self,
-        scratch: &mut Vec<Contact>,
         input: &NarrowInput,
         room: Option<&TriMesh>,
         bodies: &[u32],
         pairs: &[(u32, u32)],
     ) {
+        let mut scratch = std::mem::take(&mut self.scratch);
         if let Some(room) = room {
             for &a in bodies {
                 scratch.clear();
@@ -80,10 +79,10 @@ impl ContactList {
                     input.placed(a as usize),
                     room,
                     input.margin[a as usize],
-                    scratch,
+                    &mut scratch,
                 );
                 let key = pair_key(input.handle[a as usize], STATIC_BODY);
-                self.push_run(scratch, key, a, STATIC_BODY);
+                self.push_run(&scratch, key, a, STATIC_BODY);
             }
         }
         for &(i, j) in pairs {
@@ -100,11 +99,12 @@ impl ContactList {
                 input.placed(a as usize),
                 input.placed(b as usize),
                 margin,
-                scratch,
+                &mut scratch,
             );
             let key = pair_key(input.handle[a as usize], input.handle[b as usize]);
-            self.push_run(scratch, key, a, b);
+            self.push_run(&scratch, key, a, b);
         }
+        self.scratch = scratch;
     }
 
     fn push_run(&mut self, found: &[Contact], key: u64, a: u32, b: u32) {
@@ -126,10 +126,15 @@ impl ContactList {
         }
         self.runs.push((key, start, found.len() as u32));
     }
+}
+
+impl TaskList for ContactList {
+    fn reset(&mut self) {
+        self.clear();
+    }
 
     /// Appends another list (its runs moved past this one's contacts).
-    #[cfg(feature = "parallel")]
-    fn append(&mut self, other: &ContactList) {
+    fn join(&mut self, other: &ContactList) {
         let offset = self.contacts.len() as u32;
         self.contacts.extend_from_slice(&other.contacts);
         self.runs.extend(
@@ -146,12 +151,10 @@ impl ContactList {
 pub(crate) struct NarrowPhase {
     /// Output: this step's contacts.
     pub found: ContactList,
-    scratch: Vec<Contact>,
     /// Awake bodies, tested against the room.
     room_tests: Vec<u32>,
-    /// Each task's scratch and contacts (kept between steps for their buffers).
-    #[cfg(feature = "parallel")]
-    tasks: Vec<(Vec<Contact>, ContactList)>,
+    /// Each task's contacts (kept between steps for their buffers).
+    tasks: Vec<ContactList>,
 }
 
 impl NarrowPhase {
@@ -164,46 +167,19 @@ impl NarrowPhase {
             let awake = input.awake.iter().enumerate().filter(|(_, &awake)| awake);
             self.room_tests.extend(awake.map(|(a, _)| a as u32));
         }
-        #[cfg(feature = "parallel")]
-        if worth_splitting(self.room_tests.len() + pairs.len(), TASK_ITEMS) {
-            return self.update_in_tasks(input, pairs, room);
-        }
-        self.found
-            .collect(&mut self.scratch, input, room, &self.room_tests, pairs);
-    }
-
-    #[cfg(feature = "parallel")]
-    fn update_in_tasks(
-        &mut self,
-        input: &NarrowInput,
-        pairs: &[(u32, u32)],
-        room: Option<&TriMesh>,
-    ) {
-        let bodies = &self.room_tests;
-        let items = bodies.len() + pairs.len();
-        let task_count = items.div_ceil(TASK_ITEMS);
-        if self.tasks.len() < task_count {
-            self.tasks.resize_with(task_count, Default::default);
-        }
-        let tasks = &mut self.tasks[..task_count];
-        tasks
-            .par_iter_mut()
-            .enumerate()
-            .for_each(|(t, (scratch, list))| {
-                // Items [first, end): the room tests first, then the pairs.
-                let (first, end) = (t * TASK_ITEMS, ((t + 1) * TASK_ITEMS).min(items));
-                let tests = bodies.len();
-                let room_tests = &bodies[first.min(tests)..end.min(tests)];
-                let pairs = &pairs[first.max(tests) - tests..end.max(tests) - tests];
-                list.clear();
-                list.collect(scratch, input, room, room_tests, pairs);
-            });
-        let contacts = tasks.iter().map(|(_, list)| list.contacts.len()).sum();
-        let runs = tasks.iter().map(|(_, list)| list.runs.len()).sum();
-        self.found.contacts.reserve(contacts);
-        self.found.runs.reserve(runs);
-        for (_, list) in tasks.iter() {
-            self.found.append(list);
-        }
+        let (tests, n) = (&self.room_tests, self.room_tests.len());
+        let items = n + pairs.len();
+        collect_in_order(
+            items,
+            TASK_ITEMS,
+            &mut self.tasks,
+            &mut self.found,
+            |range, list| {
+                // Items: the room tests first, then the pairs.
+                let room_tests = &tests[range.start.min(n)..range.end.min(n)];
+                let pairs = &pairs[range.start.max(n) - n..range.end.max(n) - n];
+                list.collect(input, room, room_tests, pairs);
+            },
+        );
     }
 }

@@ -34,36 +34,55 @@ where
     fill(0, items);
 }
 
+/// A list a task pushes into, joined after the lists of the tasks before it.
+// Without `parallel` there are no tasks: only the list itself is used.
+#[cfg_attr(not(feature = "parallel"), allow(dead_code))]
+pub(crate) trait TaskList: Default + Send {
+    /// Empties the list, keeping its buffers.
+    fn reset(&mut self);
+    /// Appends `other` after what this list holds.
+    fn join(&mut self, other: &Self);
+}
+
+impl<T: Copy + Send> TaskList for Vec<T> {
+    fn reset(&mut self) {
+        self.clear();
+    }
+
+    fn join(&mut self, other: &Self) {
+        self.extend_from_slice(other);
+    }
+}
+
 /// Appends to `out` what `collect(range, out)` pushes for `0..len`: split
 /// into runs of `chunk` on rayon's threads when worth it, each pushing into a
 /// list of its own (from `lists`, kept for their buffers), joined in order,
 /// so `out` ends the same as with one call over `0..len`.
-pub(crate) fn collect_in_order<T, F>(
+pub(crate) fn collect_in_order<L, F>(
     len: usize,
     chunk: usize,
-    lists: &mut Vec<Vec<T>>,
-    out: &mut Vec<T>,
+    lists: &mut Vec<L>,
+    out: &mut L,
     collect: F,
 ) where
-    T: Copy + Send,
-    F: Fn(Range<usize>, &mut Vec<T>) + Sync,
+    L: TaskList,
+    F: Fn(Range<usize>, &mut L) + Sync,
 {
     #[cfg(feature = "parallel")]
     if worth_splitting(len, chunk) {
         let tasks = len.div_ceil(chunk);
         if lists.len() < tasks {
-            lists.resize_with(tasks, Vec::new);
+            lists.resize_with(tasks, L::default);
         }
         lists[..tasks]
             .par_iter_mut()
             .enumerate()
             .for_each(|(k, list)| {
-                list.clear();
+                list.reset();
                 collect(k * chunk..((k + 1) * chunk).min(len), list);
             });
-        out.reserve(lists[..tasks].iter().map(Vec::len).sum());
         for list in &lists[..tasks] {
-            out.extend_from_slice(list);
+            out.join(list);
         }
         return;
     }

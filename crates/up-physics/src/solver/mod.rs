@@ -84,15 +84,20 @@ impl Solver {
     /// indices, in the narrowphase's order) and makes room for them; then
     /// `set_constraint` each, in the same order. Call after the states are in place.
     pub fn begin_constraints(&mut self, pairs: impl Iterator<Item = (u32, u32)>) {
-        self.coloring.assign(pairs, &self.states);
-        let room = (self.states.len() - 1) as u32;
-        let n = self.coloring.groups;
+        let (n, room) = self.colour(pairs);
         self.groups.clear();
         self.groups.resize(n, ContactGroup::empty(room));
         self.anchors.clear();
         self.anchors.resize(n, GroupAnchors::default());
         self.records.clear();
         self.records.resize(n, GroupRecords::default());
+    }
+
+    /// Colours the constraints; returns how many groups they fill and the
+    /// room's state (the static state after the bodies').
+    fn colour(&mut self, pairs: impl Iterator<Item = (u32, u32)>) -> (usize, u32) {
+        self.coloring.assign(pairs, &self.states);
+        (self.coloring.groups, (self.states.len() - 1) as u32)
     }
 
     /// Puts the narrowphase's `i`-th contact, prepared, in its slot.
@@ -116,9 +121,7 @@ impl Solver {
         pairs: impl Iterator<Item = (u32, u32)>,
         prepared: &[PreparedContact],
     ) {
-        self.coloring.assign(pairs, &self.states);
-        let room = (self.states.len() - 1) as u32;
-        let n = self.coloring.groups;
+        let (n, room) = self.colour(pairs);
         // Each group is written whole below: only the lengths matter here.
         self.groups.resize(n, ContactGroup::default());
         self.anchors.resize(n, GroupAnchors::default());
