@@ -1,7 +1,12 @@
 //! Narrowphase: contact points for the broadphase's pairs (sphere tree
 //! against sphere tree) and for every awake body against the room (sphere
-//! tree against triangle mesh), with a speculative margin that grows with the
-//! bodies' motion so that fast bodies meet what lies in their way this step.
+//! tree against triangle mesh). Contacts are speculative, found up to a
+//! margin so that fast bodies meet what lies in their way this step. Against
+//! the room it is the speculative distance plus the body's motion. Between two
+//! bodies it is a speculative distance for each (either may be struck towards
+//! the other within the step) plus the most their gap can close, from their
+//! relative motion: balloons rising side by side are to each other as if at
+//! rest.
 //!
 //! With the `parallel` feature and more than one thread, the tests are split
 //! into tasks of consecutive bodies and pairs, each with its own list, joined
@@ -21,6 +26,27 @@ use crate::tasks::{collect_in_order, TaskList};
 /// Room tests and pairs handed to one task.
 const TASK_ITEMS: usize = 256;
 
+/// How far a body moves in this step: its displacement v·dt and the arc
+/// |ω|·r·dt its bounding sphere's surface turns through.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct StepMotion {
+    pub linear: Vec3,
+    pub spin: f32,
+}
+
+impl StepMotion {
+    /// The farthest any point of the body moves, m.
+    pub fn reach(self) -> f32 {
+        self.linear.length() + self.spin
+    }
+
+    /// The most the gap between a point of this body and one of `other` can
+    /// close, m: their relative displacement and both spins.
+    pub fn closing(self, other: StepMotion) -> f32 {
+        (self.linear - other.linear).length() + self.spin + other.spin
+    }
+}
+
 /// What the narrowphase reads about the bodies (all dense-indexed).
 pub(crate) struct NarrowInput<'a> {
     pub shapes: &'a [ShapeData],
@@ -29,8 +55,11 @@ pub(crate) struct NarrowInput<'a> {
     pub node_start: &'a [u32],
     pub handle: &'a [u32],
     pub awake: &'a [bool],
-    /// Speculative margin of each body for this step, m.
-    pub margin: &'a [f32],
+    /// Each body's motion this step (zero for sleepers).
+    pub motion: &'a [StepMotion],
+    /// Gap up to which a body at rest gets contacts with the room (twice
+    /// that with another body), m.
+    pub speculative_distance: f32,
 }
 
 impl NarrowInput<'_> {
@@ -75,12 +104,8 @@ impl ContactList {
         if let Some(room) = room {
             for &a in bodies {
                 scratch.clear();
-                contact_tree_trimesh(
-                    input.placed(a as usize),
-                    room,
-                    input.margin[a as usize],
-                    &mut scratch,
-                );
+                let margin = input.speculative_distance + input.motion[a as usize].reach();
+                contact_tree_trimesh(input.placed(a as usize), room, margin, &mut scratch);
                 let key = pair_key(input.handle[a as usize], STATIC_BODY);
                 self.push_run(&scratch, key, a, STATIC_BODY);
             }
@@ -93,7 +118,8 @@ impl ContactList {
             } else {
                 (j, i)
             };
-            let margin = input.margin[a as usize] + input.margin[b as usize];
+            let closing = input.motion[a as usize].closing(input.motion[b as usize]);
+            let margin = 2.0 * input.speculative_distance + closing;
             scratch.clear();
             contact_tree_tree(
                 input.placed(a as usize),

@@ -16,7 +16,7 @@ use crate::forces::drag::{added_mass, drag_factor};
 use crate::forces::gravity::gravity_force;
 use crate::grab::{Grab, GRAB_DAMPING_RATIO, GRAB_HERTZ, GRAB_MAX_WEIGHTS};
 use crate::hash::Fnv1a;
-use crate::narrow_phase::{NarrowInput, NarrowPhase};
+use crate::narrow_phase::{NarrowInput, NarrowPhase, StepMotion};
 use crate::quarantine::{self, QuarantinedBody, MAX_QUARANTINE_REPORTS};
 use crate::sleep::{SleepingIslands, UnionFind};
 use crate::snapshot::{self, SnapshotError};
@@ -174,7 +174,9 @@ struct Scratch {
     bound_radius: Vec<f32>,
     /// Per body: asleep, and its nodes placed since it fell asleep.
     placed_asleep: Vec<bool>,
+    /// Per body: the speculative distance plus its motion this step.
     margin: Vec<f32>,
+    motion: Vec<StepMotion>,
     handle: Vec<u32>,
     broad: BroadPhase,
     narrow: NarrowPhase,
@@ -930,6 +932,7 @@ impl World {
         s.bound_center.clear();
         s.bound_radius.clear();
         s.margin.clear();
+        s.motion.clear();
         s.handle.clear();
         let mut total = 0u32;
         for i in 0..n {
@@ -956,14 +959,16 @@ impl World {
             }
             s.placed_asleep[i] = asleep;
             let motion = if at_rest || !self.bodies.awake[i] {
-                0.0
+                StepMotion::default()
             } else {
-                (self.bodies.linear_velocity[i].length()
-                    + self.bodies.angular_velocity[i].length() * shape.bound_radius)
-                    * dt
+                StepMotion {
+                    linear: self.bodies.linear_velocity[i] * dt,
+                    spin: self.bodies.angular_velocity[i].length() * shape.bound_radius * dt,
+                }
             };
-            let margin = self.def.speculative_distance + motion;
+            let margin = self.def.speculative_distance + motion.reach();
             s.margin.push(margin);
+            s.motion.push(motion);
             s.bound_center.push(s.node_centers[start]);
             s.bound_radius.push(shape.tree.root().radius + margin);
             s.handle.push(self.bodies.id[i].index);
@@ -1119,7 +1124,8 @@ impl World {
                 node_start: &s.node_start,
                 handle: &s.handle,
                 awake: &every,
-                margin: &s.margin,
+                motion: &s.motion,
+                speculative_distance: self.def.speculative_distance,
             };
             s.narrow
                 .update(&input, &s.broad.pairs, self.def.room.as_ref());
@@ -1132,7 +1138,8 @@ impl World {
             node_start: &s.node_start,
             handle: &s.handle,
             awake: &self.bodies.awake,
-            margin: &s.margin,
+            motion: &s.motion,
+            speculative_distance: self.def.speculative_distance,
         };
         s.narrow
             .update(&input, &s.broad.pairs, self.def.room.as_ref());

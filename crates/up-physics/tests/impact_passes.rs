@@ -6,28 +6,18 @@ mod common;
 
 use common::*;
 use glam::{Quat, Vec3};
-use up_physics::WorldDef;
-
-fn free_space() -> WorldDef {
-    WorldDef {
-        gravity: Vec3::ZERO,
-        drag_coefficient: 0.0,
-        enable_sleep: false,
-        ..WorldDef::default()
-    }
-}
 
 #[test]
 fn balloons_rising_side_by_side_are_no_impact() {
     let (mut world, shape) = world_with(free_space());
     let base = world.def().stabilization_iterations;
-    // A row 2 cm apart: within each other's speculative margin at 1.7 m/s.
+    // A row 5 mm apart: within the speculative distance, so in contact.
     let ids: Vec<_> = (0..5)
         .map(|i| {
             add(
                 &mut world,
                 shape,
-                Vec3::new(0.3 * i as f32, 1.0, 0.0),
+                Vec3::new((2.0 * HEAD_RADIUS + 0.005) * i as f32, 1.0, 0.0),
                 Quat::IDENTITY,
             )
         })
@@ -45,7 +35,7 @@ fn balloons_rising_side_by_side_are_no_impact() {
     }
     assert!(
         contacts > 0,
-        "the row was never within the speculative margin"
+        "the row was never within the speculative distance"
     );
 }
 

@@ -4,17 +4,7 @@ mod common;
 
 use common::*;
 use glam::{Quat, Vec3};
-use up_physics::{BodyId, World, WorldDef};
-
-fn free_space() -> WorldDef {
-    WorldDef {
-        gravity: Vec3::ZERO,
-        drag_coefficient: 0.0,
-        angular_damping: 0.0,
-        enable_sleep: false,
-        ..WorldDef::default()
-    }
-}
+use up_physics::{BodyId, World};
 
 fn momenta(world: &World, ids: &[BodyId]) -> (Vec3, Vec3) {
     let mut p = Vec3::ZERO;

@@ -99,6 +99,18 @@ pub fn inside_room(p: Vec3, width: f32, depth: f32, height: f32, apex: Option<f3
     p.y <= top + eps
 }
 
+/// No room, gravity, drag or damping, no sleep: bodies keep the velocities
+/// they are given until they meet.
+pub fn free_space() -> WorldDef {
+    WorldDef {
+        gravity: Vec3::ZERO,
+        drag_coefficient: 0.0,
+        angular_damping: 0.0,
+        enable_sleep: false,
+        ..WorldDef::default()
+    }
+}
+
 pub fn world_with(def: WorldDef) -> (World, ShapeId) {
     let mut world = World::new(def).expect("valid world");
     let shape = world.add_shape(reference_balloon()).expect("valid shape");
