@@ -174,8 +174,7 @@ struct Scratch {
     bound_radius: Vec<f32>,
     /// Per body: asleep, and its nodes placed since it fell asleep.
     placed_asleep: Vec<bool>,
-    /// Per body: the speculative distance plus its motion this step.
-    margin: Vec<f32>,
+    /// Per body: how far it moves this step (zero for sleepers).
     motion: Vec<StepMotion>,
     handle: Vec<u32>,
     broad: BroadPhase,
@@ -931,7 +930,6 @@ impl World {
         s.node_start.clear();
         s.bound_center.clear();
         s.bound_radius.clear();
-        s.margin.clear();
         s.motion.clear();
         s.handle.clear();
         let mut total = 0u32;
@@ -966,8 +964,8 @@ impl World {
                     spin: self.bodies.angular_velocity[i].length() * shape.bound_radius * dt,
                 }
             };
+            // Wide enough for every pair the narrowphase may find a contact in.
             let margin = self.def.speculative_distance + motion.reach();
-            s.margin.push(margin);
             s.motion.push(motion);
             s.bound_center.push(s.node_centers[start]);
             s.bound_radius.push(shape.tree.root().radius + margin);
@@ -1022,13 +1020,16 @@ impl World {
             if self.bodies.sleep_time[awake] >= self.def.time_to_sleep {
                 continue;
             }
-            // margin = speculative distance + this step's motion.
-            let margin = self.scratch.margin[awake];
-            let impact = margin - self.def.speculative_distance > impact_motion;
+            let motion = self.scratch.motion[awake].reach();
+            let impact = motion > impact_motion;
             // A slow body wakes what it touches (root spheres overlap); an
             // impact whatever it can reach this step, which would otherwise
             // stand still for a step as it is struck.
-            let reach = if impact { margin } else { 0.0 };
+            let reach = if impact {
+                self.def.speculative_distance + motion
+            } else {
+                0.0
+            };
             let centers = &self.scratch.bound_center;
             if !roots_within(
                 &self.shapes,
