@@ -22,7 +22,6 @@ const HERE = dirname(fileURLToPath(import.meta.url));
 const ROOT = resolve(HERE, '..', '..');
 const POSE_FLOATS = 7;
 const TREE_FLOATS = 6;
-const CHECKPOINTS = 10;
 
 /** Rapier, imported only where it runs (UP's memory probe never loads it). */
 let RAPIER = null;
@@ -375,7 +374,9 @@ async function main() {
   const engines = await buildEngines(opts, exported, opts.engines);
   const times = engines.map(() => []);
   const frames = engines.map(() => []);
-  const every = Math.max(1, Math.ceil(steps / CHECKPOINTS));
+  // Poses at every step (or every k-th: at most pose_budget of them per
+  // engine), measured after the timed loop, as the native harness does.
+  const every = Math.max(1, Math.ceil((opts.balloons * steps) / exported.pose_budget));
   for (let step = 1; step <= steps; step++) {
     // Alternate who goes first, as the native harness does.
     const order = step % 2 === 1 ? engines.keys() : [...engines.keys()].reverse();

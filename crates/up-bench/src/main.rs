@@ -10,12 +10,13 @@ use std::path::PathBuf;
 use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand};
 use up_bench::engine::EngineKind;
+use up_bench::measure::measure_frames;
 use up_bench::output::{json_lines, ratio, EngineResult};
 use up_bench::rapier_engine::RapierShape;
 use up_bench::report::{self, ReportOptions};
 use up_bench::run::{default_steps, rss_probe, run, RunOptions};
 use up_bench::scene_data::SceneData;
-use up_bench::scene_export::{export, measure, read_poses};
+use up_bench::scene_export::{export, read_poses};
 use up_scene::bench_scene::bench_scene;
 
 #[derive(Parser, Debug)]
@@ -215,7 +216,10 @@ fn main() -> Result<()> {
         Some(Cmd::Measure(args)) => {
             let (data, _) = SceneData::build(args.scene.balloons, args.scene.seed)?;
             let frames = read_poses(&args.poses, data.start_poses.len())?;
-            println!("{}", serde_json::to_string(&measure(&data, &frames)?)?);
+            println!(
+                "{}",
+                serde_json::to_string(&measure_frames(&data, &frames)?)?
+            );
             Ok(())
         }
         Some(Cmd::RssProbe(args)) => {

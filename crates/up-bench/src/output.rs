@@ -18,7 +18,7 @@ pub struct EngineResult {
     pub ms_per_step_mean: f64,
     /// Median over the last third of the steps.
     pub settled_ms_per_step_median: f64,
-    /// m: deepest overlap over the periodic checkpoints and the end (UP's geometry on the poses).
+    /// m: deepest overlap over the recorded steps (all of them up to `measure::POSE_BUDGET` poses; UP's geometry on the poses).
     pub max_penetration_m: f32,
     /// m: the same at the last step.
     pub final_penetration_m: f32,

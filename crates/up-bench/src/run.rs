@@ -1,8 +1,9 @@
 //! A comparison run: build the scene in each engine, step them alternately
 //! (UP then Rapier on even steps, Rapier then UP on odd ones, so neither
-//! always runs with the other's data in cache), time every step, measure
-//! overlap and escapes from the poses at checkpoints, and take each engine's
-//! peak memory from a child process that runs it alone.
+//! always runs with the other's data in cache), time every step, record the
+//! poses at every step (see `measure`), measure overlap and escapes from them
+//! once the timed loop is done, and take each engine's peak memory from a
+//! child process that runs it alone.
 
 use std::process::Command;
 use std::time::Instant;
@@ -12,7 +13,7 @@ use serde::{Deserialize, Serialize};
 use up_geom::Pose;
 
 use crate::engine::{Engine, EngineKind};
-use crate::measure::{escaped, max_penetration};
+use crate::measure::{measure_every, measure_frames};
 use crate::output::EngineResult;
 use crate::rapier_engine::{RapierEngine, RapierShape};
 use crate::rss::peak_rss_mb;
@@ -22,8 +23,6 @@ use crate::up_engine::UpEngine;
 
 /// Most steps a run takes.
 pub const MAX_STEPS: u64 = 1_000_000;
-/// Checkpoints (pose measurements) over a run, the last step included.
-pub const CHECKPOINTS: u64 = 10;
 
 #[derive(Clone, Debug)]
 pub struct RunOptions {
@@ -99,9 +98,9 @@ pub fn run(opts: &RunOptions) -> Result<Vec<EngineResult>> {
     drop(up_world);
 
     let steps = opts.steps as usize;
-    let every = opts.steps.div_ceil(CHECKPOINTS).max(1);
+    let every = measure_every(opts.balloons, opts.steps);
     let mut times: Vec<Vec<f64>> = vec![Vec::with_capacity(steps); engines.len()];
-    let mut deepest = vec![0.0f32; engines.len()];
+    let mut frames: Vec<Vec<Vec<Pose>>> = vec![Vec::new(); engines.len()];
     let mut poses: Vec<Pose> = Vec::new();
     let order: Vec<usize> = (0..engines.len()).collect();
     for step in 1..=opts.steps {
@@ -120,14 +119,14 @@ pub fn run(opts: &RunOptions) -> Result<Vec<EngineResult>> {
         if step % every == 0 || step == opts.steps {
             for (i, engine) in engines.iter().enumerate() {
                 engine.poses(&mut poses);
-                deepest[i] = deepest[i].max(max_penetration(&data, &poses)?);
+                frames[i].push(poses.clone());
             }
         }
     }
 
     let mut results = Vec::with_capacity(engines.len());
     for (i, engine) in engines.iter().enumerate() {
-        engine.poses(&mut poses);
+        let measured = measure_frames(&data, &std::mem::take(&mut frames[i]))?;
         let kind = opts.engines[i];
         let rss = if opts.rss {
             Some(probe_in_child(kind, opts)?)
@@ -149,9 +148,9 @@ pub fn run(opts: &RunOptions) -> Result<Vec<EngineResult>> {
             ms_per_step_p95: quantile(t, 0.95),
             ms_per_step_mean: mean(t),
             settled_ms_per_step_median: median(settled(t)),
-            max_penetration_m: deepest[i],
-            final_penetration_m: max_penetration(&data, &poses)?,
-            escaped: escaped(&data, &poses),
+            max_penetration_m: measured.max_penetration_m,
+            final_penetration_m: measured.final_penetration_m,
+            escaped: measured.escaped,
             awake_at_end: engine.awake_count(),
             peak_rss_mb: rss.map(|r| r.peak_rss_mb),
             rss_bytes_per_balloon: rss

@@ -2,7 +2,7 @@
 //! everything Rapier needs that the wasm API does not expose (mass
 //! properties, forces, the parameters matched to UP's), computed here so that
 //! the native and the Node harness use the same numbers. Poses measured in
-//! Node come back through `read_poses` and `measure`.
+//! Node come back through `read_poses` and `measure::measure_frames`.
 
 use std::path::Path;
 
@@ -10,7 +10,7 @@ use anyhow::{bail, Context, Result};
 use serde::Serialize;
 use up_geom::{Pose, Quat, Vec3};
 
-use crate::measure::{escaped, max_penetration};
+use crate::measure::POSE_BUDGET;
 use crate::rapier_engine::{integration_parameters, mass_properties, sleep_speed};
 use crate::run::default_steps;
 use crate::scene_data::SceneData;
@@ -26,6 +26,8 @@ pub struct ExportedScene {
     pub pile_layers: f32,
     /// Steps a run takes by default (`run::default_steps`).
     pub default_steps: u64,
+    /// Most poses a run records for the overlap measure (`measure::measure_every`).
+    pub pose_budget: u64,
     /// The scene file (JSON) for `up_world_from_json`.
     pub scene: serde_json::Value,
     pub rapier: RapierSetup,
@@ -81,6 +83,7 @@ pub fn export(data: &SceneData, balloons: u64, seed: u64) -> Result<ExportedScen
             data.layout.wall_height_m + data.layout.apex_height_m,
             def.dt,
         ),
+        pose_budget: POSE_BUDGET,
         scene,
         rapier: RapierSetup {
             dt: params.dt,
@@ -142,31 +145,4 @@ pub fn read_poses(path: &Path, balloons: usize) -> Result<Vec<Vec<Pose>>> {
                 .collect()
         })
         .collect())
-}
-
-/// What `up-bench measure` prints for a file of frames.
-#[derive(Debug, Serialize)]
-pub struct PoseMeasure {
-    pub frames: usize,
-    /// m: deepest overlap over all frames.
-    pub max_penetration_m: f32,
-    /// m: in the last frame.
-    pub final_penetration_m: f32,
-    /// Balloons outside the room in the last frame.
-    pub escaped: usize,
-}
-
-pub fn measure(data: &SceneData, frames: &[Vec<Pose>]) -> Result<PoseMeasure> {
-    let mut deepest = 0.0f32;
-    let mut last = 0.0f32;
-    for frame in frames {
-        last = max_penetration(data, frame)?;
-        deepest = deepest.max(last);
-    }
-    Ok(PoseMeasure {
-        frames: frames.len(),
-        max_penetration_m: deepest,
-        final_penetration_m: last,
-        escaped: frames.last().map_or(0, |f| escaped(data, f)),
-    })
 }
