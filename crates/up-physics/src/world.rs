@@ -1353,7 +1353,7 @@ impl World {
                     }
                     let end = bodies.center[i];
                     let begin = end - s.dp;
-                    let q0 = (s.dq.inverse() * s.q).normalize();
+                    let q0 = s.start_rotation();
                     let mut earliest: Option<(f32, Vec3)> = None;
                     for leaf in shape.tree.leaf_spheres() {
                         let from = begin + q0 * leaf.center;
@@ -1379,7 +1379,7 @@ impl World {
         for &(i, t, normal) in &hits {
             let (i, s) = (i as usize, &solver.states[i as usize]);
             let begin = self.bodies.center[i] - s.dp;
-            let q0 = (s.dq.inverse() * s.q).normalize();
+            let q0 = s.start_rotation();
             self.bodies.center[i] = begin + t * s.dp;
             self.bodies.rotation[i] = q0.lerp(s.q, t).normalize();
             let v = self.bodies.linear_velocity[i];

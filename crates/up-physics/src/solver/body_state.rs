@@ -43,6 +43,11 @@ impl BodyState {
         runaway: false,
     };
 
+    /// Orientation when the step began: `q` with this step's rotation undone.
+    pub fn start_rotation(&self) -> Quat {
+        (self.dq.inverse() * self.q).normalize()
+    }
+
     /// Four consecutive floats of the state, `k` from 0 to 5 (see the layout).
     #[inline(always)]
     pub fn block(&self, k: usize) -> [f32; 4] {
