@@ -12,7 +12,8 @@ use crate::world::World;
 
 const MAGIC: &[u8; 6] = b"UPSNAP";
 /// 2: `StepStats` counts quarantined bodies. 3: sleeping islands keep their impulses.
-const VERSION: u16 = 3;
+/// 4: `WorldDef` has the position passes' most and target.
+const VERSION: u16 = 4;
 const HEADER: usize = 6 + 2 + 8;
 
 #[derive(Debug, Error, PartialEq)]

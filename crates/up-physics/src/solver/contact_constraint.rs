@@ -551,22 +551,26 @@ pub(crate) fn apply_restitution(
 /// the two bodies by inverse mass. Velocities are untouched, so no energy or
 /// momentum is added and the centre of mass stays put; the soft solve stays
 /// in charge of the dynamics, this pass only bounds how deep a crowd pressing
-/// on a pile can push balloons into each other.
+/// on a pile can push balloons into each other. Returns whether some contact
+/// was deeper than `target` before its push.
 pub(crate) fn stabilize(
     c: &ContactGroup,
     anchors: &GroupAnchors,
     a: &mut Displacements,
     b: &mut Displacements,
     slop: f32,
-) {
+    target: f32,
+) -> bool {
     let inv_mass = a.inv_mass + b.inv_mass;
     let (s, _) = separation(c.normal, anchors, (anchors.r_a, anchors.r_b), (a.dp, b.dp));
+    let movable = inv_mass.simd_gt(F4::ZERO);
+    let beyond_target = (s.simd_lt(F4::splat(-target)) & movable).any();
     let slop = F4::splat(slop);
-    let deep = s.simd_lt(-slop) & inv_mass.simd_gt(F4::ZERO);
-    if !deep.any() {
-        return;
+    let deep = s.simd_lt(-slop) & movable;
+    if deep.any() {
+        let push = V4::select(deep, ((-slop - s) / inv_mass) * c.normal, V4::ZERO);
+        a.dp = a.dp - a.inv_mass * push;
+        b.dp = b.dp + b.inv_mass * push;
     }
-    let push = V4::select(deep, ((-slop - s) / inv_mass) * c.normal, V4::ZERO);
-    a.dp = a.dp - a.inv_mass * push;
-    b.dp = b.dp + b.inv_mass * push;
+    beyond_target
 }

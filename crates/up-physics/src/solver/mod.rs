@@ -19,6 +19,8 @@ pub(crate) mod lanes;
 pub(crate) mod parallel;
 pub(crate) mod softness;
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use body_state::BodyState;
 use coloring::Coloring;
 use contact_constraint::{
@@ -62,6 +64,16 @@ pub(crate) struct SolveParams {
     pub max_push_out: f32,
     pub friction: f32,
     pub angular_damping: f32,
+}
+
+/// How the position passes run after the solve (`Solver::stabilize`).
+pub(crate) struct Stabilization {
+    /// Overlap left alone, m.
+    pub slop: f32,
+    /// Overlap that calls for another pass, m.
+    pub target: f32,
+    pub min_passes: u32,
+    pub max_passes: u32,
 }
 
 /// Runs a velocity pass's kernel on a group: gathers the bodies' velocities
@@ -265,8 +277,9 @@ impl Solver {
             .any(|(g, anchors)| contact_constraint::bounces(g, anchors, speed).any())
     }
 
-    /// Removes overlap deeper than `slop` from the positions, `iterations` passes.
-    pub fn stabilize(&mut self, slop: f32, iterations: u32) {
+    /// Removes overlap deeper than `slop` from the positions, pass after pass
+    /// as `s` says; returns the passes run.
+    pub fn stabilize(&mut self, s: &Stabilization) -> u32 {
         // The passes move the bodies, never turn them.
         for_each_group(
             &mut self.groups,
@@ -276,14 +289,25 @@ impl Solver {
                 contact_constraint::rotate_to_end(anchors, &Poses::gather(a), &Poses::gather(b))
             },
         );
-        for _ in 0..iterations {
+        // Set by any group, whatever the thread: an OR, the same in any order.
+        let beyond_target = AtomicBool::new(false);
+        let mut passes = 0;
+        while passes < s.max_passes.max(s.min_passes) {
+            beyond_target.store(false, Ordering::Relaxed);
             self.colour_pass(|g, anchors, mut states| {
                 let mut a = Displacements::gather(states.read(0));
                 let mut b = Displacements::gather(states.read(1));
-                contact_constraint::stabilize(g, anchors, &mut a, &mut b, slop);
+                if contact_constraint::stabilize(g, anchors, &mut a, &mut b, s.slop, s.target) {
+                    beyond_target.store(true, Ordering::Relaxed);
+                }
                 states.write(0, a.scatter());
                 states.write(1, b.scatter());
             });
+            passes += 1;
+            if passes >= s.min_passes && !beyond_target.load(Ordering::Relaxed) {
+                break;
+            }
         }
+        passes
     }
 }
