@@ -61,7 +61,8 @@ impl StepMotion {
 }
 
 /// Sets each body's `knock`: for every neighbour it may meet this step (root
-/// spheres within twice the speculative distance and their closing), the
+/// spheres within twice the speculative distance and their closing, as
+/// `roots_within(a, b, gap)` says), the
 /// most that collision can change its velocity in the step (the closing
 /// times `share`, (1 + e)·m_other / (m + m_other)), pointing away from that
 /// neighbour, summed. The margins were set from the velocities at the step's
@@ -74,7 +75,7 @@ pub(crate) fn add_knocks(
     motion: &mut [StepMotion],
     pairs: &[(u32, u32)],
     centers: impl Fn(usize) -> Vec3,
-    root_gap: impl Fn(usize, usize) -> f32,
+    roots_within: impl Fn(usize, usize, f32) -> bool,
     share: impl Fn(usize, usize) -> f32,
     speculative_distance: f32,
 ) {
@@ -84,7 +85,7 @@ pub(crate) fn add_knocks(
     for &(a, b) in pairs {
         let (a, b) = (a as usize, b as usize);
         let closing = motion[a].closing(motion[b]);
-        if closing > 0.0 && root_gap(a, b) <= 2.0 * speculative_distance + closing {
+        if closing > 0.0 && roots_within(a, b, 2.0 * speculative_distance + closing) {
             let towards_b = (centers(b) - centers(a)).normalize_or_zero();
             motion[a].knock -= share(a, b) * closing * towards_b;
             motion[b].knock += share(b, a) * closing * towards_b;

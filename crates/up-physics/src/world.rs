@@ -1007,9 +1007,8 @@ impl World {
     fn add_knocks(&mut self) {
         let s = &mut self.scratch;
         let (shapes, shape) = (&self.shapes, &self.bodies.shape);
-        let root = |i: usize| shapes[shape[i] as usize].tree.root().radius;
         let centers = &s.bound_center;
-        let root_gap = |a: usize, b: usize| centers[a].distance(centers[b]) - root(a) - root(b);
+        let within = |a, b, gap| roots_within(shapes, shape, centers, a, b, gap);
         let inv_mass = |i: usize| shapes[shape[i] as usize].inv_mass_translational;
         let bounce = 1.0 + self.def.restitution;
         let share = |a: usize, b: usize| bounce * inv_mass(a) / (inv_mass(a) + inv_mass(b));
@@ -1017,7 +1016,7 @@ impl World {
             &mut s.motion,
             &s.broad.pairs,
             |i| centers[i],
-            root_gap,
+            within,
             share,
             self.def.speculative_distance,
         );
