@@ -10,6 +10,7 @@ mod bench;
 mod colliders;
 mod export_obj;
 mod fit_spheres;
+mod heap_meter;
 mod run;
 mod scene_arg;
 mod soak;
@@ -19,6 +20,10 @@ mod validate;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+
+/// Counts the bytes held on the heap, for `up soak`'s leak check.
+#[global_allocator]
+static HEAP: heap_meter::HeapMeter = heap_meter::HeapMeter;
 
 /// UP: helium balloons in a closed room, simulated headless.
 #[derive(Parser)]

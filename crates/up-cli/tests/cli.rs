@@ -543,6 +543,9 @@ fn soak_checks_and_reports_its_figures() {
         "1 % of an 11-inch radius: {j}"
     );
     assert!(j["checks"][0]["rss_bytes"].as_u64().unwrap() > 0, "{j}");
+    // The heap holds at least the world: 20 balloons' bodies and the room.
+    assert!(j["checks"][0]["heap_bytes"].as_u64().unwrap() > 10_000, "{j}");
+    assert!(j["heap_end_bytes"].as_u64().unwrap() > 0, "{j}");
     assert!(text.contains("result") && text.contains("passed"), "{text}");
     up_err(&["soak", "--seconds", "0"]);
     up_err(&["soak", "--check-every", "0"]);
