@@ -233,7 +233,9 @@ pub fn run(args: &SoakArgs) -> Result<()> {
     let wall = started.elapsed().as_secs_f64();
     let last = checks.last().cloned();
     let (heap_at_1min, rss_at_1min) = at_1min.unwrap_or((0, 0));
-    let (heap_end, rss_end) = last.as_ref().map_or((0, 0), |c| (c.heap_bytes, c.rss_bytes));
+    let (heap_end, rss_end) = last
+        .as_ref()
+        .map_or((0, 0), |c| (c.heap_bytes, c.rss_bytes));
     let summary = SoakSummary {
         scene: args.scene.as_ref().map_or_else(
             || "a room sized for the balloons".into(),

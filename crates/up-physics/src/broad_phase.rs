@@ -19,6 +19,7 @@
 use glam::Vec3;
 
 use crate::hash::mix64;
+use crate::spare::{release_spare, release_spare_each, BUFFER_FLOOR};
 use crate::tasks::collect_in_order;
 
 /// Bodies whose neighbours one task looks up.
@@ -39,6 +40,12 @@ pub(crate) struct BroadPhase {
 }
 
 impl BroadPhase {
+    /// Gives back the capacity this step's pairs left unused (`spare`).
+    pub fn release_spare(&mut self) {
+        release_spare(&mut self.pairs, BUFFER_FLOOR);
+        release_spare_each(&mut self.task_pairs);
+    }
+
     /// Finds all pairs whose bounding spheres overlap.
     ///
     /// `radius[i]` is body i's bounding radius already expanded by its

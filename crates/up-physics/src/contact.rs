@@ -6,6 +6,8 @@ use std::ops::Range;
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
+use crate::spare::{release_spare, BUFFER_FLOOR};
+
 /// Stands for the static room in a contact's `body_b`.
 pub(crate) const STATIC_BODY: u32 = u32::MAX;
 
@@ -54,6 +56,13 @@ pub(crate) struct WarmStartCache {
 const EMPTY_SLOT: u32 = u32::MAX;
 
 impl WarmStartCache {
+    /// Gives back the capacity its pairs left unused (`spare`).
+    pub fn release_spare(&mut self) {
+        release_spare(&mut self.runs, BUFFER_FLOOR);
+        release_spare(&mut self.impulses, BUFFER_FLOOR);
+        release_spare(&mut self.table, BUFFER_FLOOR);
+    }
+
     pub fn clear(&mut self) {
         self.runs.clear();
         self.impulses.clear();

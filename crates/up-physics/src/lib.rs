@@ -19,6 +19,7 @@ mod quarantine;
 mod sleep;
 mod snapshot;
 mod solver;
+mod spare;
 mod tasks;
 mod world;
 

@@ -23,6 +23,7 @@ use up_geom::{Contact, PlacedTree, TriMesh};
 
 use crate::body::ShapeData;
 use crate::contact::{pair_key, ContactPoint, STATIC_BODY};
+use crate::spare::{release_spare, BUFFER_FLOOR, TASK_LIST_FLOOR};
 use crate::tasks::{collect_in_order, TaskList};
 
 /// Room tests and pairs handed to one task.
@@ -136,6 +137,12 @@ pub(crate) struct ContactList {
 }
 
 impl ContactList {
+    /// See `spare::release_spare`.
+    fn release_spare(&mut self, floor_bytes: usize) {
+        release_spare(&mut self.contacts, floor_bytes);
+        release_spare(&mut self.runs, floor_bytes);
+    }
+
     pub fn clear(&mut self) {
         self.contacts.clear();
         self.runs.clear();
@@ -238,6 +245,14 @@ pub(crate) struct NarrowPhase {
 }
 
 impl NarrowPhase {
+    /// Gives back the capacity this step's contacts left unused (`spare`).
+    pub fn release_spare(&mut self) {
+        self.found.release_spare(BUFFER_FLOOR);
+        for list in &mut self.tasks {
+            list.release_spare(TASK_LIST_FLOOR);
+        }
+    }
+
     pub fn update(&mut self, input: &NarrowInput, pairs: &[(u32, u32)], room: Option<&TriMesh>) {
         self.found.clear();
         // The room first: it anchors the pile, and Gauss-Seidel converges

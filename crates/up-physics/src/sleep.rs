@@ -67,6 +67,12 @@ pub(crate) struct SleepingIslands {
 }
 
 impl SleepingIslands {
+    /// Gives back the capacity its kept impulses left unused (`spare`).
+    pub fn release_spare(&mut self) {
+        self.impulses.release_spare();
+        self.spare.release_spare();
+    }
+
     pub fn add(&mut self, bodies: Vec<BodyId>) -> u32 {
         self.changed = true;
         if let Some(slot) = self.free.pop() {

@@ -84,8 +84,11 @@ pub(crate) fn collect_in_order<L, F>(
         for list in &lists[..tasks] {
             out.join(list);
         }
+        // Lists this step left idle hold nothing, so `spare` can free them.
+        lists[tasks..].iter_mut().for_each(L::reset);
         return;
     }
-    let _ = (chunk, lists);
+    lists.iter_mut().for_each(L::reset);
+    let _ = chunk;
     collect(0..len, out);
 }

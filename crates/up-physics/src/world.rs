@@ -938,6 +938,7 @@ impl World {
 
         self.update_sleep();
         self.quarantine_non_finite();
+        self.release_spare();
         counters.sleep_ms = clock.lap();
 
         self.time += self.def.dt as f64;
@@ -950,6 +951,20 @@ impl World {
             + counters.continuous_ms
             + counters.sleep_ms;
         self.counters = counters;
+    }
+
+    /// Gives back the capacity that the buffers sized by the contacts did
+    /// not use this step, once it is four times the use (`spare`): a pile
+    /// asleep after a stir holds what it held asleep before.
+    fn release_spare(&mut self) {
+        let s = &mut self.scratch;
+        s.broad.release_spare();
+        s.narrow.release_spare();
+        #[cfg(feature = "parallel")]
+        crate::spare::release_spare(&mut s.prepared, crate::spare::BUFFER_FLOOR);
+        s.solver.release_spare();
+        self.warm.release_spare();
+        self.sleeping.release_spare();
     }
 
     /// World centres of every node of every body, bounding spheres and speculative margins.

@@ -10,6 +10,7 @@
 
 use super::body_state::BodyState;
 use super::lanes::LANES;
+use crate::spare::{release_spare, BUFFER_FLOOR};
 
 /// Marks a slot that holds no constraint.
 #[cfg(feature = "parallel")]
@@ -38,6 +39,14 @@ pub(crate) struct Coloring {
 }
 
 impl Coloring {
+    /// Gives back the capacity this step's constraints left unused (`spare`).
+    pub fn release_spare(&mut self) {
+        release_spare(&mut self.color, BUFFER_FLOOR);
+        release_spare(&mut self.slot, BUFFER_FLOOR);
+        #[cfg(feature = "parallel")]
+        release_spare(&mut self.constraint_at, BUFFER_FLOOR);
+    }
+
     /// Colours the constraints between the body pairs `pairs` greedily
     /// (lowest free colour, in the given order, so room contacts, which come
     /// first, are solved first) and gives each a slot: colour by colour,

@@ -32,6 +32,7 @@ use lanes::LANES;
 use parallel::{for_each_body, for_each_colored, for_each_group, GroupStates};
 
 use crate::contact::StoredImpulse;
+use crate::spare::{release_spare, BUFFER_FLOOR};
 use crate::tasks::fill_chunks;
 
 /// Constraints whose impulses one task stores.
@@ -92,6 +93,14 @@ fn on_velocities(
 }
 
 impl Solver {
+    /// Gives back the capacity this step's constraints left unused (`spare`).
+    pub fn release_spare(&mut self) {
+        release_spare(&mut self.groups, BUFFER_FLOOR);
+        release_spare(&mut self.anchors, BUFFER_FLOOR);
+        release_spare(&mut self.records, BUFFER_FLOOR);
+        self.coloring.release_spare();
+    }
+
     /// Colours the constraints of this step from their body pairs (state
     /// indices, in the narrowphase's order) and makes room for them; then
     /// `set_constraint` each, in the same order. Call after the states are in place.
