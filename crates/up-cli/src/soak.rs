@@ -33,9 +33,10 @@ const MAX_SECONDS: f64 = 86_400.0;
 const PENETRATION_FRACTION: f32 = 0.01;
 /// Simulated time after which memory must stay flat, s.
 const SETTLE_SECONDS: f64 = 60.0;
-/// Allowed heap growth after the first minute, bytes: buffers whose capacity
-/// a busier moment than the first minute's (a stir) raises. A leak of 40 bytes
-/// a step is more within an hour at 60 steps a second.
+/// Allowed heap growth after the first minute, bytes: a pile asleep again
+/// after stirs may keep more contacts' impulses, and buffers keep up to four
+/// times their use (up-physics `spare`). A leak of 40 bytes a step is more
+/// within an hour at 60 steps a second.
 const HEAP_SLACK_BYTES: u64 = 8 << 20;
 /// Mixed into the scene's seed for the stirring's own sequence.
 const STIR_SEED: u64 = 0x5715_0000;
