@@ -193,7 +193,8 @@ pub fn run(args: &SoakArgs) -> Result<()> {
         args.check_every
     );
 
-    let mut checks = Vec::new();
+    // Reserved whole now: records growing later would count as a leak.
+    let mut checks = Vec::with_capacity((steps / args.check_every + 1) as usize);
     let mut window_penetration = 0.0f32;
     let mut window_start = Instant::now();
     let mut window_steps = 0u64;

@@ -67,7 +67,9 @@ pub(crate) struct SleepingIslands {
 }
 
 impl SleepingIslands {
-    /// Gives back the capacity its kept impulses left unused (`spare`).
+    /// Gives back the capacity its kept impulses left unused (`spare`). The
+    /// second buffer holds the set kept before the last change (the two
+    /// swap), so it follows the use one change late.
     pub fn release_spare(&mut self) {
         self.impulses.release_spare();
         self.spare.release_spare();

@@ -1339,6 +1339,9 @@ impl World {
             solver.set_constraints(pairs, prepared);
             return;
         }
+        // Unused this step: its length must say so (`spare`).
+        #[cfg(feature = "parallel")]
+        self.scratch.prepared.clear();
         // The runs cover the contacts in order: coloured in the order prepared below.
         solver.begin_constraints(pairs);
         resume.each(&found.runs, 0..count, |i, previous| {

@@ -55,6 +55,10 @@ impl Coloring {
         self.used.clear();
         self.used.resize(states.len(), 0);
         self.color.clear();
+        // Filled only when the groups are assembled in tasks; empty otherwise,
+        // so that its length is this step's use (`spare`).
+        #[cfg(feature = "parallel")]
+        self.constraint_at.clear();
         let mut counts = [0u32; COLORS + 1];
         let moving = |i: u32| states[i as usize].inv_mass > 0.0;
         for (a, b) in pairs {
