@@ -546,13 +546,22 @@ pub(crate) fn apply_restitution(
     b.apply_impulse(p, arm_b);
 }
 
+/// What a position pass did to a group (`stabilize`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct PositionPush {
+    /// Some contact was deeper than the slop: its bodies moved.
+    pub moved: bool,
+    /// Some contact was deeper than the target before its push.
+    pub beyond_target: bool,
+}
+
 /// Post-stabilisation (Box2D v2's position pass, translation only): overlap
 /// deeper than `slop` is removed directly from the positions, split between
 /// the two bodies by inverse mass. Velocities are untouched, so no energy or
 /// momentum is added and the centre of mass stays put; the soft solve stays
 /// in charge of the dynamics, this pass only bounds how deep a crowd pressing
-/// on a pile can push balloons into each other. Returns whether some contact
-/// was deeper than `target` before its push.
+/// on a pile can push balloons into each other. A target no smaller than
+/// the slop makes `beyond_target` imply `moved`.
 pub(crate) fn stabilize(
     c: &ContactGroup,
     anchors: &GroupAnchors,
@@ -560,17 +569,21 @@ pub(crate) fn stabilize(
     b: &mut Displacements,
     slop: f32,
     target: f32,
-) -> bool {
+) -> PositionPush {
     let inv_mass = a.inv_mass + b.inv_mass;
     let (s, _) = separation(c.normal, anchors, (anchors.r_a, anchors.r_b), (a.dp, b.dp));
     let movable = inv_mass.simd_gt(F4::ZERO);
     let beyond_target = (s.simd_lt(F4::splat(-target)) & movable).any();
     let slop = F4::splat(slop);
     let deep = s.simd_lt(-slop) & movable;
-    if deep.any() {
+    let moved = deep.any();
+    if moved {
         let push = V4::select(deep, ((-slop - s) / inv_mass) * c.normal, V4::ZERO);
         a.dp = a.dp - a.inv_mass * push;
         b.dp = b.dp + b.inv_mass * push;
     }
-    beyond_target
+    PositionPush {
+        moved,
+        beyond_target,
+    }
 }

@@ -17,7 +17,10 @@ pub(crate) mod contact_constraint;
 pub(crate) mod integrate;
 pub(crate) mod lanes;
 pub(crate) mod parallel;
+pub(crate) mod pass_stamps;
 pub(crate) mod softness;
+#[cfg(test)]
+mod stabilize_tests;
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -30,6 +33,7 @@ use contact_constraint::{
 use integrate::{BodyForces, GrabSpring};
 use lanes::LANES;
 use parallel::{for_each_body, for_each_colored, for_each_group, GroupStates};
+use pass_stamps::PassStamps;
 
 use crate::contact::StoredImpulse;
 use crate::spare::{release_spare, BUFFER_FLOOR};
@@ -51,6 +55,8 @@ pub(crate) struct Solver {
     anchors: Vec<GroupAnchors>,
     records: Vec<GroupRecords>,
     coloring: Coloring,
+    /// Which groups the position passes can skip.
+    stamps: PassStamps,
     /// Dense indices of the awake bodies.
     pub awake: Vec<u32>,
 }
@@ -99,6 +105,7 @@ impl Solver {
         release_spare(&mut self.anchors, BUFFER_FLOOR);
         release_spare(&mut self.records, BUFFER_FLOOR);
         self.coloring.release_spare();
+        self.stamps.release_spare();
     }
 
     /// Colours the constraints of this step from their body pairs (state
@@ -298,20 +305,53 @@ impl Solver {
                 contact_constraint::rotate_to_end(anchors, &Poses::gather(a), &Poses::gather(b))
             },
         );
+        let max_passes = s.max_passes.max(s.min_passes);
+        self.stamps
+            .begin(self.states.len(), self.groups.len(), max_passes);
+        let anchors = &self.anchors;
+        let stamps = &self.stamps;
         // Set by any group, whatever the thread: an OR, the same in any order.
         let beyond_target = AtomicBool::new(false);
         let mut passes = 0;
-        while passes < s.max_passes.max(s.min_passes) {
+        while passes < max_passes {
             beyond_target.store(false, Ordering::Relaxed);
-            self.colour_pass(|g, anchors, mut states| {
-                let mut a = Displacements::gather(states.read(0));
-                let mut b = Displacements::gather(states.read(1));
-                if contact_constraint::stabilize(g, anchors, &mut a, &mut b, s.slop, s.target) {
-                    beyond_target.store(true, Ordering::Relaxed);
-                }
-                states.write(0, a.scatter());
-                states.write(1, b.scatter());
-            });
+            let pass = passes;
+            for_each_colored(
+                &self.coloring.ranges,
+                &mut self.groups,
+                &mut self.states,
+                |i, g, mut states| {
+                    // Would move nothing (`pass_stamps`): what it found last time holds.
+                    if stamps.unchanged(i, [&g.a, &g.b]) {
+                        return;
+                    }
+                    let stamp = stamps.stamp(pass, i);
+                    let mut a = Displacements::gather(states.read(0));
+                    let mut b = Displacements::gather(states.read(1));
+                    let push = contact_constraint::stabilize(
+                        g,
+                        &anchors[i],
+                        &mut a,
+                        &mut b,
+                        s.slop,
+                        s.target,
+                    );
+                    stamps.ran(i, stamp, push.moved);
+                    if !push.moved {
+                        return;
+                    }
+                    if push.beyond_target {
+                        beyond_target.store(true, Ordering::Relaxed);
+                    }
+                    for (side, d, bodies) in [(0, &a, g.a), (1, &b, g.b)] {
+                        let scatter = d.scatter();
+                        states.write(side, |lane, state| {
+                            scatter(lane, state);
+                            stamps.moved_state(bodies[lane], stamp);
+                        });
+                    }
+                },
+            );
             passes += 1;
             if passes >= s.min_passes && !beyond_target.load(Ordering::Relaxed) {
                 break;
