@@ -547,12 +547,17 @@ pub(crate) fn apply_restitution(
 }
 
 /// What a position pass did to a group (`stabilize`).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 pub(crate) struct PositionPush {
     /// Some contact was deeper than the slop: its bodies moved.
     pub moved: bool,
     /// Some contact was deeper than the target before its push.
     pub beyond_target: bool,
+    /// How much the shallowest contact between movable bodies could close
+    /// before it is deeper than the slop, m (∞ if there is none).
+    pub room_left: f32,
+    /// How far each lane's bodies moved, side A and side B, m.
+    pub distance: [F4; 2],
 }
 
 /// Post-stabilisation (Box2D v2's position pass, translation only): overlap
@@ -576,14 +581,21 @@ pub(crate) fn stabilize(
     let beyond_target = (s.simd_lt(F4::splat(-target)) & movable).any();
     let slop = F4::splat(slop);
     let deep = s.simd_lt(-slop) & movable;
+    let room = select(movable, s + slop, F4::splat(f32::INFINITY));
+    let room_left = room.to_array().into_iter().fold(f32::INFINITY, f32::min);
     let moved = deep.any();
+    let mut distance = [F4::ZERO; 2];
     if moved {
         let push = V4::select(deep, ((-slop - s) / inv_mass) * c.normal, V4::ZERO);
         a.dp = a.dp - a.inv_mass * push;
         b.dp = b.dp + b.inv_mass * push;
+        let length = push.dot(push).sqrt();
+        distance = [a.inv_mass * length, b.inv_mass * length];
     }
     PositionPush {
         moved,
         beyond_target,
+        room_left,
+        distance,
     }
 }

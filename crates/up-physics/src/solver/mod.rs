@@ -17,7 +17,7 @@ pub(crate) mod contact_constraint;
 pub(crate) mod integrate;
 pub(crate) mod lanes;
 pub(crate) mod parallel;
-pub(crate) mod pass_stamps;
+pub(crate) mod position_skips;
 pub(crate) mod softness;
 #[cfg(test)]
 mod stabilize_tests;
@@ -33,7 +33,7 @@ use contact_constraint::{
 use integrate::{BodyForces, GrabSpring};
 use lanes::LANES;
 use parallel::{for_each_body, for_each_colored, for_each_group, GroupStates};
-use pass_stamps::PassStamps;
+use position_skips::PositionSkips;
 
 use crate::contact::StoredImpulse;
 use crate::spare::{release_spare, BUFFER_FLOOR};
@@ -56,7 +56,7 @@ pub(crate) struct Solver {
     records: Vec<GroupRecords>,
     coloring: Coloring,
     /// Which groups the position passes can skip.
-    stamps: PassStamps,
+    skips: PositionSkips,
     /// Dense indices of the awake bodies.
     pub awake: Vec<u32>,
 }
@@ -105,7 +105,7 @@ impl Solver {
         release_spare(&mut self.anchors, BUFFER_FLOOR);
         release_spare(&mut self.records, BUFFER_FLOOR);
         self.coloring.release_spare();
-        self.stamps.release_spare();
+        self.skips.release_spare();
     }
 
     /// Colours the constraints of this step from their body pairs (state
@@ -306,26 +306,24 @@ impl Solver {
             },
         );
         let max_passes = s.max_passes.max(s.min_passes);
-        self.stamps
-            .begin(self.states.len(), self.groups.len(), max_passes);
+        self.skips.begin(self.states.len(), self.groups.len());
         let anchors = &self.anchors;
-        let stamps = &self.stamps;
+        let skips = &self.skips;
         // Set by any group, whatever the thread: an OR, the same in any order.
         let beyond_target = AtomicBool::new(false);
         let mut passes = 0;
         while passes < max_passes {
             beyond_target.store(false, Ordering::Relaxed);
-            let pass = passes;
             for_each_colored(
                 &self.coloring.ranges,
                 &mut self.groups,
                 &mut self.states,
                 |i, g, mut states| {
-                    // Would move nothing (`pass_stamps`): what it found last time holds.
-                    if stamps.unchanged(i, [&g.a, &g.b]) {
+                    // Would move nothing (`position_skips`): what it found last time holds.
+                    let travel = skips.travel_of([&g.a, &g.b]);
+                    if skips.can_skip(i, travel) {
                         return;
                     }
-                    let stamp = stamps.stamp(pass, i);
                     let mut a = Displacements::gather(states.read(0));
                     let mut b = Displacements::gather(states.read(1));
                     let push = contact_constraint::stabilize(
@@ -336,18 +334,20 @@ impl Solver {
                         s.slop,
                         s.target,
                     );
-                    stamps.ran(i, stamp, push.moved);
                     if !push.moved {
+                        skips.ran(i, travel, push.room_left);
                         return;
                     }
+                    skips.ran(i, travel, f32::NEG_INFINITY);
                     if push.beyond_target {
                         beyond_target.store(true, Ordering::Relaxed);
                     }
-                    for (side, d, bodies) in [(0, &a, g.a), (1, &b, g.b)] {
+                    let sides = [(&a, g.a, push.distance[0]), (&b, g.b, push.distance[1])];
+                    for (side, (d, bodies, distance)) in sides.into_iter().enumerate() {
                         let scatter = d.scatter();
                         states.write(side, |lane, state| {
                             scatter(lane, state);
-                            stamps.moved_state(bodies[lane], stamp);
+                            skips.moved(bodies[lane], distance.as_array()[lane]);
                         });
                     }
                 },

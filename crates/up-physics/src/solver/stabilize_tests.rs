@@ -11,9 +11,10 @@ use crate::hash::mix64;
 
 const RADIUS: f32 = 0.1;
 
-/// A row of `n` balloons along x, each pressed 0–3 mm into the next and
-/// some into the one after, with gaps here and there (contacts that never
-/// push), and the static room (the last state) under every fourth.
+/// A row of `n` balloons along x, each from 1.5 mm into the next to 1 mm
+/// apart (around the slop, so that pushes travel along the row to contacts
+/// that were shallow), now and then 3 mm into it or 4 mm apart, and the
+/// static room (the last state) under every fourth.
 fn pressed_row(n: usize, seed: u64) -> Solver {
     let mut rnd = seed;
     let mut random = move || {
@@ -24,7 +25,11 @@ fn pressed_row(n: usize, seed: u64) -> Solver {
     let mut centers = Vec::new();
     for i in 0..n {
         centers.push(Vec3::new(x, 0.0, 0.0));
-        let gap = if i % 7 == 3 { 0.004 } else { -0.003 * random() };
+        let gap = match i % 7 {
+            3 => 0.004,
+            5 => -0.003,
+            _ => 0.0025 * random() - 0.0015,
+        };
         x += 2.0 * RADIUS + gap;
     }
     // Every eleventh balloon asleep (static), the room last.
