@@ -6,6 +6,7 @@
 
 pub mod contact;
 pub mod fit;
+pub mod norm;
 pub mod pose;
 pub mod query;
 pub mod shape;

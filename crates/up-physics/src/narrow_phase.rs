@@ -17,6 +17,7 @@
 //! the number of threads.
 
 use glam::Vec3;
+use up_geom::norm::{unit_or_zero, Norm};
 use up_geom::query::contact_tree_tree::contact_tree_tree;
 use up_geom::query::contact_tree_trimesh::contact_tree_trimesh;
 use up_geom::{Contact, PlacedTree, TriMesh};
@@ -43,13 +44,13 @@ pub(crate) struct StepMotion {
 impl StepMotion {
     /// The farthest any point of the body moves, m.
     pub fn reach(self) -> f32 {
-        self.linear.length() + self.spin
+        self.linear.norm() + self.spin
     }
 
     /// The most the gap between a point of this body and one of `other` can
     /// close, m: their relative displacement and both spins.
     pub fn closing(self, other: StepMotion) -> f32 {
-        (self.linear - other.linear).length() + self.spin + other.spin
+        (self.linear - other.linear).norm() + self.spin + other.spin
     }
 
     /// How much farther than `closing` the gap may close when the bodies'
@@ -87,7 +88,7 @@ pub(crate) fn add_knocks(
         let (a, b) = (a as usize, b as usize);
         let closing = motion[a].closing(motion[b]);
         if closing > 0.0 && roots_within(a, b, 2.0 * speculative_distance + closing) {
-            let towards_b = (centers(b) - centers(a)).normalize_or_zero();
+            let towards_b = unit_or_zero(centers(b) - centers(a));
             motion[a].knock -= share(a, b) * closing * towards_b;
             motion[b].knock += share(b, a) * closing * towards_b;
         }
@@ -162,7 +163,7 @@ impl ContactList {
             for &a in bodies {
                 scratch.clear();
                 let m = input.motion[a as usize];
-                let margin = input.speculative_distance + m.reach() + m.knock.length();
+                let margin = input.speculative_distance + m.reach() + m.knock.norm();
                 contact_tree_trimesh(input.placed(a as usize), room, margin, &mut scratch);
                 let key = pair_key(input.handle[a as usize], STATIC_BODY);
                 self.push_run(&scratch, key, a, STATIC_BODY);
@@ -177,7 +178,7 @@ impl ContactList {
                 (j, i)
             };
             let (ma, mb) = (input.motion[a as usize], input.motion[b as usize]);
-            let towards_b = (input.root_center(b) - input.root_center(a)).normalize_or_zero();
+            let towards_b = unit_or_zero(input.root_center(b) - input.root_center(a));
             let margin = 2.0 * input.speculative_distance
                 + ma.closing(mb)
                 + ma.knocked_closer(mb, towards_b, input.speculative_distance);

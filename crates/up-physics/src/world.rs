@@ -3,6 +3,7 @@
 use glam::{Quat, Vec3};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
+use up_geom::norm::{distance, Norm};
 use up_geom::query::toi_sphere_trimesh::toi_sphere_trimesh_new_contact;
 use up_geom::{Pose, Sphere, TriMesh};
 
@@ -845,7 +846,7 @@ fn roots_within(
     gap: f32,
 ) -> bool {
     let root = |i: usize| shapes[shape[i] as usize].tree.root().radius;
-    centers[a].distance(centers[b]) < root(a) + root(b) + gap
+    distance(centers[a], centers[b]) < root(a) + root(b) + gap
 }
 
 /// A fast body's core, swept against the room: this share of each leaf's radius.
@@ -1005,7 +1006,7 @@ impl World {
             } else {
                 StepMotion {
                     linear: self.bodies.linear_velocity[i] * dt,
-                    spin: self.bodies.angular_velocity[i].length() * shape.bound_radius * dt,
+                    spin: self.bodies.angular_velocity[i].norm() * shape.bound_radius * dt,
                     knock: Vec3::ZERO,
                 }
             };
@@ -1164,7 +1165,7 @@ impl World {
                 continue;
             }
             let rj = self.shapes[self.bodies.shape[j] as usize].bound_radius;
-            if self.bodies.center[j].distance(ci) <= reach + rj {
+            if distance(self.bodies.center[j], ci) <= reach + rj {
                 islands.push(self.bodies.island[j]);
             }
         }
@@ -1414,7 +1415,7 @@ impl World {
                     let i = i as usize;
                     let s = &solver.states[i];
                     let shape = &shapes[bodies.shape[i] as usize];
-                    let moved = s.dp.length() + s.w.length() * shape.bound_radius * dt;
+                    let moved = s.dp.norm() + s.w.norm() * shape.bound_radius * dt;
                     if moved <= FAST_FRACTION * shape.min_leaf_radius {
                         continue;
                     }
@@ -1448,7 +1449,7 @@ impl World {
             let begin = self.bodies.center[i] - s.dp;
             let q0 = s.start_rotation();
             self.bodies.center[i] = begin + t * s.dp;
-            self.bodies.rotation[i] = q0.lerp(s.q, t).normalize();
+            self.bodies.rotation[i] = q0.lerp(s.q, t).unit();
             let v = self.bodies.linear_velocity[i];
             let into = v.dot(normal);
             if into > 0.0 {
@@ -1475,8 +1476,8 @@ impl World {
             if !self.bodies.awake[i] {
                 continue;
             }
-            let slow = self.bodies.linear_velocity[i].length() < self.def.sleep_linear_speed
-                && self.bodies.angular_velocity[i].length() < self.def.sleep_angular_speed;
+            let slow = self.bodies.linear_velocity[i].norm() < self.def.sleep_linear_speed
+                && self.bodies.angular_velocity[i].norm() < self.def.sleep_angular_speed;
             if slow && grabbed != Some(i) {
                 self.bodies.sleep_time[i] += dt;
             } else {

@@ -1,5 +1,6 @@
 //! Sphere against sphere: the distance between centres minus the radii.
 
+use crate::norm::try_unit;
 use glam::Vec3;
 
 use crate::{Contact, Sphere};
@@ -19,7 +20,7 @@ pub fn contact_sphere_sphere(a: Sphere, b: Sphere, margin: f32) -> Option<Contac
     }
     let distance = distance2.sqrt();
     let normal = if distance > 0.0 {
-        (delta / distance).try_normalize()
+        try_unit(delta / distance)
     } else {
         None
     };

@@ -12,6 +12,7 @@
 //!
 //! A zero-area triangle has no front; it acts as its segment or point.
 
+use crate::norm::Norm;
 use glam::Vec3;
 
 use crate::{closest_point_triangle, Contact, Sphere, TriangleRegion};
@@ -26,7 +27,7 @@ pub(crate) const CENTER_ON_SURFACE: f32 = 1e-6;
 #[inline]
 pub(crate) fn triangle_unit_normal(a: Vec3, b: Vec3, c: Vec3) -> Option<Vec3> {
     let cross = (b - a).cross(c - a);
-    (cross.length_squared() >= f32::MIN_POSITIVE).then(|| cross.normalize())
+    (cross.length_squared() >= f32::MIN_POSITIVE).then(|| cross.unit())
 }
 
 /// Contact between sphere A and one-sided triangle B, if closer than `margin`.
@@ -47,7 +48,7 @@ pub fn contact_sphere_triangle(
             if height < -sphere.radius {
                 return None;
             }
-            let distance = delta.length();
+            let distance = delta.norm();
             if region == TriangleRegion::Face || distance <= CENTER_ON_SURFACE {
                 // On a sliver the normal is rounded enough to put the plane
                 // above the closest point; the centre is never farther from
@@ -60,7 +61,7 @@ pub fn contact_sphere_triangle(
             }
         }
         None => {
-            let distance = delta.length();
+            let distance = delta.norm();
             let m = if distance > CENTER_ON_SURFACE {
                 delta / distance
             } else {

@@ -16,6 +16,7 @@
 //! Contacts whose centre is behind the plane are ignored (one-sided). A
 //! zero-area triangle has no face and no back: only edges and vertices.
 
+use crate::norm::{unit_or_zero, Norm};
 use glam::Vec3;
 
 use super::closest_point_triangle::closest_point_triangle;
@@ -100,7 +101,7 @@ pub fn toi_sphere_triangle(
 #[inline]
 fn toi_sphere_line_segment(s: Sphere, v: Vec3, p0: Vec3, p1: Vec3) -> Option<f32> {
     let edge = p1 - p0;
-    let length = edge.length();
+    let length = edge.norm();
     let axis = (edge / length).try_normalize()?;
     let w = s.center - p0;
     let w_perp = w - axis * w.dot(axis);
@@ -121,7 +122,7 @@ fn toi_sphere_line_segment(s: Sphere, v: Vec3, p0: Vec3, p1: Vec3) -> Option<f32
 fn inside_triangle(p: Vec3, a: Vec3, b: Vec3, c: Vec3, n: Vec3) -> bool {
     let side = |p0: Vec3, p1: Vec3| {
         let edge = p1 - p0;
-        let out = edge.cross(n).normalize_or_zero();
+        let out = unit_or_zero(edge.cross(n));
         (p - p0).dot(out) <= BOUNDARY_SLACK
     };
     side(a, b) && side(b, c) && side(c, a)

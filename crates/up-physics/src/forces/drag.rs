@@ -7,6 +7,7 @@
 //! accelerate 2.6 times too briskly.
 
 use glam::Vec3;
+use up_geom::norm::Norm;
 
 /// The factor k in F = −k·|v|·v: ½·ρ·C_D·A, kg/m.
 /// `air_density` kg/m³ (1.204), `drag_coefficient` (0.95), `area` m² (≈ 0.0708).
@@ -18,7 +19,7 @@ pub fn drag_factor(air_density: f32, drag_coefficient: f32, area: f32) -> f32 {
 /// N, for velocity `v` (m/s).
 #[inline]
 pub fn drag_force(drag_factor: f32, v: Vec3) -> Vec3 {
-    -drag_factor * v.length() * v
+    -drag_factor * v.norm() * v
 }
 
 /// kg: C_a·ρ·V. `added_mass_coefficient` 0.5 for a sphere.

@@ -1,6 +1,7 @@
 //! The solver's view of a body during one step.
 
 use glam::{Mat3, Quat, Vec3};
+use up_geom::norm::Norm;
 
 /// Hot per-body state for the substeps. 112 bytes.
 ///
@@ -45,7 +46,7 @@ impl BodyState {
 
     /// Orientation when the step began: `q` with this step's rotation undone.
     pub fn start_rotation(&self) -> Quat {
-        (self.dq.inverse() * self.q).normalize()
+        (self.dq.inverse() * self.q).unit()
     }
 
     /// Four consecutive floats of the state, `k` from 0 to 5 (see the layout).
@@ -98,8 +99,8 @@ impl BodyState {
     pub fn integrate_position(&mut self, h: f32) {
         self.dp += h * self.v;
         let spin = Quat::from_xyzw(self.w.x, self.w.y, self.w.z, 0.0);
-        self.q = add_scaled(self.q, spin * self.q, 0.5 * h).normalize();
-        self.dq = add_scaled(self.dq, spin * self.dq, 0.5 * h).normalize();
+        self.q = add_scaled(self.q, spin * self.q, 0.5 * h).unit();
+        self.dq = add_scaled(self.dq, spin * self.dq, 0.5 * h).unit();
     }
 }
 

@@ -13,6 +13,7 @@
 //! independent constraints with one stream of SIMD instructions.
 
 use glam::Vec3;
+use up_geom::norm::Norm;
 
 use super::body_state::BodyState;
 use super::lanes::{max, select, F4, LANES, M4, Q4, V4};
@@ -208,7 +209,7 @@ pub(crate) fn tangents(n: Vec3) -> [Vec3; 2] {
     } else {
         Vec3::new(n.y, -n.x, 0.0)
     };
-    let t1 = t1.normalize();
+    let t1 = t1.unit();
     [t1, n.cross(t1)]
 }
 

@@ -1,6 +1,7 @@
 //! Integrating velocities under the air forces, once per substep.
 
 use glam::Vec3;
+use up_geom::norm::Norm;
 
 use super::body_state::BodyState;
 use super::parallel;
@@ -56,7 +57,7 @@ pub(crate) fn integrate_velocities(
         let arm = s.q * f.buoyancy_arm;
         let drag = drag_force(f.drag_factor, s.v);
         let torque = f.torque + buoyancy_torque(arm, f.buoyancy) + arm.cross(drag);
-        let speed_damping = h * f.drag_factor * s.v.length() * s.inv_mass;
+        let speed_damping = h * f.drag_factor * s.v.norm() * s.inv_mass;
         s.v = (s.v + h * s.inv_mass * f.force) / (1.0 + speed_damping);
         s.w = (s.w + h * (s.inv_inertia * torque)) / (1.0 + h * angular_damping);
         if s.inv_mass > 0.0 && !quarantine::is_sane_motion(s.v, s.w) {
@@ -68,7 +69,7 @@ pub(crate) fn integrate_velocities(
         let r = s.dq * g.anchor;
         let point = g.center0 + s.dp + r;
         let mut force = g.stiffness * (g.target - point) - g.damping * s.point_velocity(r);
-        let len = force.length();
+        let len = force.norm();
         if len > g.max_force {
             force *= g.max_force / len;
         }
