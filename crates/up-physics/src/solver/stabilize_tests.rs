@@ -1,4 +1,4 @@
-//! The position passes skip groups that would move nothing (`pass_stamps`):
+//! The position passes skip groups that would move nothing (`position_skips`):
 //! they must leave every body where passes over every group would, bit for bit.
 
 use glam::{Mat3, Quat, Vec3};
