@@ -555,7 +555,8 @@ pub(crate) struct PositionPush {
     /// Some contact was deeper than the target before its push.
     pub beyond_target: bool,
     /// How much the shallowest contact between movable bodies could close
-    /// before it is deeper than the slop, m (∞ if there is none).
+    /// before it is deeper than the slop, m: ∞ if there is none, −∞ if the
+    /// group moved (it has to run again).
     pub room_left: f32,
     /// How far each lane's bodies moved, side A and side B, m.
     pub distance: [F4; 2],
@@ -582,9 +583,15 @@ pub(crate) fn stabilize(
     let beyond_target = (s.simd_lt(F4::splat(-target)) & movable).any();
     let slop = F4::splat(slop);
     let deep = s.simd_lt(-slop) & movable;
-    let room = select(movable, s + slop, F4::splat(f32::INFINITY));
-    let room_left = room.to_array().into_iter().fold(f32::INFINITY, f32::min);
     let moved = deep.any();
+    // A comparison, not `f32::min`, which WebAssembly calls out of line
+    // (`fminf`); a NaN lane never pushes, and is passed over either way.
+    let room = select(movable, s + slop, F4::splat(f32::INFINITY));
+    let shallowest = room
+        .to_array()
+        .into_iter()
+        .fold(f32::INFINITY, |m, r| if r < m { r } else { m });
+    let room_left = if moved { f32::NEG_INFINITY } else { shallowest };
     let mut distance = [F4::ZERO; 2];
     if moved {
         let push = V4::select(deep, ((-slop - s) / inv_mass) * c.normal, V4::ZERO);

@@ -334,11 +334,10 @@ impl Solver {
                         s.slop,
                         s.target,
                     );
+                    skips.ran(i, travel, push.room_left);
                     if !push.moved {
-                        skips.ran(i, travel, push.room_left);
                         return;
                     }
-                    skips.ran(i, travel, f32::NEG_INFINITY);
                     if push.beyond_target {
                         beyond_target.store(true, Ordering::Relaxed);
                     }
