@@ -55,7 +55,8 @@ pub struct WorldDef {
     /// from step to step; groups frozen at different steps then hold
     /// impulses that do not balance, jolt when woken, and wake the next in
     /// cascades: the 10,000-balloon bench pile fell asleep whole at 21–27 s
-    /// with one pass, at 14.5–19 s with two, and the bench's run got faster.
+    /// with one pass, at 14.5–19 s with two, and the bench's run got faster
+    /// (Rapier, given the same second pass, gained more: docs/benchmarks.md).
     pub solve_iterations: u32,
     /// Overlap the position pass leaves alone, m; 0.0005. Deeper overlap is removed
     /// after each step, so balloons never sink into each other.
