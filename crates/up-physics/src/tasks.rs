@@ -58,6 +58,8 @@ impl<T: Copy + Send> TaskList for Vec<T> {
 /// into runs of `chunk` on rayon's threads when worth it, each pushing into a
 /// list of its own (from `lists`, kept for their buffers), joined in order,
 /// so `out` ends the same as with one call over `0..len`.
+// Without `parallel` (the wasm build) `lists` is only reset, never grown.
+#[cfg_attr(not(feature = "parallel"), allow(clippy::ptr_arg))]
 pub(crate) fn collect_in_order<L, F>(
     len: usize,
     chunk: usize,
