@@ -16,7 +16,7 @@
 //! Contacts whose centre is behind the plane are ignored (one-sided). A
 //! zero-area triangle has no face and no back: only edges and vertices.
 
-use crate::norm::{unit_or_zero, Norm};
+use crate::norm::{try_unit, unit_or_zero, Norm};
 use glam::Vec3;
 
 use super::closest_point_triangle::closest_point_triangle;
@@ -102,7 +102,7 @@ pub fn toi_sphere_triangle(
 fn toi_sphere_line_segment(s: Sphere, v: Vec3, p0: Vec3, p1: Vec3) -> Option<f32> {
     let edge = p1 - p0;
     let length = edge.norm();
-    let axis = (edge / length).try_normalize()?;
+    let axis = try_unit(edge / length)?;
     let w = s.center - p0;
     let w_perp = w - axis * w.dot(axis);
     let v_perp = v - axis * v.dot(axis);

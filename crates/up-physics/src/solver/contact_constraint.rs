@@ -583,27 +583,29 @@ pub(crate) fn stabilize(
     let beyond_target = (s.simd_lt(F4::splat(-target)) & movable).any();
     let slop = F4::splat(slop);
     let deep = s.simd_lt(-slop) & movable;
-    let moved = deep.any();
-    // A comparison, not `f32::min`, which WebAssembly calls out of line
-    // (`fminf`); a NaN lane never pushes, and is passed over either way.
-    let room = select(movable, s + slop, F4::splat(f32::INFINITY));
-    let shallowest = room
-        .to_array()
-        .into_iter()
-        .fold(f32::INFINITY, |m, r| if r < m { r } else { m });
-    let room_left = if moved { f32::NEG_INFINITY } else { shallowest };
-    let mut distance = [F4::ZERO; 2];
-    if moved {
-        let push = V4::select(deep, ((-slop - s) / inv_mass) * c.normal, V4::ZERO);
-        a.dp = a.dp - a.inv_mass * push;
-        b.dp = b.dp + b.inv_mass * push;
-        let length = push.dot(push).sqrt();
-        distance = [a.inv_mass * length, b.inv_mass * length];
+    if !deep.any() {
+        // A comparison, not `f32::min`, which WebAssembly calls out of line
+        // (`fminf`); a NaN lane never pushes, and is passed over either way.
+        let room = select(movable, s + slop, F4::splat(f32::INFINITY));
+        let shallowest = room
+            .to_array()
+            .into_iter()
+            .fold(f32::INFINITY, |m, r| if r < m { r } else { m });
+        return PositionPush {
+            moved: false,
+            beyond_target,
+            room_left: shallowest,
+            distance: [F4::ZERO; 2],
+        };
     }
+    let push = V4::select(deep, ((-slop - s) / inv_mass) * c.normal, V4::ZERO);
+    a.dp = a.dp - a.inv_mass * push;
+    b.dp = b.dp + b.inv_mass * push;
+    let length = push.dot(push).sqrt();
     PositionPush {
-        moved,
+        moved: true,
         beyond_target,
-        room_left,
-        distance,
+        room_left: f32::NEG_INFINITY,
+        distance: [a.inv_mass * length, b.inv_mass * length],
     }
 }
