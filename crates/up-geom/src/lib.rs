@@ -24,6 +24,7 @@ pub use query::contact_sphere_triangle::contact_sphere_triangle;
 pub use query::contact_sphere_trimesh::contact_sphere_trimesh;
 pub use query::contact_tree_tree::contact_tree_tree;
 pub use query::contact_tree_trimesh::contact_tree_trimesh;
+pub use query::prune_shadowed::{prune_shadowed, RelativeMotion};
 pub use query::toi_bisect::{
     toi_bisect, toi_bisect_conservative, toi_sphere_sphere_bisect, toi_sphere_triangle_bisect,
 };

@@ -81,6 +81,19 @@ pub(crate) struct ShapeData {
     pub added_mass: f32,
 }
 
+impl ShapeData {
+    /// The most a knock (`StepMotion::knock`, m) can turn the body, rad per
+    /// metre: the impulse behind it, `k / inv_mass_translational` per step,
+    /// applied at the bound radius, through the largest inverse inertia
+    /// (bounded by its largest row sum).
+    pub fn turn_per_knock(&self) -> f32 {
+        let m = &self.inv_inertia_local;
+        let row = |r: usize| m.row(r).abs().element_sum();
+        let largest = row(0).max(row(1)).max(row(2));
+        largest * self.bound_radius / self.inv_mass_translational
+    }
+}
+
 /// Hot and warm body state, struct of arrays, indexed densely (0..len).
 /// Removal swaps the last body into the hole, so the arrays stay packed.
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]

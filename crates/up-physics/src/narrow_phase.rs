@@ -8,7 +8,9 @@
 //! relative motion: balloons rising side by side are to each other as if at
 //! rest. A body that a collision may throw further within the step than a
 //! speculative distance (`add_knocks`) widens the margins of the pairs it is
-//! thrown towards, and its margin with the room.
+//! thrown towards, and its margin with the room. Of the several leaf pairs two
+//! trees meet at, the gaps a shallower contact shadows are dropped
+//! (`prune_shadowed`): they cannot close this step before it has.
 //!
 //! With the `parallel` feature and more than one thread, the tests are split
 //! into tasks of consecutive bodies and pairs, each with its own list, joined
@@ -20,7 +22,7 @@ use glam::Vec3;
 use up_geom::norm::{unit_or_zero, Norm};
 use up_geom::query::contact_tree_tree::contact_tree_tree;
 use up_geom::query::contact_tree_trimesh::contact_tree_trimesh;
-use up_geom::{Contact, PlacedTree, TriMesh};
+use up_geom::{prune_shadowed, Contact, PlacedTree, RelativeMotion, TriMesh};
 
 use crate::body::ShapeData;
 use crate::contact::{pair_key, ContactPoint, STATIC_BODY};
@@ -30,14 +32,15 @@ use crate::tasks::{collect_in_order, TaskList};
 /// Room tests and pairs handed to one task.
 const TASK_ITEMS: usize = 256;
 
-/// How far a body moves in this step: its displacement v·dt and the arc
-/// |ω|·r·dt its bounding sphere's surface turns through; and how much farther
-/// collisions within the step may throw it, and which way (`knock`, see
-/// `add_knocks`).
+/// How far a body moves in this step: its displacement v·dt, the angle |ω|·dt
+/// it turns through and the arc |ω|·r·dt its bounding sphere's surface
+/// travels; and how much farther collisions within the step may throw it, and
+/// which way (`knock`, see `add_knocks`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct StepMotion {
     pub linear: Vec3,
     pub spin: f32,
+    pub turn: f32,
     pub knock: Vec3,
 }
 
@@ -111,6 +114,16 @@ pub(crate) struct NarrowInput<'a> {
 }
 
 impl NarrowInput<'_> {
+    /// The most body `i` can turn this step, rad: as it spins, and as far
+    /// as its knock can turn it (a collision off its centre).
+    fn turn(&self, i: u32, m: StepMotion) -> f32 {
+        if m.knock == Vec3::ZERO {
+            return m.turn;
+        }
+        let shape = &self.shapes[self.shape[i as usize] as usize];
+        m.turn + m.knock.norm() * shape.turn_per_knock()
+    }
+
     fn root_center(&self, i: u32) -> Vec3 {
         self.node_centers[self.node_start[i as usize] as usize]
     }
@@ -189,6 +202,13 @@ impl ContactList {
                 margin,
                 &mut scratch,
             );
+            // The margin is what the gap may close by anywhere: it bounds the
+            // relative displacement of the surfaces, as the shadowing asks.
+            let motion = RelativeMotion {
+                reach: margin,
+                turn: input.turn(a, ma) + input.turn(b, mb),
+            };
+            prune_shadowed(&mut scratch, motion);
             let key = pair_key(input.handle[a as usize], input.handle[b as usize]);
             self.push_run(&scratch, key, a, b);
         }

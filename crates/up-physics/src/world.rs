@@ -1010,9 +1010,11 @@ impl World {
             let motion = if at_rest || !self.bodies.awake[i] {
                 StepMotion::default()
             } else {
+                let rate = self.bodies.angular_velocity[i].norm();
                 StepMotion {
                     linear: self.bodies.linear_velocity[i] * dt,
-                    spin: self.bodies.angular_velocity[i].norm() * shape.bound_radius * dt,
+                    spin: rate * shape.bound_radius * dt,
+                    turn: rate * dt,
                     knock: Vec3::ZERO,
                 }
             };

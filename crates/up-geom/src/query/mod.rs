@@ -7,6 +7,7 @@ pub mod contact_sphere_trimesh;
 pub mod contact_tree_tree;
 pub mod contact_tree_trimesh;
 pub mod mesh_feature;
+pub mod prune_shadowed;
 pub mod toi_bisect;
 pub mod toi_sphere_sphere;
 pub mod toi_sphere_triangle;

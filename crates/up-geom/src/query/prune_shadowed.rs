@@ -1,0 +1,196 @@
+//! Drops the speculative contacts of a pair that a shallower contact of the
+//! same pair shadows.
+//!
+//! Two sphere trees pressed together meet at several leaf pairs within the
+//! margin, most of them a few millimetres apart with nearly the same normal:
+//! about four contacts a pair in a settled pile, of which one touches. A
+//! speculative contact j (gap `s_j > 0`) matters only if the bodies can close
+//! it before the next query. Let contact i, with `s_i ≤ s_j`, be kept, and let
+//! the relative displacement of the surfaces at i be `u_i`, with
+//! `|u_i| ≤ reach`, and the relative turn be at most `turn` radians. To first
+//! order the displacement at j is `u_i + θ × (p_j − p_i)`, so
+//!
+//! `gap_j' ≥ gap_i' + (s_j − s_i) − reach·|n_j − n_i| − turn·|p_j − p_i|`.
+//!
+//! When the last three terms add up to no less than zero, j cannot close
+//! before i has, and the constraint on i holds it: j is dropped. Contacts
+//! that touch are always kept (they carry load), and so is anything a fast or
+//! spinning pair could close (its bounds are wide, the inequality fails).
+
+use crate::Contact;
+
+/// The most two shapes can move relative to each other before their contacts
+/// are found again.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RelativeMotion {
+    /// Relative displacement of any pair of surface points, m.
+    pub reach: f32,
+    /// Relative rotation, rad.
+    pub turn: f32,
+}
+
+/// Removes the contacts of one pair that a kept, shallower contact shadows
+/// (see the module's doc); the rest come out shallowest first (ties by
+/// feature, so the order does not depend on the input's). Shadowing is
+/// transitive (the triangle inequality, on normals and on points), so what a
+/// dropped contact shadows, the contact that dropped it shadows too: testing
+/// against the kept ones alone is enough.
+pub fn prune_shadowed(contacts: &mut Vec<Contact>, motion: RelativeMotion) {
+    if contacts.len() < 2 {
+        return;
+    }
+    contacts.sort_unstable_by(|a, b| {
+        a.separation
+            .total_cmp(&b.separation)
+            .then(a.feature_a.cmp(&b.feature_a))
+            .then(a.feature_b.cmp(&b.feature_b))
+    });
+    let mut kept = 0;
+    for j in 0..contacts.len() {
+        let c = contacts[j];
+        let shadowed =
+            c.separation > 0.0 && contacts[..kept].iter().any(|i| shadows(i, &c, motion));
+        if !shadowed {
+            contacts[kept] = c;
+            kept += 1;
+        }
+    }
+    contacts.truncate(kept);
+}
+
+/// Whether `j` cannot close before the shallower `i` has (the inequality above).
+#[inline]
+fn shadows(i: &Contact, j: &Contact, motion: RelativeMotion) -> bool {
+    let lead = j.separation - i.separation;
+    let turn_room = motion.turn * midpoint(j).distance(midpoint(i));
+    lead >= motion.reach * (j.normal - i.normal).length() + turn_room
+}
+
+#[inline]
+fn midpoint(c: &Contact) -> glam::Vec3 {
+    0.5 * (c.point_a + c.point_b)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Vec3;
+    use proptest::prelude::*;
+
+    fn contact(separation: f32, normal: Vec3, at: Vec3, feature: u32) -> Contact {
+        let normal = normal.normalize();
+        Contact {
+            point_a: at - 0.5 * separation * normal,
+            point_b: at + 0.5 * separation * normal,
+            normal,
+            separation,
+            feature_a: feature,
+            feature_b: feature,
+        }
+    }
+
+    const STILL: RelativeMotion = RelativeMotion {
+        reach: 0.02,
+        turn: 0.0,
+    };
+
+    #[test]
+    fn a_parallel_deeper_gap_is_dropped_and_touching_contacts_stay() {
+        let mut cs = vec![
+            contact(0.004, Vec3::Y, Vec3::new(0.05, 0.0, 0.0), 1),
+            contact(-0.001, Vec3::Y, Vec3::ZERO, 2),
+            contact(-0.0005, Vec3::Y, Vec3::new(-0.05, 0.0, 0.0), 3),
+        ];
+        prune_shadowed(&mut cs, STILL);
+        let features: Vec<u32> = cs.iter().map(|c| c.feature_a).collect();
+        assert_eq!(features, vec![2, 3]);
+    }
+
+    #[test]
+    fn a_gap_at_a_different_normal_stays_unless_it_leads_by_enough() {
+        // 0.1 rad apart: |Δn| ≈ 0.1, so 2 mm of lead at a 2 cm reach.
+        let tilted = Vec3::new(0.1f32.sin(), 0.1f32.cos(), 0.0);
+        let near = contact(0.0015, tilted, Vec3::X * 0.05, 1);
+        let far = contact(0.0025, tilted, Vec3::X * 0.05, 1);
+        for (c, dropped) in [(near, false), (far, true)] {
+            let mut cs = vec![contact(0.0, Vec3::Y, Vec3::ZERO, 0), c];
+            prune_shadowed(&mut cs, STILL);
+            assert_eq!(cs.len(), if dropped { 1 } else { 2 }, "{c:?}");
+        }
+    }
+
+    #[test]
+    fn turning_keeps_distant_gaps() {
+        let mut cs = vec![
+            contact(0.0, Vec3::Y, Vec3::ZERO, 0),
+            contact(0.003, Vec3::Y, Vec3::X * 0.1, 1),
+        ];
+        let turning = RelativeMotion {
+            reach: 0.02,
+            turn: 0.05, // 5 mm of turn room at 0.1 m
+        };
+        prune_shadowed(&mut cs, turning);
+        assert_eq!(cs.len(), 2);
+        prune_shadowed(&mut cs, STILL);
+        assert_eq!(cs.len(), 1);
+    }
+
+    #[test]
+    fn the_result_does_not_depend_on_the_input_order() {
+        let n = |angle: f32| Vec3::new(angle.sin(), angle.cos(), 0.0);
+        let cs = vec![
+            contact(0.0, n(0.0), Vec3::ZERO, 0),
+            contact(0.003, n(0.1), Vec3::X * 0.02, 1),
+            contact(0.003, n(-0.1), Vec3::X * -0.02, 2),
+            contact(0.001, n(0.3), Vec3::Z * 0.05, 3),
+            contact(-0.0002, n(0.05), Vec3::Z * -0.05, 4),
+        ];
+        let mut forward = cs.clone();
+        prune_shadowed(&mut forward, STILL);
+        let mut backward: Vec<Contact> = cs.into_iter().rev().collect();
+        prune_shadowed(&mut backward, STILL);
+        assert_eq!(forward, backward);
+        let features: Vec<u32> = forward.iter().map(|c| c.feature_a).collect();
+        assert_eq!(features, vec![4, 0, 3]);
+    }
+
+    proptest! {
+        /// The promise itself: for any relative motion within the bounds (a
+        /// displacement and a small turn about a point), no dropped contact
+        /// ends up with a smaller gap than every kept contact of the pair.
+        #[test]
+        fn no_dropped_contact_closes_before_the_kept_ones(
+            raw in prop::collection::vec(
+                ((-0.002f32..0.02), (-0.4f32..0.4), (-0.4f32..0.4), (-0.1f32..0.1), (-0.1f32..0.1)),
+                1..12,
+            ),
+            d in ((-1f32..1.0), (-1f32..1.0), (-1f32..1.0)),
+            axis in ((-1f32..1.0), (-1f32..1.0), (-1f32..1.0)),
+            reach in 0.0f32..0.03,
+            turn in 0.0f32..0.1,
+        ) {
+            let all: Vec<Contact> = raw
+                .iter()
+                .enumerate()
+                .map(|(k, &(s, nx, nz, px, pz))| {
+                    contact(s, Vec3::new(nx, 1.0, nz), Vec3::new(px, 0.0, pz), k as u32)
+                })
+                .collect();
+            let mut kept = all.clone();
+            prune_shadowed(&mut kept, RelativeMotion { reach, turn });
+            // Displacement of B relative to A at point p: u + θ × p, |θ| ≤ turn,
+            // with u small enough that no contact point moves more than `reach`
+            // (the points lie within 0.1·√2 of the origin).
+            let u_max = (reach - turn * 0.1415).max(0.0);
+            let u = Vec3::new(d.0, d.1, d.2).clamp_length_max(1.0) * u_max;
+            let theta = Vec3::new(axis.0, axis.1, axis.2).clamp_length_max(1.0) * turn;
+            let gap_after = |c: &Contact| c.separation + (u + theta.cross(midpoint(c))).dot(c.normal);
+            let least_kept = kept.iter().map(gap_after).fold(f32::INFINITY, f32::min);
+            for c in all.iter().filter(|c| !kept.contains(c)) {
+                prop_assert!(c.separation > 0.0);
+                prop_assert!(gap_after(c) >= least_kept - 1e-6,
+                    "dropped {c:?} closes to {} while the kept close to {least_kept}", gap_after(c));
+            }
+        }
+    }
+}
