@@ -2,8 +2,9 @@
 //! same pair shadows.
 //!
 //! Two sphere trees pressed together meet at several leaf pairs within the
-//! margin, most of them a few millimetres apart with nearly the same normal:
-//! about four contacts a pair in a settled pile, of which one touches. A
+//! margin, most of them gaps of millimetres to centimetres with nearly the
+//! normal of the pair's touching contact: about four contacts a pair in a
+//! settling pile, of which one touches. A
 //! speculative contact j (gap `s_j > 0`) matters only if the bodies can close
 //! it before the next query. Let contact i, with `s_i ≤ s_j`, be kept, and let
 //! the relative displacement of the surfaces at i be `u_i`, with
@@ -17,6 +18,7 @@
 //! that touch are always kept (they carry load), and so is anything a fast or
 //! spinning pair could close (its bounds are wide, the inequality fails).
 
+use crate::norm::{distance, Norm};
 use crate::Contact;
 
 /// The most two shapes can move relative to each other before their contacts
@@ -62,8 +64,8 @@ pub fn prune_shadowed(contacts: &mut Vec<Contact>, motion: RelativeMotion) {
 #[inline]
 fn shadows(i: &Contact, j: &Contact, motion: RelativeMotion) -> bool {
     let lead = j.separation - i.separation;
-    let turn_room = motion.turn * midpoint(j).distance(midpoint(i));
-    lead >= motion.reach * (j.normal - i.normal).length() + turn_room
+    let turn_room = motion.turn * distance(midpoint(j), midpoint(i));
+    lead >= motion.reach * (j.normal - i.normal).norm() + turn_room
 }
 
 #[inline]
