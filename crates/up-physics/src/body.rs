@@ -85,11 +85,15 @@ impl ShapeData {
     /// The most a knock (`StepMotion::knock`, m) can turn the body, rad per
     /// metre: the impulse behind it, `k / inv_mass_translational` per step,
     /// applied at the bound radius, through the largest inverse inertia
-    /// (bounded by its largest row sum).
+    /// (bounded by its largest row sum, which the world frame's rotation
+    /// does not change).
     pub fn turn_per_knock(&self) -> f32 {
         let m = &self.inv_inertia_local;
         let row = |r: usize| m.row(r).abs().element_sum();
-        let largest = row(0).max(row(1)).max(row(2));
+        // Compared, not `f32::max`: that is a call in WebAssembly.
+        let largest = [row(1), row(2)]
+            .into_iter()
+            .fold(row(0), |a, b| if b > a { b } else { a });
         largest * self.bound_radius / self.inv_mass_translational
     }
 }

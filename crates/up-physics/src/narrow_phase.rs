@@ -10,7 +10,8 @@
 //! speculative distance (`add_knocks`) widens the margins of the pairs it is
 //! thrown towards, and its margin with the room. Of the several leaf pairs two
 //! trees meet at, the gaps a shallower contact shadows are dropped
-//! (`prune_shadowed`): they cannot close this step before it has.
+//! (`prune_shadowed`), by the motion the margin stands for: the gaps that
+//! cannot close this step before that contact has.
 //!
 //! With the `parallel` feature and more than one thread, the tests are split
 //! into tasks of consecutive bodies and pairs, each with its own list, joined
@@ -202,10 +203,16 @@ impl ContactList {
                 margin,
                 &mut scratch,
             );
-            // The margin is what the gap may close by anywhere: it bounds the
-            // relative displacement of the surfaces, as the shadowing asks.
+            // Judged by the motion the margin stands for: what a gap between
+            // the two may close this step. That is the margin's own model,
+            // not a strict bound: a knock counts only along the line of
+            // centres, and a turn the step brings otherwise (resting
+            // contacts, buoyancy) not at all. Stricter bounds (the knocks'
+            // whole lengths, their turns' arcs) keep most of the gaps; the
+            // soaks found the overlaps no deeper with this one
+            // (docs/benchmarks.md, Changes).
             let motion = RelativeMotion {
-                reach: margin,
+                displacement: margin,
                 turn: input.turn(a, ma) + input.turn(b, mb),
             };
             prune_shadowed(&mut scratch, motion);
