@@ -208,9 +208,9 @@ impl ContactList {
             // not a strict bound: a knock counts only along the line of
             // centres, and a turn the step brings otherwise (resting
             // contacts, buoyancy) not at all. Stricter bounds (the knocks'
-            // whole lengths, their turns' arcs) keep most of the gaps; the
-            // soaks found the overlaps no deeper with this one
-            // (docs/benchmarks.md, Changes).
+            // whole lengths, their turns' arcs) keep most of the gaps; with
+            // this one a few impacts close a dropped gap, within the soaks'
+            // bound (docs/benchmarks.md, Changes).
             let motion = RelativeMotion {
                 displacement: margin,
                 turn: input.turn(a, ma) + input.turn(b, mb),
