@@ -15,13 +15,12 @@
 //! `gap_j' ≥ gap_i' + (s_j − s_i) − displacement·|n_j − n_i| − turn·|p_j − p_i|`.
 //!
 //! When the last three terms add up to no less than zero, gap j ends no
-//! smaller than gap i: the solver, which holds i, holds j as well, and j is
-//! dropped. Contacts that touch are always kept (they carry load), and so is
+//! smaller than gap i, which the solver holds, and j is dropped. Contacts that touch are always kept (they carry load), and so is
 //! anything a fast or spinning pair could close (its bounds are wide, the
 //! inequality fails). The promise is as good as the bounds the caller gives.
 
 use crate::norm::{distance, Norm};
-use crate::Contact;
+use crate::{Contact, Vec3};
 
 /// The most two shapes can move relative to each other before their contacts
 /// are found again.
@@ -71,14 +70,13 @@ fn shadows(i: &Contact, j: &Contact, motion: RelativeMotion) -> bool {
 }
 
 #[inline]
-fn midpoint(c: &Contact) -> glam::Vec3 {
+fn midpoint(c: &Contact) -> Vec3 {
     0.5 * (c.point_a + c.point_b)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::Vec3;
     use proptest::prelude::*;
 
     fn contact(separation: f32, normal: Vec3, at: Vec3, feature: u32) -> Contact {
@@ -112,7 +110,7 @@ mod tests {
 
     #[test]
     fn a_gap_at_a_different_normal_stays_unless_it_leads_by_enough() {
-        // 0.1 rad apart: |Δn| ≈ 0.1, so 2 mm of lead at a 2 cm reach.
+        // 0.1 rad apart: |Δn| ≈ 0.1, so 2 mm of lead at a 2 cm displacement.
         let tilted = Vec3::new(0.1f32.sin(), 0.1f32.cos(), 0.0);
         let near = contact(0.0015, tilted, Vec3::X * 0.05, 1);
         let far = contact(0.0025, tilted, Vec3::X * 0.05, 1);
