@@ -35,17 +35,25 @@ const TASK_ITEMS: usize = 256;
 
 /// How far a body moves in this step: its displacement v·dt, the angle |ω|·dt
 /// it turns through and the arc |ω|·r·dt its bounding sphere's surface
-/// travels; and how much farther collisions within the step may throw it, and
-/// which way (`knock`, see `add_knocks`).
+/// travels; how much farther collisions within the step may throw it, and
+/// which way (`knock`, see `add_knocks`), and how far that may turn it
+/// (`knock_turn`: the knock struck off the centre, `ShapeData::turn_per_knock`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct StepMotion {
     pub linear: Vec3,
     pub spin: f32,
     pub turn: f32,
     pub knock: Vec3,
+    pub knock_turn: f32,
 }
 
 impl StepMotion {
+    /// The most the body can turn this step, rad: as it spins, and as its
+    /// knock may turn it.
+    pub fn most_turn(self) -> f32 {
+        self.turn + self.knock_turn
+    }
+
     /// The farthest any point of the body moves, m.
     pub fn reach(self) -> f32 {
         self.linear.norm() + self.spin
@@ -115,16 +123,6 @@ pub(crate) struct NarrowInput<'a> {
 }
 
 impl NarrowInput<'_> {
-    /// The most body `i` can turn this step, rad: as it spins, and as far
-    /// as its knock can turn it (a collision off its centre).
-    fn turn(&self, i: u32, m: StepMotion) -> f32 {
-        if m.knock == Vec3::ZERO {
-            return m.turn;
-        }
-        let shape = &self.shapes[self.shape[i as usize] as usize];
-        m.turn + m.knock.norm() * shape.turn_per_knock()
-    }
-
     fn root_center(&self, i: u32) -> Vec3 {
         self.node_centers[self.node_start[i as usize] as usize]
     }
@@ -213,7 +211,7 @@ impl ContactList {
             // bound (docs/benchmarks.md, Changes).
             let motion = RelativeMotion {
                 displacement: margin,
-                turn: input.turn(a, ma) + input.turn(b, mb),
+                turn: ma.most_turn() + mb.most_turn(),
             };
             prune_shadowed(&mut scratch, motion);
             let key = pair_key(input.handle[a as usize], input.handle[b as usize]);

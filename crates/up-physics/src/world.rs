@@ -1015,7 +1015,7 @@ impl World {
                     linear: self.bodies.linear_velocity[i] * dt,
                     spin: rate * shape.bound_radius * dt,
                     turn: rate * dt,
-                    knock: Vec3::ZERO,
+                    ..StepMotion::default()
                 }
             };
             // Wide enough for every pair the narrowphase may find a contact in.
@@ -1044,6 +1044,14 @@ impl World {
             share,
             self.def.speculative_distance,
         );
+        // Once a body, not in each of its pairs: the turn its knock may give.
+        for (i, m) in s.motion.iter_mut().enumerate() {
+            m.knock_turn = if m.knock == Vec3::ZERO {
+                0.0
+            } else {
+                m.knock.norm() * shapes[shape[i] as usize].turn_per_knock()
+            };
+        }
     }
 
     /// Cell radius: the largest root sphere plus its margin at a brisk ascent.
