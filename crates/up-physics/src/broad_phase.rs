@@ -7,6 +7,12 @@
 //! twice as long as the body count and filled by a counting sort, so nothing
 //! is allocated once the buffers have grown.
 //!
+//! The lookups are the cost, so the table is laid out for them: a column of
+//! cells along z hashes to consecutive buckets (one hash, three buckets side
+//! by side), and each bucket entry carries its body's cell, sphere and
+//! wakefulness, so a scan reads memory in order instead of jumping between
+//! the bodies' arrays.
+//!
 //! A fast body (thrown by the user) has a bounding sphere swollen by its
 //! motion this step. It would blow up the cell size for everyone, so such
 //! "large" bodies stay out of the grid: each one queries the cells its sphere
@@ -31,7 +37,7 @@ pub(crate) struct BroadPhase {
     /// Bucket b holds `items[start[b]..start[b + 1]]`.
     start: Vec<u32>,
     cursor: Vec<u32>,
-    items: Vec<u32>,
+    items: Vec<GridItem>,
     large: Vec<u32>,
     /// Output: dense index pairs (a < b), at least one of them awake.
     pub pairs: Vec<(u32, u32)>,
@@ -71,7 +77,7 @@ impl BroadPhase {
             if radius[i] > cell_radius {
                 self.large.push(i as u32);
             } else {
-                self.start[(hash_cell(self.cell_of[i]) & mask) + 1] += 1;
+                self.start[bucket(self.cell_of[i], mask) + 1] += 1;
             }
         }
         for b in 1..self.start.len() {
@@ -80,11 +86,18 @@ impl BroadPhase {
         self.cursor.clear();
         self.cursor.extend_from_slice(&self.start);
         self.items.clear();
-        self.items.resize(self.start[mask + 1] as usize, 0);
+        self.items
+            .resize(self.start[mask + 1] as usize, GridItem::default());
         for i in 0..n {
             if radius[i] <= cell_radius {
-                let b = hash_cell(self.cell_of[i]) & mask;
-                self.items[self.cursor[b] as usize] = i as u32;
+                let b = bucket(self.cell_of[i], mask);
+                self.items[self.cursor[b] as usize] = GridItem {
+                    center: center[i],
+                    radius: radius[i],
+                    cell: cell_key(self.cell_of[i]),
+                    body: i as u32,
+                    awake: awake[i],
+                };
                 self.cursor[b] += 1;
             }
         }
@@ -105,9 +118,13 @@ impl BroadPhase {
                     if radius[i] > cell_radius || !awake[i] {
                         continue;
                     }
-                    grid.near(i, |j| {
-                        if j > i || !awake[j] {
-                            consider(pairs, i as u32, j as u32, center, radius, awake);
+                    let (ci, ri) = (center[i], radius[i]);
+                    grid.near(i, |item| {
+                        let j = item.body as usize;
+                        // `consider`'s test, read from the entry.
+                        let r = ri + item.radius;
+                        if (j > i || !item.awake) && ci.distance_squared(item.center) <= r * r {
+                            pairs.push((i.min(j) as u32, i.max(j) as u32));
                         }
                     });
                 }
@@ -123,11 +140,10 @@ impl BroadPhase {
             for x in lo[0]..=hi[0] {
                 for y in lo[1]..=hi[1] {
                     for z in lo[2]..=hi[2] {
-                        let b = hash_cell([x, y, z]) & mask;
-                        for k in self.start[b]..self.start[b + 1] {
-                            let j = self.items[k as usize];
-                            if self.cell_of[j as usize] == [x, y, z] {
-                                consider(&mut self.pairs, l, j, center, radius, awake);
+                        let key = cell_key([x, y, z]);
+                        for item in grid.bucket(bucket([x, y, z], mask)) {
+                            if item.cell == key {
+                                consider(&mut self.pairs, l, item.body, center, radius, awake);
                             }
                         }
                     }
@@ -176,7 +192,8 @@ impl BroadPhase {
             if !awake[i] || was_awake[i] {
                 continue;
             }
-            grid.near(i, |j| {
+            grid.near(i, |item| {
+                let j = item.body as usize;
                 // Slept at the update; two woken bodies meet once.
                 if !was_awake[j] && (j > i || !awake[j]) {
                     consider(&mut self.pairs, i as u32, j as u32, center, radius, awake);
@@ -187,17 +204,30 @@ impl BroadPhase {
     }
 }
 
+/// An ordinary body in the grid's table, with what its neighbours' scans read.
+#[derive(Clone, Copy, Debug, Default)]
+struct GridItem {
+    center: Vec3,
+    /// Bounding radius with the speculative margin.
+    radius: f32,
+    /// `cell_key` of its cell.
+    cell: u64,
+    body: u32,
+    /// Awake at the update.
+    awake: bool,
+}
+
 /// The grid as `update` left it, for looking up a body's neighbours.
 struct Grid<'a> {
     cell_of: &'a [[i32; 3]],
     start: &'a [u32],
-    items: &'a [u32],
+    items: &'a [GridItem],
     mask: usize,
 }
 
 impl<'a> Grid<'a> {
     /// The grid of `BroadPhase`'s fields (borrowed apart, so that `pairs` stays free).
-    fn of(cell_of: &'a [[i32; 3]], start: &'a [u32], items: &'a [u32]) -> Grid<'a> {
+    fn of(cell_of: &'a [[i32; 3]], start: &'a [u32], items: &'a [GridItem]) -> Grid<'a> {
         Grid {
             cell_of,
             start,
@@ -206,19 +236,25 @@ impl<'a> Grid<'a> {
         }
     }
 
-    /// Calls `visit` with each ordinary body in the 27 cells around body `i`'s cell.
     #[inline]
-    fn near(&self, i: usize, mut visit: impl FnMut(usize)) {
+    fn bucket(&self, b: usize) -> &'a [GridItem] {
+        &self.items[self.start[b] as usize..self.start[b + 1] as usize]
+    }
+
+    /// Calls `visit` with each ordinary body in the 27 cells around body
+    /// `i`'s cell: cell by cell (x, then y, then z), each cell's bodies in
+    /// body order.
+    #[inline]
+    fn near(&self, i: usize, mut visit: impl FnMut(&GridItem)) {
         let [x, y, z] = self.cell_of[i];
         for dx in -1..=1 {
             for dy in -1..=1 {
+                let column = column_hash(x + dx, y + dy);
                 for dz in -1..=1 {
-                    let target = [x + dx, y + dy, z + dz];
-                    let b = hash_cell(target) & self.mask;
-                    for k in self.start[b]..self.start[b + 1] {
-                        let j = self.items[k as usize] as usize;
-                        if self.cell_of[j] == target {
-                            visit(j);
+                    let target = cell_key([x + dx, y + dy, z + dz]);
+                    for item in self.bucket(in_column(column, z + dz, self.mask)) {
+                        if item.cell == target {
+                            visit(item);
                         }
                     }
                 }
@@ -261,10 +297,30 @@ fn cell_coords(c: Vec3, inv_cell: f32) -> [i32; 3] {
     [clamp(f.x), clamp(f.y), clamp(f.z)]
 }
 
+/// A cell as one number. `cell_coords` keeps coordinates within ±2²⁰, so
+/// 21 bits each tell them apart.
 #[inline]
-fn hash_cell([x, y, z]: [i32; 3]) -> usize {
-    let key = (x as u32 as u64) ^ ((y as u32 as u64) << 21) ^ ((z as u32 as u64) << 42);
-    mix64(key) as usize
+fn cell_key([x, y, z]: [i32; 3]) -> u64 {
+    const BITS: u64 = (1 << 21) - 1;
+    (x as u64 & BITS) | ((y as u64 & BITS) << 21) | ((z as u64 & BITS) << 42)
+}
+
+/// Hash of the column of cells at (x, y), all z.
+#[inline]
+fn column_hash(x: i32, y: i32) -> u64 {
+    mix64((x as u32 as u64) | ((y as u32 as u64) << 32))
+}
+
+/// Bucket of cell z of a column: consecutive along z, so that the three
+/// cells a lookup needs in a column sit side by side in the table.
+#[inline]
+fn in_column(column: u64, z: i32, mask: usize) -> usize {
+    column.wrapping_add(z as i64 as u64) as usize & mask
+}
+
+#[inline]
+fn bucket([x, y, z]: [i32; 3], mask: usize) -> usize {
+    in_column(column_hash(x, y), z, mask)
 }
 
 #[cfg(test)]
@@ -285,8 +341,17 @@ mod tests {
         let mut rnd = random(12345);
         for round in 0..20 {
             let n = 50 + round * 20;
+            // Around the origin (cells on both sides of zero), a few bodies
+            // far out where the cell coordinates are clamped.
             let center: Vec<Vec3> = (0..n)
-                .map(|_| Vec3::new(rnd() * 3.0, rnd() * 3.0, rnd() * 3.0))
+                .map(|i| {
+                    let c = Vec3::new(rnd(), rnd(), rnd()) * 3.0 - 1.5;
+                    if i % 23 == 0 {
+                        c * 1.0e6
+                    } else {
+                        c
+                    }
+                })
                 .collect();
             // A few large (fast) bodies among ordinary ones.
             let radius: Vec<f32> = (0..n)

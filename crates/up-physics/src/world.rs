@@ -5,7 +5,7 @@ use serde::{Deserialize, Serialize};
 use thiserror::Error;
 use up_geom::norm::{distance, Norm};
 use up_geom::query::toi_sphere_trimesh::toi_sphere_trimesh_new_contact;
-use up_geom::{Pose, Sphere, TriMesh};
+use up_geom::{Aabb, Pose, Sphere, TriMesh};
 
 use crate::body::{BalloonShape, Bodies, BodyDef, BodyId, HandleMap, ShapeData, ShapeId};
 use crate::broad_phase::BroadPhase;
@@ -1438,16 +1438,34 @@ impl World {
                     let end = bodies.center[i];
                     let begin = end - s.dp;
                     let q0 = s.start_rotation();
-                    let mut earliest: Option<(f32, Vec3)> = None;
-                    for leaf in shape.tree.leaf_spheres() {
+                    let core_path = |leaf: Sphere| {
                         let from = begin + q0 * leaf.center;
                         let to = end + s.q * leaf.center;
-                        let core = Sphere::new(from, leaf.radius * CORE_FRACTION);
+                        (Sphere::new(from, leaf.radius * CORE_FRACTION), to - from)
+                    };
+                    // Most fast bodies rise through open air: one look for
+                    // any triangle near all their cores' paths spares a
+                    // sweep of each core.
+                    let reach = shape
+                        .tree
+                        .leaf_spheres()
+                        .map(|leaf| {
+                            let (core, path) = core_path(leaf);
+                            Aabb::from_sphere(core.center, core.radius)
+                                .union(Aabb::from_sphere(core.center + path, core.radius))
+                        })
+                        .reduce(Aabb::union);
+                    if !reach.is_some_and(|reach| room.query_aabb_until(&reach, |_| true)) {
+                        continue;
+                    }
+                    let mut earliest: Option<(f32, Vec3)> = None;
+                    for leaf in shape.tree.leaf_spheres() {
+                        let (core, path) = core_path(leaf);
                         // Triangles the core is in already are the solver's to push
                         // out of: stopping at them would freeze the body in place,
                         // step after step.
                         if let Some((t, _, normal)) =
-                            toi_sphere_trimesh_new_contact(core, to - from, room)
+                            toi_sphere_trimesh_new_contact(core, path, room)
                         {
                             if earliest.is_none_or(|(te, _)| t < te) {
                                 earliest = Some((t, normal));
