@@ -28,6 +28,10 @@ use crate::{Sphere, TriangleRegion};
 /// contact exactly on a boundary is not lost to rounding.
 const BOUNDARY_SLACK: f32 = 1e-6;
 
+/// Clearance (m) beyond the radius that the early "too far from the plane"
+/// exit asks for: well above the rounding of the exact tests it skips.
+const FAR_SLACK: f32 = 1e-4;
+
 /// Analytic time of impact of a sphere moving linearly over t ∈ [0, 1] with a one-sided triangle.
 ///
 /// Returns the time and the triangle region touched first; `(0.0, region)`
@@ -41,6 +45,12 @@ pub fn toi_sphere_triangle(
     let normal = triangle_unit_normal(a, b, c);
     let height0 = normal.map_or(0.0, |n| (s.center - a).dot(n));
     let approach = normal.map_or(0.0, |n| v.dot(n));
+    // Farther than its radius from the plane all the way (straight path):
+    // it never reaches the triangle, in the plane. Most of the candidates a
+    // box finds below a sloping ceiling end here.
+    if normal.is_some() && height0.min(height0 + approach) > s.radius + FAR_SLACK {
+        return None;
+    }
     let in_front = |t: f32| height0 + approach * t >= -BOUNDARY_SLACK;
     let touching = |t: f32| {
         let center = s.center + v * t;
