@@ -5,6 +5,10 @@
 //! sphere–sphere contacts. The pending work is a fixed stack of "node of one
 //! tree × remaining children of a node of the other", so the stack grows with
 //! the trees' depths, not their widths, and nothing is allocated.
+//!
+//! Two flat trees (a root over leaves, as fitted balloons are) skip the
+//! stack: each tree's leaves within reach of the other's root, then the
+//! pairs of those (`flat_pairs`), with the same contacts in the same order.
 
 use super::contact_sphere_sphere::contact_sphere_sphere;
 use crate::{Contact, PlacedTree, Sphere};
@@ -28,11 +32,105 @@ struct Pending {
     children_of_a: bool,
 }
 
+/// Most leaves a flat tree may have for `flat_pairs` (more take `descend`).
+const FLAT_LEAVES: usize = 16;
+
 /// Leaf–leaf contacts between two placed sphere trees by hierarchical descent.
 /// Appends to `out`; `feature_a`/`feature_b` are node indices.
 pub fn contact_tree_tree(a: PlacedTree, b: PlacedTree, margin: f32, out: &mut Vec<Contact>) {
-    if nodes_touch(&a, 0, &b, 0, margin) {
+    if !nodes_touch(&a, 0, &b, 0, margin) {
+        return;
+    }
+    if is_flat(&a) && is_flat(&b) {
+        flat_pairs(&a, &b, margin, out);
+    } else {
         descend(&a, &b, 0, 0, margin, out);
+    }
+}
+
+/// A root whose children are all leaves (a fitted balloon's tree), few enough for `flat_pairs`.
+#[inline]
+fn is_flat(t: &PlacedTree) -> bool {
+    let nodes = t.tree.nodes();
+    let root = &nodes[0];
+    let children = root.first_child as usize..(root.first_child + root.child_count) as usize;
+    !root.is_leaf() && children.len() <= FLAT_LEAVES && nodes[children].iter().all(|n| n.is_leaf())
+}
+
+/// `descend` for two flat trees whose roots touch, without its stack: each
+/// tree's leaves that reach the other's root, then the pairs of those. A
+/// leaf pair within the margin has both leaves within reach of the other's
+/// root (each leaf lies in its root, up to `PARENT_SLACK`), so the second
+/// filter loses no pair, and the contacts come out as `descend` gives them:
+/// the bigger root's leaves in the outer loop.
+fn flat_pairs(a: &PlacedTree, b: &PlacedTree, margin: f32, out: &mut Vec<Contact>) {
+    let near_a = Reaching::of(a, |leaf| nodes_touch(a, leaf, b, 0, margin));
+    let near_b = Reaching::of(b, |leaf| nodes_touch(a, 0, b, leaf, margin));
+    let touch = |ia: u32, ib: u32, out: &mut Vec<Contact>| {
+        if nodes_touch(a, ia, b, ib, margin) {
+            leaf_contact(a, b, ia, ib, margin, out);
+        }
+    };
+    if a.tree.nodes()[0].radius >= b.tree.nodes()[0].radius {
+        for &ia in near_a.leaves() {
+            for &ib in near_b.leaves() {
+                touch(ia, ib, out);
+            }
+        }
+    } else {
+        for &ib in near_b.leaves() {
+            for &ia in near_a.leaves() {
+                touch(ia, ib, out);
+            }
+        }
+    }
+}
+
+/// The leaves of a flat tree that pass a test, in order.
+struct Reaching {
+    leaves: [u32; FLAT_LEAVES],
+    len: usize,
+}
+
+impl Reaching {
+    #[inline]
+    fn of(t: &PlacedTree, reaches: impl Fn(u32) -> bool) -> Reaching {
+        let root = &t.tree.nodes()[0];
+        let mut near = Reaching {
+            leaves: [0; FLAT_LEAVES],
+            len: 0,
+        };
+        for leaf in root.first_child..root.first_child + root.child_count {
+            if reaches(leaf) {
+                near.leaves[near.len] = leaf;
+                near.len += 1;
+            }
+        }
+        near
+    }
+
+    fn leaves(&self) -> &[u32] {
+        &self.leaves[..self.len]
+    }
+}
+
+/// The contact of leaves `ia` and `ib` (whose spheres touch within the margin), if any.
+#[inline]
+fn leaf_contact(
+    a: &PlacedTree,
+    b: &PlacedTree,
+    ia: u32,
+    ib: u32,
+    margin: f32,
+    out: &mut Vec<Contact>,
+) {
+    let (na, nb) = (&a.tree.nodes()[ia as usize], &b.tree.nodes()[ib as usize]);
+    let sa = Sphere::new(a.centers[ia as usize], na.radius);
+    let sb = Sphere::new(b.centers[ib as usize], nb.radius);
+    if let Some(mut c) = contact_sphere_sphere(sa, sb, margin) {
+        c.feature_a = ia;
+        c.feature_b = ib;
+        out.push(c);
     }
 }
 
@@ -57,13 +155,7 @@ fn descend(a: &PlacedTree, b: &PlacedTree, ia: u32, ib: u32, margin: f32, out: &
         if let Some((ia, ib)) = pair.take() {
             let (na, nb) = (&a.tree.nodes()[ia as usize], &b.tree.nodes()[ib as usize]);
             if na.is_leaf() && nb.is_leaf() {
-                let sa = Sphere::new(a.centers[ia as usize], na.radius);
-                let sb = Sphere::new(b.centers[ib as usize], nb.radius);
-                if let Some(mut c) = contact_sphere_sphere(sa, sb, margin) {
-                    c.feature_a = ia;
-                    c.feature_b = ib;
-                    out.push(c);
-                }
+                leaf_contact(a, b, ia, ib, margin, out);
             } else {
                 let children_of_a = !na.is_leaf() && (nb.is_leaf() || na.radius >= nb.radius);
                 let (fixed, parent) = if children_of_a { (ib, na) } else { (ia, nb) };
@@ -241,8 +333,51 @@ mod tests {
         (-range..range, -range..range, -range..range).prop_map(|(x, y, z)| Vec3::new(x, y, z))
     }
 
+    /// A root and `leaves` leaves (a balloon's shape), overlapping like a
+    /// balloon's, scaled by `scale`.
+    fn flat_tree(seed: &[(Vec3, f32)], leaves: usize, scale: f32) -> SphereTree {
+        let spheres: Vec<Sphere> = (0..leaves)
+            .map(|l| {
+                let (offset, r) = seed[l % seed.len()];
+                Sphere::new(offset * 0.3 * scale, (r * 0.2 + 0.02) * scale)
+            })
+            .collect();
+        let reach = spheres
+            .iter()
+            .map(|s| s.center.length() + s.radius)
+            .fold(0.0, f32::max);
+        SphereTree::from_root_and_leaves(Sphere::new(Vec3::ZERO, reach + 1e-6), &spheres).unwrap()
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(300))]
+
+        /// Two flat trees take `flat_pairs`: the contacts `descend` gives, in its order.
+        #[test]
+        fn flat_pairs_equal_the_descent_in_order(
+            seed in prop::collection::vec((vec3(1.0), 0.0f32..1.0), 4..20),
+            leaves_a in 1usize..8, leaves_b in 1usize..8, scale_b in 0.5f32..2.0,
+            offset in vec3(1.2), axis in vec3(1.0), angle in 0.0f32..6.3, margin in 0.0f32..0.1
+        ) {
+            let ta = flat_tree(&seed, leaves_a, 1.0);
+            let tb = flat_tree(&seed[1..], leaves_b, scale_b);
+            let rotation = Quat::from_axis_angle(axis.try_normalize().unwrap_or(Vec3::Y), angle);
+            let ca = placed(&ta, Pose::IDENTITY);
+            let cb = placed(&tb, Pose::new(offset, rotation));
+            let (pa, pb) = (PlacedTree { tree: &ta, centers: &ca }, PlacedTree { tree: &tb, centers: &cb });
+            prop_assert!(is_flat(&pa) && is_flat(&pb));
+            let mut got = Vec::new();
+            contact_tree_tree(pa, pb, margin, &mut got);
+            let mut descended = Vec::new();
+            if nodes_touch(&pa, 0, &pb, 0, margin) {
+                descend(&pa, &pb, 0, 0, margin, &mut descended);
+            }
+            prop_assert_eq!(&got, &descended);
+            let mut expected = brute_force(pa, pb, margin);
+            got.sort_by_key(key);
+            expected.sort_by_key(key);
+            prop_assert_eq!(got, expected);
+        }
 
         #[test]
         fn descent_equals_all_leaf_pairs(
