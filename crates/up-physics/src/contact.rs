@@ -116,22 +116,41 @@ impl WarmStartCache {
 
     /// The stored impulses of a pair, if it had contacts last step.
     pub fn find(&self, key: u64) -> &[StoredImpulse] {
+        self.find_run(key).map_or(&[], |run| self.impulses_of(run))
+    }
+
+    /// Which run holds the pair `key`, if it had contacts last step.
+    fn find_run(&self, key: u64) -> Option<usize> {
         if self.table.is_empty() {
-            return &[];
+            return None;
         }
         let mask = self.table.len() - 1;
         let mut slot = crate::hash::mix64(key) as usize & mask;
         loop {
             let run = self.table[slot];
             if run == EMPTY_SLOT {
-                return &[];
+                return None;
             }
-            let (k, start, count) = self.runs[run as usize];
-            if k == key {
-                return &self.impulses[start as usize..(start + count) as usize];
+            if self.runs[run as usize].0 == key {
+                return Some(run as usize);
             }
             slot = (slot + 1) & mask;
         }
+    }
+
+    /// As `find_run`, trying run `guess` first: the pairs come in much the
+    /// same order step after step, so the run after the last one found is
+    /// most often the next one wanted, read in order instead of hashed.
+    fn find_run_from(&self, key: u64, guess: usize) -> Option<usize> {
+        match self.runs.get(guess) {
+            Some(&(k, _, _)) if k == key => Some(guess),
+            _ => self.find_run(key),
+        }
+    }
+
+    fn impulses_of(&self, run: usize) -> &[StoredImpulse] {
+        let (_, start, count) = self.runs[run];
+        &self.impulses[start as usize..(start + count) as usize]
     }
 }
 
@@ -144,11 +163,15 @@ pub(crate) struct ResumeFrom<'a> {
 }
 
 impl ResumeFrom<'_> {
-    /// The stored impulses of a pair.
-    fn find(&self, key: u64) -> &[StoredImpulse] {
-        match self.fresh.find(key) {
-            [] => self.kept.find(key),
-            found => found,
+    /// The stored impulses of a pair, and the run of `fresh` to try first
+    /// for the next pair (see `find_run_from`).
+    fn find(&self, key: u64, guess: usize) -> (&[StoredImpulse], usize) {
+        match self.fresh.find_run_from(key, guess) {
+            Some(run) => match self.fresh.impulses_of(run) {
+                [] => (self.kept.find(key), run + 1),
+                found => (found, run + 1),
+            },
+            None => (self.kept.find(key), guess),
         }
     }
 
@@ -163,10 +186,11 @@ impl ResumeFrom<'_> {
     ) {
         let mut run =
             runs.partition_point(|&(_, start, count)| (start + count) as usize <= contacts.start);
-        let mut i = contacts.start;
+        let (mut i, mut guess) = (contacts.start, 0);
         while i < contacts.end {
             let (key, start, count) = runs[run];
-            let previous = self.find(key);
+            let previous;
+            (previous, guess) = self.find(key, guess);
             let end = ((start + count) as usize).min(contacts.end);
             for i in i..end {
                 visit(i, previous);
@@ -230,6 +254,42 @@ mod tests {
         assert!(all[4].1.is_empty() && all[5].1.is_empty());
         // A task's range may start and end inside a pair's run.
         assert_eq!(visited(2..5), all[2..5]);
+    }
+
+    /// The pairs in last step's order, shuffled, thinned and with new ones
+    /// among them: each finds its own impulses, whether the run tried first
+    /// (`find_run_from`) is the one or not.
+    #[test]
+    fn each_pair_finds_its_impulses_in_any_order() {
+        let mut fresh = WarmStartCache::default();
+        for p in 0..40u32 {
+            fresh.push_run(pair_key(p, p + 1), &[impulse(p as f32)]);
+        }
+        fresh.index();
+        let kept = WarmStartCache::default();
+        let resume = ResumeFrom {
+            fresh: &fresh,
+            kept: &kept,
+        };
+        // In order with gaps, a pair new this step, then back to front.
+        let order: Vec<u32> = (0..40)
+            .filter(|p| p % 7 != 3)
+            .chain([100])
+            .chain((0..40).rev().step_by(3))
+            .collect();
+        let runs: Vec<(u64, u32, u32)> = order
+            .iter()
+            .enumerate()
+            .map(|(i, &p)| (pair_key(p, p + 1), i as u32, 1))
+            .collect();
+        let mut seen = Vec::new();
+        resume.each(&runs, 0..runs.len(), |i, previous| {
+            seen.push((i, previous.iter().map(|p| p.normal).collect::<Vec<_>>()));
+        });
+        for (i, &p) in order.iter().enumerate() {
+            let want: &[f32] = if p < 40 { &[p as f32] } else { &[] };
+            assert_eq!(seen[i], (i, want.to_vec()), "pair {p}");
+        }
     }
 
     #[test]
