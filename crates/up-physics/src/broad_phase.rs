@@ -297,8 +297,8 @@ fn cell_coords(c: Vec3, inv_cell: f32) -> [i32; 3] {
     [clamp(f.x), clamp(f.y), clamp(f.z)]
 }
 
-/// A cell as one number. `cell_coords` keeps coordinates within ±2²⁰, so
-/// 21 bits each tell them apart.
+/// A cell as one number. `cell_coords` clamps coordinates to ±10⁶, so
+/// they and their neighbours lie in [−2²⁰, 2²⁰): 21 bits each tell them apart.
 #[inline]
 fn cell_key([x, y, z]: [i32; 3]) -> u64 {
     const BITS: u64 = (1 << 21) - 1;

@@ -142,6 +142,10 @@ impl WarmStartCache {
     /// same order step after step, so the run after the last one found is
     /// most often the next one wanted, read in order instead of hashed.
     fn find_run_from(&self, key: u64, guess: usize) -> Option<usize> {
+        // Without its table (not `index`ed yet) the cache finds nothing, guessed or not.
+        if self.table.is_empty() {
+            return None;
+        }
         match self.runs.get(guess) {
             Some(&(k, _, _)) if k == key => Some(guess),
             _ => self.find_run(key),
@@ -290,6 +294,24 @@ mod tests {
             let want: &[f32] = if p < 40 { &[p as f32] } else { &[] };
             assert_eq!(seen[i], (i, want.to_vec()), "pair {p}");
         }
+    }
+
+    /// Runs without their table (a cache deserialized, not yet `index`ed)
+    /// are not found, guessed or hashed: the pairs start cold, as before guessing.
+    #[test]
+    fn a_cache_without_its_table_finds_nothing() {
+        let mut fresh = WarmStartCache::default();
+        fresh.push_run(pair_key(0, 1), &[impulse(1.0)]);
+        let kept = WarmStartCache::default();
+        let resume = ResumeFrom {
+            fresh: &fresh,
+            kept: &kept,
+        };
+        let mut seen = Vec::new();
+        resume.each(&[(pair_key(0, 1), 0, 1)], 0..1, |_, previous| {
+            seen.push(previous.len())
+        });
+        assert_eq!(seen, [0]);
     }
 
     #[test]

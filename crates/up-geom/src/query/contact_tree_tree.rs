@@ -35,8 +35,9 @@ struct Pending {
 /// Most leaves a flat tree may have for `flat_pairs` (more take `descend`).
 const FLAT_LEAVES: usize = 16;
 
-/// Leaf–leaf contacts between two placed sphere trees by hierarchical descent.
-/// Appends to `out`; `feature_a`/`feature_b` are node indices.
+/// Leaf–leaf contacts between two placed sphere trees by hierarchical descent
+/// (two flat trees: `flat_pairs`). Appends to `out`; `feature_a`/`feature_b`
+/// are node indices.
 pub fn contact_tree_tree(a: PlacedTree, b: PlacedTree, margin: f32, out: &mut Vec<Contact>) {
     if !nodes_touch(&a, 0, &b, 0, margin) {
         return;
@@ -60,7 +61,9 @@ fn is_flat(t: &PlacedTree) -> bool {
 /// `descend` for two flat trees whose roots touch, without its stack: each
 /// tree's leaves that reach the other's root, then the pairs of those. A
 /// leaf pair within the margin has both leaves within reach of the other's
-/// root (each leaf lies in its root, up to `PARENT_SLACK`), so the second
+/// root (a valid tree's leaf pokes out of its root by at most
+/// `BOUND_TOLERANCE`, well inside `PARENT_SLACK` with the rounding of room-scale
+/// coordinates: the descent's own pruning rests on the same), so the second
 /// filter loses no pair, and the contacts come out as `descend` gives them:
 /// the bigger root's leaves in the outer loop.
 fn flat_pairs(a: &PlacedTree, b: &PlacedTree, margin: f32, out: &mut Vec<Contact>) {
