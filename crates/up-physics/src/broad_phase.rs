@@ -120,11 +120,9 @@ impl BroadPhase {
                     }
                     let (ci, ri) = (center[i], radius[i]);
                     grid.near(i, |item| {
-                        let j = item.body as usize;
-                        // `consider`'s test, read from the entry.
-                        let r = ri + item.radius;
-                        if (j > i || !item.awake) && ci.distance_squared(item.center) <= r * r {
-                            pairs.push((i.min(j) as u32, i.max(j) as u32));
+                        if item.body as usize > i || !item.awake {
+                            let other = (item.body, item.center, item.radius);
+                            push_if_overlapping(pairs, (i as u32, ci, ri), other);
                         }
                     });
                 }
@@ -273,12 +271,21 @@ fn consider(
     awake: &[bool],
 ) {
     let (ia, ib) = (a as usize, b as usize);
-    if !(awake[ia] || awake[ib]) {
-        return;
+    if awake[ia] || awake[ib] {
+        push_if_overlapping(
+            pairs,
+            (a, center[ia], radius[ia]),
+            (b, center[ib], radius[ib]),
+        );
     }
-    let r = radius[ia] + radius[ib];
-    if center[ia].distance_squared(center[ib]) <= r * r {
-        pairs.push((a.min(b), a.max(b)));
+}
+
+/// Adds the pair of bodies `a` and `b` (index, centre, radius) if their spheres overlap.
+#[inline]
+fn push_if_overlapping(pairs: &mut Vec<(u32, u32)>, a: (u32, Vec3, f32), b: (u32, Vec3, f32)) {
+    let r = a.2 + b.2;
+    if a.1.distance_squared(b.1) <= r * r {
+        pairs.push((a.0.min(b.0), a.0.max(b.0)));
     }
 }
 

@@ -15,9 +15,10 @@
 //! `gap_j' ≥ gap_i' + (s_j − s_i) − displacement·|n_j − n_i| − turn·|p_j − p_i|`.
 //!
 //! When the last three terms add up to no less than zero, gap j ends no
-//! smaller than gap i, which the solver holds, and j is dropped. Contacts that touch are always kept (they carry load), and so is
-//! anything a fast or spinning pair could close (its bounds are wide, the
-//! inequality fails). The promise is as good as the bounds the caller gives.
+//! smaller than gap i, which the solver holds, and j is dropped. Contacts
+//! that touch are always kept (they carry load), and so is anything a fast or
+//! spinning pair could close (its bounds are wide, the inequality fails). The
+//! promise is as good as the bounds the caller gives.
 
 use crate::norm::{distance, Norm};
 use crate::{Contact, Vec3};
