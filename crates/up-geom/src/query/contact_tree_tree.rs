@@ -11,7 +11,7 @@
 //! pairs of those (`flat_pairs`), with the same contacts in the same order.
 
 use super::contact_sphere_sphere::contact_sphere_sphere;
-use crate::{Contact, PlacedTree, Sphere};
+use crate::{Contact, PlacedTree, Sphere, Vec3};
 
 /// Depth of pending pairs held without recursion (sum of both trees' depths).
 const STACK_SIZE: usize = 64;
@@ -65,54 +65,81 @@ fn is_flat(t: &PlacedTree) -> bool {
 /// `BOUND_TOLERANCE`, well inside `PARENT_SLACK` with the rounding of room-scale
 /// coordinates: the descent's own pruning rests on the same), so the second
 /// filter loses no pair, and the contacts come out as `descend` gives them:
-/// the bigger root's leaves in the outer loop.
+/// the bigger root's leaves in the outer loop. The leaves' spheres are read
+/// once, into `Reaching`, and a pair's test is the sphere contact's own
+/// (`descend` tests the pair, then the contact repeats that test).
 fn flat_pairs(a: &PlacedTree, b: &PlacedTree, margin: f32, out: &mut Vec<Contact>) {
-    let near_a = Reaching::of(a, |leaf| nodes_touch(a, leaf, b, 0, margin));
-    let near_b = Reaching::of(b, |leaf| nodes_touch(a, 0, b, leaf, margin));
-    let touch = |ia: u32, ib: u32, out: &mut Vec<Contact>| {
-        if nodes_touch(a, ia, b, ib, margin) {
-            leaf_contact(a, b, ia, ib, margin, out);
+    let near_a = Reaching::of(a, b, margin);
+    let near_b = Reaching::of(b, a, margin);
+    let touch = |la: &Leaf, lb: &Leaf, out: &mut Vec<Contact>| {
+        if let Some(mut c) = contact_sphere_sphere(la.sphere, lb.sphere, margin) {
+            c.feature_a = la.node;
+            c.feature_b = lb.node;
+            out.push(c);
         }
     };
     if a.tree.nodes()[0].radius >= b.tree.nodes()[0].radius {
-        for &ia in near_a.leaves() {
-            for &ib in near_b.leaves() {
-                touch(ia, ib, out);
+        for la in near_a.leaves() {
+            for lb in near_b.leaves() {
+                touch(la, lb, out);
             }
         }
     } else {
-        for &ib in near_b.leaves() {
-            for &ia in near_a.leaves() {
-                touch(ia, ib, out);
+        for lb in near_b.leaves() {
+            for la in near_a.leaves() {
+                touch(la, lb, out);
             }
         }
     }
 }
 
-/// The leaves of a flat tree that pass a test, in order.
+/// A leaf of a flat tree: its node and its placed sphere.
+#[derive(Clone, Copy)]
+struct Leaf {
+    node: u32,
+    sphere: Sphere,
+}
+
+impl Leaf {
+    const NONE: Leaf = Leaf {
+        node: 0,
+        sphere: Sphere {
+            center: Vec3::ZERO,
+            radius: 0.0,
+        },
+    };
+}
+
+/// The leaves of a flat tree within reach of another tree's root, in order.
 struct Reaching {
-    leaves: [u32; FLAT_LEAVES],
+    leaves: [Leaf; FLAT_LEAVES],
     len: usize,
 }
 
 impl Reaching {
+    /// The leaves of flat tree `t` that touch `other`'s root within `margin`
+    /// (`nodes_touch`, with its slack for an inner node, bit for bit).
     #[inline]
-    fn of(t: &PlacedTree, reaches: impl Fn(u32) -> bool) -> Reaching {
-        let root = &t.tree.nodes()[0];
+    fn of(t: &PlacedTree, other: &PlacedTree, margin: f32) -> Reaching {
+        let nodes = t.tree.nodes();
+        let (root, other_root) = (&nodes[0], &other.tree.nodes()[0]);
+        let other_center = other.centers[0];
         let mut near = Reaching {
-            leaves: [0; FLAT_LEAVES],
+            leaves: [Leaf::NONE; FLAT_LEAVES],
             len: 0,
         };
-        for leaf in root.first_child..root.first_child + root.child_count {
-            if reaches(leaf) {
-                near.leaves[near.len] = leaf;
+        for node in root.first_child..root.first_child + root.child_count {
+            let sphere = Sphere::new(t.centers[node as usize], nodes[node as usize].radius);
+            let reach = sphere.radius + other_root.radius + margin + PARENT_SLACK;
+            if sphere.center.distance_squared(other_center) <= reach * reach {
+                near.leaves[near.len] = Leaf { node, sphere };
                 near.len += 1;
             }
         }
         near
     }
 
-    fn leaves(&self) -> &[u32] {
+    fn leaves(&self) -> &[Leaf] {
         &self.leaves[..self.len]
     }
 }
