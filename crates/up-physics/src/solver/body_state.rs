@@ -44,6 +44,19 @@ impl BodyState {
         runaway: false,
     };
 
+    /// Takes no impulse and has not moved this step: what the passes read of
+    /// it is `STATIC`'s, bit for bit (only `q` may differ), so they may use
+    /// constants in its place (`coloring::Moving`).
+    pub fn is_fixed(&self) -> bool {
+        let bits = |v: &[f32]| v.iter().all(|x| x.to_bits() == 0);
+        bits(&self.v.to_array())
+            && bits(&self.w.to_array())
+            && bits(&[self.inv_mass])
+            && bits(&self.inv_inertia.to_cols_array())
+            && bits(&self.dp.to_array())
+            && self.dq.to_array().map(f32::to_bits) == Quat::IDENTITY.to_array().map(f32::to_bits)
+    }
+
     /// Orientation when the step began: `q` with this step's rotation undone.
     pub fn start_rotation(&self) -> Quat {
         (self.dq.inverse() * self.q).unit()

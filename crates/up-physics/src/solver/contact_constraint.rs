@@ -304,6 +304,15 @@ pub(crate) struct Velocities {
 }
 
 impl Velocities {
+    /// Four fixed bodies (`BodyState::is_fixed`), as `gather` reads them.
+    pub const FIXED: Velocities = Velocities {
+        v: V4::ZERO,
+        w: V4::ZERO,
+        inv_mass: F4::ZERO,
+        inv_inertia: M4::ZERO,
+        inertia_xx: F4::ZERO,
+    };
+
     #[inline]
     pub fn gather(s: [&BodyState; LANES]) -> Velocities {
         let [vx, vy, vz, wx] = gather_block(&s, 0);
@@ -351,6 +360,12 @@ pub(crate) struct Poses {
 }
 
 impl Poses {
+    /// Four fixed bodies, as `gather` reads them.
+    pub const FIXED: Poses = Poses {
+        dp: V4::ZERO,
+        dq: Q4::IDENTITY,
+    };
+
     #[inline]
     pub fn gather(s: [&BodyState; LANES]) -> Poses {
         let [dpx, dpy, dpz, qx] = gather_block(&s, 4);
@@ -373,6 +388,12 @@ pub(crate) struct Displacements {
 }
 
 impl Displacements {
+    /// Four fixed bodies, as `gather` reads them.
+    pub const FIXED: Displacements = Displacements {
+        dp: V4::ZERO,
+        inv_mass: F4::ZERO,
+    };
+
     #[inline]
     pub fn gather(s: [&BodyState; LANES]) -> Displacements {
         let [_, _, inv_mass, _] = gather_block(&s, 1);

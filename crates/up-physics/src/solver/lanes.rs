@@ -158,6 +158,12 @@ pub(crate) struct M4 {
 }
 
 impl M4 {
+    pub const ZERO: M4 = M4 {
+        x_axis: V4::ZERO,
+        y_axis: V4::ZERO,
+        z_axis: V4::ZERO,
+    };
+
     #[cfg(test)]
     pub fn from_lanes(m: [&glam::Mat3; LANES]) -> M4 {
         M4 {
@@ -184,6 +190,11 @@ pub(crate) struct Q4 {
 }
 
 impl Q4 {
+    pub const IDENTITY: Q4 = Q4 {
+        xyz: V4::ZERO,
+        w: F4::ONE,
+    };
+
     #[cfg(test)]
     pub fn from_lanes(q: [glam::Quat; LANES]) -> Q4 {
         Q4 {

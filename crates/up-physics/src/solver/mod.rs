@@ -16,6 +16,8 @@ pub(crate) mod coloring;
 pub(crate) mod contact_constraint;
 pub(crate) mod integrate;
 pub(crate) mod lanes;
+#[cfg(test)]
+mod one_sided_tests;
 pub(crate) mod parallel;
 pub(crate) mod position_skips;
 pub(crate) mod softness;
@@ -25,7 +27,7 @@ mod stabilize_tests;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use body_state::BodyState;
-use coloring::Coloring;
+use coloring::{Coloring, Moving};
 use contact_constraint::{
     Bias, ContactGroup, Displacements, GroupAnchors, GroupRecords, Poses, PreparedContact,
     Velocities,
@@ -84,18 +86,54 @@ pub(crate) struct Stabilization {
 }
 
 /// Runs a velocity pass's kernel on a group: gathers the bodies' velocities
-/// into lanes, and scatters them back.
+/// into lanes, and scatters them back. A fixed side is the constant it would
+/// gather, and nothing is written back to it: the kernel is inlined in each
+/// case, so what it computes for that side alone is left out.
 #[inline]
 fn on_velocities(
     g: &mut ContactGroup,
     mut states: GroupStates,
     kernel: impl Fn(&mut ContactGroup, &mut Velocities, &mut Velocities),
 ) {
-    let mut a = Velocities::gather(states.read(0));
-    let mut b = Velocities::gather(states.read(1));
-    kernel(g, &mut a, &mut b);
-    states.write(0, a.scatter());
-    states.write(1, b.scatter());
+    match states.moving {
+        Moving::Both => {
+            let mut a = Velocities::gather(states.read(0));
+            let mut b = Velocities::gather(states.read(1));
+            kernel(g, &mut a, &mut b);
+            states.write(0, a.scatter());
+            states.write(1, b.scatter());
+        }
+        Moving::A => {
+            let (mut a, mut b) = (Velocities::gather(states.read(0)), Velocities::FIXED);
+            kernel(g, &mut a, &mut b);
+            states.write(0, a.scatter());
+        }
+        Moving::B => {
+            let (mut a, mut b) = (Velocities::FIXED, Velocities::gather(states.read(1)));
+            kernel(g, &mut a, &mut b);
+            states.write(1, b.scatter());
+        }
+    }
+}
+
+/// The poses of side `side` of a group (`Poses::FIXED` for a fixed side).
+#[inline]
+fn poses(states: &GroupStates, side: usize) -> Poses {
+    if states.moving.fixes(side) {
+        Poses::FIXED
+    } else {
+        Poses::gather(states.read(side))
+    }
+}
+
+/// The displacements of side `side` of a group (`Displacements::FIXED` for a fixed side).
+#[inline]
+fn displacements(states: &GroupStates, side: usize) -> Displacements {
+    if states.moving.fixes(side) {
+        Displacements::FIXED
+    } else {
+        Displacements::gather(states.read(side))
+    }
 }
 
 impl Solver {
@@ -237,7 +275,7 @@ impl Solver {
     /// only velocities, and a refresh reads only positions.
     fn refresh_and_relax(&mut self, relax: &Bias) {
         self.colour_pass(|g, anchors, sides| {
-            let (a, b) = (Poses::gather(sides.read(0)), Poses::gather(sides.read(1)));
+            let (a, b) = (poses(&sides, 0), poses(&sides, 1));
             contact_constraint::refresh(g, anchors, &a, &b);
             on_velocities(g, sides, |c, a, b| {
                 contact_constraint::solve(c, a, b, relax)
@@ -324,8 +362,8 @@ impl Solver {
                     if skips.can_skip(i, travel) {
                         return;
                     }
-                    let mut a = Displacements::gather(states.read(0));
-                    let mut b = Displacements::gather(states.read(1));
+                    let mut a = displacements(&states, 0);
+                    let mut b = displacements(&states, 1);
                     let push = contact_constraint::stabilize(
                         g,
                         &anchors[i],
@@ -343,6 +381,9 @@ impl Solver {
                     }
                     let sides = [(&a, g.a, push.distance[0]), (&b, g.b, push.distance[1])];
                     for (side, (d, bodies, distance)) in sides.into_iter().enumerate() {
+                        if states.moving.fixes(side) {
+                            continue;
+                        }
                         let scatter = d.scatter();
                         states.write(side, |lane, state| {
                             scatter(lane, state);

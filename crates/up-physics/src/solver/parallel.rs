@@ -9,6 +9,7 @@ use std::marker::PhantomData;
 use rayon::prelude::*;
 
 use super::body_state::BodyState;
+use super::coloring::{ColourRun, Moving};
 use super::contact_constraint::ContactGroup;
 #[cfg(feature = "parallel")]
 use super::contact_constraint::{GroupAnchors, GroupRecords};
@@ -60,6 +61,8 @@ impl SharedStates {
 pub(crate) struct GroupStates<'a> {
     shared: SharedStates,
     bodies: [[u32; LANES]; 2],
+    /// The sides whose states are not all fixed (`coloring::Moving`).
+    pub moving: Moving,
     _states: PhantomData<&'a mut [BodyState]>,
 }
 
@@ -100,7 +103,7 @@ impl GroupStates<'_> {
 /// the overflow, always serially). Within a colour no moving body appears
 /// twice (`coloring`), so each task owns the moving states of its groups.
 pub(crate) fn for_each_colored<K>(
-    ranges: &[(u32, u32)],
+    ranges: &[ColourRun],
     groups: &mut [ContactGroup],
     states: &mut [BodyState],
     kernel: K,
@@ -108,30 +111,31 @@ pub(crate) fn for_each_colored<K>(
     K: Fn(usize, &mut ContactGroup, GroupStates) + Sync,
 {
     let shared = SharedStates::new(states);
-    let run = |first: usize, chunk: &mut [ContactGroup]| {
+    let run = |first: usize, moving: Moving, chunk: &mut [ContactGroup]| {
         for (k, g) in chunk.iter_mut().enumerate() {
             let sides = GroupStates {
                 shared,
                 bodies: [g.a, g.b],
+                moving,
                 _states: PhantomData,
             };
             kernel(first + k, g, sides);
         }
     };
     let overflow = ranges.len().saturating_sub(1);
-    for (k, &(start, end)) in ranges.iter().enumerate() {
-        let (start, end) = (start as usize, end as usize);
+    for (k, r) in ranges.iter().enumerate() {
+        let (start, end) = (r.start as usize, r.end as usize);
         let colour = &mut groups[start..end];
         #[cfg(feature = "parallel")]
         if k != overflow && worth_splitting(colour.len(), GROUP_CHUNK) {
             colour
                 .par_chunks_mut(GROUP_CHUNK)
                 .enumerate()
-                .for_each(|(c, chunk)| run(start + c * GROUP_CHUNK, chunk));
+                .for_each(|(c, chunk)| run(start + c * GROUP_CHUNK, r.moving, chunk));
             continue;
         }
         let _ = (k, overflow);
-        run(start, colour);
+        run(start, r.moving, colour);
     }
 }
 
