@@ -4,8 +4,8 @@ use glam::{Quat, Vec3};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 use up_geom::norm::{distance, Norm};
-use up_geom::query::toi_sphere_trimesh::toi_sphere_trimesh_new_contact;
-use up_geom::{Aabb, Pose, Sphere, TriMesh};
+use up_geom::query::toi_sphere_trimesh::{sweep_may_hit, toi_sphere_trimesh_new_contact};
+use up_geom::{Pose, Sphere, TriMesh};
 
 use crate::body::{BalloonShape, Bodies, BodyDef, BodyId, HandleMap, ShapeData, ShapeId};
 use crate::broad_phase::BroadPhase;
@@ -1437,27 +1437,27 @@ impl World {
                     }
                     let end = bodies.center[i];
                     let begin = end - s.dp;
+                    // Most fast bodies rise through open air, or below a
+                    // ceiling they do not reach this step: one look for any
+                    // triangle that a sphere holding all their cores' paths
+                    // may hit spares a sweep of each core. A core stays
+                    // within its offset from the centre, whatever the turn,
+                    // and the centre within half its path from the middle.
+                    let core_reach = shape
+                        .tree
+                        .leaf_spheres()
+                        .map(|leaf| leaf.center.norm() + leaf.radius * CORE_FRACTION)
+                        .fold(0.0, f32::max);
+                    let bound = Sphere::new(begin + 0.5 * s.dp, 0.5 * s.dp.norm() + core_reach);
+                    if !sweep_may_hit(bound, room) {
+                        continue;
+                    }
                     let q0 = s.start_rotation();
                     let core_path = |leaf: Sphere| {
                         let from = begin + q0 * leaf.center;
                         let to = end + s.q * leaf.center;
                         (Sphere::new(from, leaf.radius * CORE_FRACTION), to - from)
                     };
-                    // Most fast bodies rise through open air: one look for
-                    // any triangle near all their cores' paths spares a
-                    // sweep of each core.
-                    let reach = shape
-                        .tree
-                        .leaf_spheres()
-                        .map(|leaf| {
-                            let (core, path) = core_path(leaf);
-                            Aabb::from_sphere(core.center, core.radius)
-                                .union(Aabb::from_sphere(core.center + path, core.radius))
-                        })
-                        .reduce(Aabb::union);
-                    if !reach.is_some_and(|reach| room.query_aabb_until(&reach, |_| true)) {
-                        continue;
-                    }
                     let mut earliest: Option<(f32, Vec3)> = None;
                     for leaf in shape.tree.leaf_spheres() {
                         let (core, path) = core_path(leaf);

@@ -31,7 +31,7 @@ const BOUNDARY_SLACK: f32 = 1e-6;
 /// Clearance (m) beyond the radius that the early "too far from the plane"
 /// exit asks for: well above the rounding of the exact tests it skips at
 /// room scale (coordinates of tens of metres; ~10⁻⁵ m).
-const FAR_SLACK: f32 = 1e-4;
+pub(crate) const FAR_SLACK: f32 = 1e-4;
 
 /// Analytic time of impact of a sphere moving linearly over t ∈ [0, 1] with a one-sided triangle.
 ///

@@ -9,8 +9,9 @@
 
 use glam::Vec3;
 
+use super::contact_sphere_triangle::triangle_unit_normal;
 use super::mesh_feature::mesh_contact_direction;
-use super::toi_sphere_triangle::toi_sphere_triangle;
+use super::toi_sphere_triangle::{toi_sphere_triangle, FAR_SLACK};
 use crate::{closest_point_triangle, Aabb, Sphere, TriMesh};
 
 /// Earliest time of impact of a sphere moving linearly over t ∈ [0, 1] with a
@@ -30,6 +31,29 @@ pub fn toi_sphere_trimesh_new_contact(
     mesh: &TriMesh,
 ) -> Option<(f32, u32, Vec3)> {
     earliest_impact(s, v, mesh, true)
+}
+
+/// Slack (m) on top of `FAR_SLACK` for `sweep_may_hit`: more than the
+/// rounding by which a height measured from the bound's centre may differ
+/// from one measured from a sphere inside it, at room scale.
+const BOUND_SLACK: f32 = 1e-3;
+
+/// Whether a sphere moving inside `bound` may hit the mesh. False only when
+/// every triangle near `bound` has the whole of `bound` in front of its
+/// plane, farther than `toi_sphere_triangle`'s own early exit asks: then any
+/// sphere whose straight path, radius included, stays inside `bound` gets
+/// `None` from `toi_sphere_trimesh` and `toi_sphere_trimesh_new_contact`.
+/// One look for several spheres that move together (a balloon's cores).
+pub fn sweep_may_hit(bound: Sphere, mesh: &TriMesh) -> bool {
+    let clear = bound.radius + FAR_SLACK + BOUND_SLACK;
+    mesh.query_aabb_until(&Aabb::from_sphere(bound.center, bound.radius), |tri| {
+        if mesh.is_degenerate(tri) {
+            return false;
+        }
+        let [a, b, c] = mesh.triangle(tri);
+        // The normal as `toi_sphere_triangle` takes it, bit for bit.
+        triangle_unit_normal(a, b, c).is_none_or(|n| (bound.center - a).dot(n) <= clear)
+    })
 }
 
 fn earliest_impact(
@@ -139,6 +163,71 @@ mod tests {
         assert!(n.distance(Vec3::X) < 1e-6);
         // Nothing new ahead: no impact at all.
         assert!(toi_sphere_trimesh_new_contact(s, -motion, &mesh).is_none());
+    }
+
+    /// A sloping ceiling (two triangles facing down and in, as the room's
+    /// pyramid does), bounds just above and just below the height at which
+    /// `sweep_may_hit` lets them go, and spheres moving inside each bound,
+    /// many of them from and to its lowest point: a bound let go holds no
+    /// sphere that touches the ceiling, and both answers occur.
+    #[test]
+    fn a_bound_let_go_holds_no_sphere_that_hits() {
+        let normal = Vec3::new(0.3, -1.0, 0.2).normalize();
+        let (u, w) = (
+            normal.any_orthonormal_vector(),
+            normal.cross(normal.any_orthonormal_vector()),
+        );
+        let corner = |a: f32, b: f32| Vec3::new(20.0, 8.0, 20.0) + 30.0 * (a * u + b * w);
+        let ceiling = TriMesh::new(
+            vec![
+                corner(-1.0, -1.0),
+                corner(1.0, -1.0),
+                corner(1.0, 1.0),
+                corner(-1.0, 1.0),
+            ],
+            vec![[0, 1, 2], [0, 2, 3]],
+        )
+        .unwrap();
+        assert!(
+            ceiling.normal(0).dot(normal) > 0.999,
+            "the ceiling must face the bounds"
+        );
+        let mut seed = 7u64;
+        let mut random = move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 40) as f32 / (1u64 << 24) as f32
+        };
+        let (mut let_go, mut looked_at) = (0, 0);
+        for _ in 0..4000 {
+            let radius = 0.05 + 0.4 * random();
+            let above = radius + FAR_SLACK + BOUND_SLACK + 0.004 * (random() - 0.5);
+            let at = corner(random() - 0.5, random() - 0.5) + above * normal;
+            let bound = Sphere::new(at, radius);
+            let core = radius * (0.05 + 0.9 * random());
+            let inside = |random: &mut dyn FnMut() -> f32| {
+                let lowest = random() < 0.5;
+                let d = if lowest {
+                    -normal
+                } else {
+                    Vec3::new(random() - 0.5, random() - 0.5, random() - 0.5).normalize_or_zero()
+                };
+                at + d * (radius - core) * if lowest { 1.0 } else { random() }
+            };
+            let (from, to) = (inside(&mut random), inside(&mut random));
+            let hit = toi_sphere_trimesh(Sphere::new(from, core), to - from, &ceiling);
+            if sweep_may_hit(bound, &ceiling) {
+                looked_at += 1;
+            } else {
+                let_go += 1;
+                assert_eq!(hit, None, "{bound:?}: a core from {from} to {to} hits");
+            }
+        }
+        assert!(
+            let_go > 1000 && looked_at > 1000,
+            "{let_go} let go, {looked_at} looked at"
+        );
     }
 
     fn vec3(range: f32) -> impl Strategy<Value = Vec3> {
