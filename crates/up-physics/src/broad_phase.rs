@@ -399,13 +399,7 @@ fn bucket([x, y, z]: [i32; 3], mask: usize) -> usize {
 mod tests {
     use super::*;
 
-    fn random(seed: u64) -> impl FnMut() -> f32 {
-        let mut seed = seed;
-        move || {
-            seed = mix64(seed.wrapping_add(0x9e37_79b9_7f4a_7c15));
-            (seed >> 40) as f32 / (1u64 << 24) as f32
-        }
-    }
+    use crate::hash::uniform as random;
 
     /// Brute-force reference on random clouds: the grid finds exactly the overlapping pairs.
     #[test]

@@ -116,23 +116,19 @@ fn on_velocities(
     }
 }
 
-/// The poses of side `side` of a group (`Poses::FIXED` for a fixed side).
+/// Side `side` of a group as `gather` reads it; for a fixed side, `fixed`
+/// (what it would read) without reading.
 #[inline]
-fn poses(states: &GroupStates, side: usize) -> Poses {
+fn gather_side<T>(
+    states: &GroupStates,
+    side: usize,
+    fixed: T,
+    gather: impl FnOnce([&BodyState; LANES]) -> T,
+) -> T {
     if states.moving.fixes(side) {
-        Poses::FIXED
+        fixed
     } else {
-        Poses::gather(states.read(side))
-    }
-}
-
-/// The displacements of side `side` of a group (`Displacements::FIXED` for a fixed side).
-#[inline]
-fn displacements(states: &GroupStates, side: usize) -> Displacements {
-    if states.moving.fixes(side) {
-        Displacements::FIXED
-    } else {
-        Displacements::gather(states.read(side))
+        gather(states.read(side))
     }
 }
 
@@ -275,7 +271,8 @@ impl Solver {
     /// only velocities, and a refresh reads only positions.
     fn refresh_and_relax(&mut self, relax: &Bias) {
         self.colour_pass(|g, anchors, sides| {
-            let (a, b) = (poses(&sides, 0), poses(&sides, 1));
+            let poses = |side| gather_side(&sides, side, Poses::FIXED, Poses::gather);
+            let (a, b) = (poses(0), poses(1));
             contact_constraint::refresh(g, anchors, &a, &b);
             on_velocities(g, sides, |c, a, b| {
                 contact_constraint::solve(c, a, b, relax)
@@ -362,8 +359,10 @@ impl Solver {
                     if skips.can_skip(i, travel) {
                         return;
                     }
-                    let mut a = displacements(&states, 0);
-                    let mut b = displacements(&states, 1);
+                    let displacements = |side| {
+                        gather_side(&states, side, Displacements::FIXED, Displacements::gather)
+                    };
+                    let (mut a, mut b) = (displacements(0), displacements(1));
                     let push = contact_constraint::stabilize(
                         g,
                         &anchors[i],

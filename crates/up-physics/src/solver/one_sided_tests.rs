@@ -9,7 +9,7 @@ use super::coloring::Moving;
 use super::contact_constraint::{self, PreparedContact};
 use super::integrate::BodyForces;
 use super::{SolveParams, Solver, Stabilization};
-use crate::hash::mix64;
+use crate::hash::uniform;
 
 const RADIUS: f32 = 0.1;
 
@@ -18,12 +18,11 @@ const RADIUS: f32 = 0.1;
 /// every third. A pair is written lower index first, so a sleeper is side A
 /// of the pair with the balloon after it and side B of the one before.
 fn drifting_row(n: usize, seed: u64) -> Solver {
-    let mut rnd = seed;
-    let mut random = move || {
-        rnd = mix64(rnd.wrapping_add(0x9e37_79b9_7f4a_7c15));
-        (rnd >> 40) as f32 / (1u64 << 24) as f32
+    let mut random = uniform(seed);
+    let mut signed = {
+        let mut random = uniform(!seed);
+        move || 2.0 * random() - 1.0
     };
-    let mut signed = move || 2.0 * random() - 1.0;
     let mut x = 0.0;
     let mut centers = Vec::new();
     let mut states = Vec::new();

@@ -7,7 +7,7 @@ use super::body_state::BodyState;
 use super::contact_constraint::{self, Displacements, PositionPush, PreparedContact};
 use super::parallel::for_each_group;
 use super::{Poses, Solver, Stabilization};
-use crate::hash::mix64;
+use crate::hash::uniform;
 
 const RADIUS: f32 = 0.1;
 
@@ -16,11 +16,7 @@ const RADIUS: f32 = 0.1;
 /// that were shallow), now and then 3 mm into it or 4 mm apart, and the
 /// static room (the last state) under every fourth.
 fn pressed_row(n: usize, seed: u64) -> Solver {
-    let mut rnd = seed;
-    let mut random = move || {
-        rnd = mix64(rnd.wrapping_add(0x9e37_79b9_7f4a_7c15));
-        (rnd >> 40) as f32 / (1u64 << 24) as f32
-    };
+    let mut random = uniform(seed);
     let mut x = 0.0;
     let mut centers = Vec::new();
     for i in 0..n {
