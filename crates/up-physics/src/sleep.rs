@@ -110,8 +110,15 @@ impl SleepingIslands {
     /// whose bodies both sleep now (`asleep`, by handle index; the room
     /// counts as asleep): this step's (`warm`) for the pairs the narrowphase
     /// saw, the kept ones for the others. Bodies woken this step have
-    /// already started from theirs.
-    pub fn keep_impulses(&mut self, warm: &WarmStartCache, asleep: impl Fn(u32) -> bool) {
+    /// already started from theirs. `fell_asleep` tells the sleepers that
+    /// were awake this step: the narrowphase saw no pair of two others, so
+    /// their kept impulses stay without a lookup in `warm`.
+    pub fn keep_impulses(
+        &mut self,
+        warm: &WarmStartCache,
+        asleep: impl Fn(u32) -> bool,
+        fell_asleep: impl Fn(u32) -> bool,
+    ) {
         if !self.changed {
             return;
         }
@@ -129,11 +136,62 @@ impl SleepingIslands {
         }
         let old = &self.impulses;
         for &(key, start, count) in &old.runs {
-            if sleeping_pair(key) && warm.find(key).is_empty() {
+            let seen = fell_asleep((key >> 32) as u32) || fell_asleep(key as u32);
+            if sleeping_pair(key) && (!seen || warm.find(key).is_empty()) {
                 kept.push_run(key, &old.impulses[start as usize..(start + count) as usize]);
             }
         }
         kept.index();
         self.spare = std::mem::replace(&mut self.impulses, kept);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact::{pair_key, StoredImpulse};
+
+    fn impulse(normal: f32) -> StoredImpulse {
+        StoredImpulse {
+            normal,
+            ..StoredImpulse::default()
+        }
+    }
+
+    fn cache(runs: &[((u32, u32), f32)]) -> WarmStartCache {
+        let mut cache = WarmStartCache::default();
+        for &((a, b), normal) in runs {
+            cache.push_run(pair_key(a, b), &[impulse(normal)]);
+        }
+        cache.index();
+        cache
+    }
+
+    /// Balloons 1–5 sleep now, 3 and 4 fell asleep this step (so the
+    /// narrowphase saw their pairs), 6 is awake. The pairs of two sleepers
+    /// are kept: this step's impulses where the narrowphase saw the pair,
+    /// the kept ones where it could not.
+    #[test]
+    fn kept_impulses_are_this_steps_where_seen_and_the_kept_ones_elsewhere() {
+        let mut islands = SleepingIslands {
+            impulses: cache(&[((1, 2), 12.0), ((3, 4), 0.34), ((2, 6), 26.0)]),
+            ..SleepingIslands::default()
+        };
+        islands.add(Vec::new());
+        let warm = cache(&[((3, 4), 34.0), ((4, 5), 45.0), ((5, 6), 56.0)]);
+        islands.keep_impulses(&warm, |h| (1..=5).contains(&h), |h| h == 3 || h == 4);
+        let kept: Vec<(u64, f32)> = islands
+            .impulses
+            .runs
+            .iter()
+            .map(|&(key, start, _)| (key, islands.impulses.impulses[start as usize].normal))
+            .collect();
+        let want = [
+            (pair_key(3, 4), 34.0),
+            (pair_key(4, 5), 45.0),
+            (pair_key(1, 2), 12.0),
+        ];
+        assert_eq!(kept, want);
+        assert_eq!(islands.impulses.find(pair_key(1, 2))[0].normal, 12.0);
     }
 }

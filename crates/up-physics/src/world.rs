@@ -1582,11 +1582,18 @@ impl World {
             self.bodies.angular_velocity[i] = Vec3::ZERO;
         }
         s.handle = island_of_root;
-        s.stays_awake = falls_asleep;
         let (handles, awake) = (&self.handles, &self.bodies.awake);
-        self.sleeping.keep_impulses(&self.warm, |handle| {
-            handle == STATIC_BODY || handles.dense_at(handle).is_some_and(|i| !awake[i])
-        });
+        let dense = |handle| {
+            (handle != STATIC_BODY)
+                .then(|| handles.dense_at(handle))
+                .flatten()
+        };
+        self.sleeping.keep_impulses(
+            &self.warm,
+            |handle| handle == STATIC_BODY || dense(handle).is_some_and(|i| !awake[i]),
+            |handle| dense(handle).is_some_and(|i| falls_asleep[i]),
+        );
+        s.stays_awake = falls_asleep;
     }
 }
 
