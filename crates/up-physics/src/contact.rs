@@ -210,16 +210,18 @@ pub(crate) fn pair_key(handle_a: u32, handle_b: u32) -> u64 {
     ((handle_a as u64) << 32) | handle_b as u64
 }
 
+/// An impulse along the normal alone, for tests.
+#[cfg(test)]
+pub(crate) fn impulse(normal: f32) -> StoredImpulse {
+    StoredImpulse {
+        normal,
+        ..StoredImpulse::default()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn impulse(normal: f32) -> StoredImpulse {
-        StoredImpulse {
-            normal,
-            ..StoredImpulse::default()
-        }
-    }
 
     #[test]
     fn each_contact_resumes_from_its_pair_this_step_or_when_it_fell_asleep() {

@@ -149,14 +149,7 @@ impl SleepingIslands {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::contact::{pair_key, StoredImpulse};
-
-    fn impulse(normal: f32) -> StoredImpulse {
-        StoredImpulse {
-            normal,
-            ..StoredImpulse::default()
-        }
-    }
+    use crate::contact::{impulse, pair_key};
 
     fn cache(runs: &[((u32, u32), f32)]) -> WarmStartCache {
         let mut cache = WarmStartCache::default();
