@@ -99,9 +99,10 @@ impl GroupStates<'_> {
 }
 
 /// Runs `kernel` on every contact group, with its index (for the group's
-/// other parts), colour by colour (`ranges` from `Coloring`; the last range,
-/// the overflow, always serially). Within a colour no moving body appears
-/// twice (`coloring`), so each task owns the moving states of its groups.
+/// other parts), run by run (`ranges` from `Coloring`: a colour's runs, one
+/// per kind of sides that move, come together; the last run, the overflow,
+/// always serially). Within a colour no moving body appears twice
+/// (`coloring`), so each task owns the moving states of its groups.
 pub(crate) fn for_each_colored<K>(
     ranges: &[ColourRun],
     groups: &mut [ContactGroup],
