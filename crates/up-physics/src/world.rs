@@ -1453,19 +1453,16 @@ impl World {
                         continue;
                     }
                     let q0 = s.start_rotation();
-                    let core_path = |leaf: Sphere| {
-                        let from = begin + q0 * leaf.center;
-                        let to = end + s.q * leaf.center;
-                        (Sphere::new(from, leaf.radius * CORE_FRACTION), to - from)
-                    };
                     let mut earliest: Option<(f32, Vec3)> = None;
                     for leaf in shape.tree.leaf_spheres() {
-                        let (core, path) = core_path(leaf);
+                        let from = begin + q0 * leaf.center;
+                        let to = end + s.q * leaf.center;
+                        let core = Sphere::new(from, leaf.radius * CORE_FRACTION);
                         // Triangles the core is in already are the solver's to push
                         // out of: stopping at them would freeze the body in place,
                         // step after step.
                         if let Some((t, _, normal)) =
-                            toi_sphere_trimesh_new_contact(core, path, room)
+                            toi_sphere_trimesh_new_contact(core, to - from, room)
                         {
                             if earliest.is_none_or(|(te, _)| t < te) {
                                 earliest = Some((t, normal));
@@ -1583,15 +1580,11 @@ impl World {
         }
         s.handle = island_of_root;
         let (handles, awake) = (&self.handles, &self.bodies.awake);
-        let dense = |handle| {
-            (handle != STATIC_BODY)
-                .then(|| handles.dense_at(handle))
-                .flatten()
-        };
+        // The room (`STATIC_BODY`) has no dense index: asleep, never fallen asleep.
         self.sleeping.keep_impulses(
             &self.warm,
-            |handle| handle == STATIC_BODY || dense(handle).is_some_and(|i| !awake[i]),
-            |handle| dense(handle).is_some_and(|i| falls_asleep[i]),
+            |handle| handle == STATIC_BODY || handles.dense_at(handle).is_some_and(|i| !awake[i]),
+            |handle| handles.dense_at(handle).is_some_and(|i| falls_asleep[i]),
         );
         s.stays_awake = falls_asleep;
     }
