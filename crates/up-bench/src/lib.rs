@@ -14,5 +14,6 @@ pub mod run;
 pub mod scene_data;
 pub mod scene_export;
 pub mod stats;
+pub mod step_times;
 pub mod system_info;
 pub mod up_engine;

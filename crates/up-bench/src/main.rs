@@ -79,6 +79,9 @@ struct RunArgs {
     /// Skip the peak-memory child processes (they take as long as the run).
     #[arg(long)]
     no_rss: bool,
+    /// Write every step's wall time, ms, per engine, as CSV (`step,up,rapier`).
+    #[arg(long, value_name = "FILE.csv")]
+    step_times: Option<PathBuf>,
 }
 
 #[derive(Args, Debug)]
@@ -157,6 +160,7 @@ fn run_options(args: &RunArgs) -> Result<RunOptions> {
         engines,
         rapier_shape,
         rss: !args.no_rss,
+        step_times: args.step_times.clone(),
     })
 }
 

@@ -5,6 +5,7 @@
 //! once the timed loop is done, and take each engine's peak memory from a
 //! child process that runs it alone.
 
+use std::path::PathBuf;
 use std::process::Command;
 use std::time::Instant;
 
@@ -19,6 +20,7 @@ use crate::rapier_engine::{RapierEngine, RapierShape};
 use crate::rss::peak_rss_mb;
 use crate::scene_data::SceneData;
 use crate::stats::{mean, median, quantile, settled};
+use crate::step_times;
 use crate::up_engine::UpEngine;
 
 /// Most steps a run takes.
@@ -35,6 +37,8 @@ pub struct RunOptions {
     pub rapier_shape: RapierShape,
     /// Measure peak memory in child processes (doubles the run time).
     pub rss: bool,
+    /// Where to write every step's time (`step_times`), if anywhere.
+    pub step_times: Option<PathBuf>,
 }
 
 /// What a memory probe child prints.
@@ -82,6 +86,9 @@ fn check(opts: &RunOptions) -> Result<()> {
     if opts.engines.is_empty() {
         bail!("--engines: expected up, rapier or both");
     }
+    if let Some(path) = &opts.step_times {
+        step_times::check_target(path)?;
+    }
     Ok(())
 }
 
@@ -122,6 +129,11 @@ pub fn run(opts: &RunOptions) -> Result<Vec<EngineResult>> {
                 frames[i].push(poses.clone());
             }
         }
+    }
+
+    if let Some(path) = &opts.step_times {
+        let names: Vec<&str> = engines.iter().map(|e| e.name()).collect();
+        step_times::write(path, &names, &times)?;
     }
 
     let mut results = Vec::with_capacity(engines.len());
