@@ -225,9 +225,13 @@ pub fn results_section(
     }
     let _ = writeln!(
         md,
-        "\nRapier over UP, whole-run median ms per step (same process, interleaved):\n"
+        "\nRapier over UP, whole-run ms per step (same process, interleaved): the \
+         median, and the mean (total time):\n"
     );
-    let _ = writeln!(md, "| runtime | balloons | Rapier / UP |\n|---|--:|--:|");
+    let _ = writeln!(
+        md,
+        "| runtime | balloons | Rapier / UP, median | Rapier / UP, mean |\n|---|--:|--:|--:|"
+    );
     for up in results.iter().filter(|r| r.engine == "up") {
         if let Some(rapier) = results
             .iter()
@@ -235,10 +239,11 @@ pub fn results_section(
         {
             let _ = writeln!(
                 md,
-                "| {} | {} | {:.2} |",
+                "| {} | {} | {:.2} | {:.2} |",
                 up.runtime,
                 up.balloons,
-                rapier.ms_per_step_median / up.ms_per_step_median
+                rapier.ms_per_step_median / up.ms_per_step_median,
+                rapier.ms_per_step_mean / up.ms_per_step_mean
             );
         }
     }
@@ -323,5 +328,23 @@ mod tests {
         let md = results_section(&results, &["up-bench".into()], None, Path::new("b.svg"));
         assert!(md.starts_with(BEGIN) && md.trim_end().ends_with(END));
         assert!(md.contains("| native | up | 10 | 5 | 1 | 1.000 |"), "{md}");
+    }
+
+    #[test]
+    fn the_ratios_are_by_median_and_by_mean() {
+        let line = |engine: &str, median: f64, mean: f64| {
+            format!(
+                "{{\"engine\":\"{engine}\",\"runtime\":\"native\",\"balloons\":10,\"steps\":5,\
+                 \"threads\":1,\"ms_per_step_median\":{median},\"ms_per_step_p95\":2.0,\
+                 \"ms_per_step_mean\":{mean},\"settled_ms_per_step_median\":0.5,\
+                 \"max_penetration_m\":0.001,\"final_penetration_m\":0.0,\"escaped\":0,\
+                 \"awake_at_end\":3,\"peak_rss_mb\":null,\"rss_bytes_per_balloon\":null,\
+                 \"room_width_m\":1.5}}\n"
+            )
+        };
+        let text = line("up", 2.0, 4.0) + &line("rapier", 5.0, 14.0);
+        let results = parse_results(&text).unwrap();
+        let md = results_section(&results, &["up-bench".into()], None, Path::new("b.svg"));
+        assert!(md.contains("| native | 10 | 2.50 | 3.50 |"), "{md}");
     }
 }
