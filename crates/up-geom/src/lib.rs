@@ -10,6 +10,7 @@ pub mod norm;
 pub mod pose;
 pub mod query;
 pub mod shape;
+mod split_mix;
 #[cfg(test)]
 mod test_meshes;
 

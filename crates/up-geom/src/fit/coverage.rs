@@ -5,6 +5,7 @@
 use glam::Vec3;
 
 use crate::shape::sphere::Sphere;
+use crate::split_mix::SplitMix64;
 
 /// A point counts as covered when it lies at most this far outside a sphere (m).
 pub const COVERAGE_TOLERANCE_M: f32 = 0.001;
@@ -18,24 +19,6 @@ pub struct Coverage {
     pub max_uncovered_distance: f32,
     /// Number of sample points.
     pub samples: usize,
-}
-
-/// SplitMix64: a tiny, well-mixed generator; the same seed gives the same points everywhere.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [0, 1).
-    fn next_f64(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-    }
 }
 
 /// Points on the surface: all vertices used by a triangle, then about

@@ -192,13 +192,8 @@ mod tests {
             ceiling.normal(0).dot(normal) > 0.999,
             "the ceiling must face the bounds"
         );
-        let mut seed = 7u64;
-        let mut random = move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 40) as f32 / (1u64 << 24) as f32
-        };
+        let mut rng = crate::split_mix::SplitMix64(7);
+        let mut random = move || rng.next_f32();
         let (mut let_go, mut looked_at) = (0, 0);
         for _ in 0..4000 {
             let radius = 0.05 + 0.4 * random();
