@@ -6,9 +6,8 @@ use std::time::Instant;
 use anyhow::{bail, Result};
 use clap::Args;
 use serde::Serialize;
-use up_scene::build::build_world;
 
-use crate::run::progress_bar;
+use crate::run::{build_or_restore, check_load_state_alone, progress_bar};
 use crate::scene_arg::{load_scene, scene_name};
 use crate::summary::print_table;
 
@@ -28,6 +27,10 @@ pub struct BenchArgs {
     /// End with one JSON object on the last line of standard output.
     #[arg(long)]
     pub json: bool,
+    /// Time a world saved with `up run --save-state` (a pile mid-arrival,
+    /// say) instead of the scene's spawn; the scene still gives the room.
+    #[arg(long, value_name = "FILE")]
+    pub load_state: Option<PathBuf>,
 }
 
 /// Mean time of one stage of the step.
@@ -60,8 +63,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     if args.steps == 0 || args.steps > MAX_STEPS {
         bail!("--steps: expected 1 to {MAX_STEPS}, found {}", args.steps);
     }
+    check_load_state_alone(args.load_state.as_deref(), args.balloons)?;
     let scene = load_scene(args.scene.as_deref(), None, args.balloons)?;
-    let mut built = build_world(&scene)?;
+    let mut built = build_or_restore(&scene, args.load_state.as_deref())?;
     let world = &mut built.world;
 
     let mut step_ms = Vec::with_capacity(args.steps as usize);

@@ -1,14 +1,15 @@
 //! `up run`: simulate a scene headless.
 
 use std::io::{IsTerminal, Write};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use up_physics::World;
-use up_scene::build::build_world;
+use up_scene::build::{build_world, BuiltScene};
+use up_scene::scene::Scene;
 
 use crate::atomic_file::{write_atomically, AtomicFile};
 use crate::scene_arg::{load_scene, scene_name};
@@ -48,21 +49,34 @@ pub struct RunArgs {
     pub load_state: Option<PathBuf>,
 }
 
-pub fn run(args: &RunArgs) -> Result<()> {
-    if args.load_state.is_some() && args.balloons.is_some() {
+/// Builds the scene's world, or restores it from the snapshot `load_state`
+/// (saved with `--save-state`) when given; the scene still gives the room.
+pub fn build_or_restore(scene: &Scene, load_state: Option<&Path>) -> Result<BuiltScene> {
+    let mut built = build_world(scene)?;
+    if let Some(path) = load_state {
+        let bytes = std::fs::read(path)
+            .with_context(|| format!("cannot read the state file {}", path.display()))?;
+        built.world = World::restore(&bytes).with_context(|| format!("{}", path.display()))?;
+    }
+    Ok(built)
+}
+
+/// Refuses `--balloons` with `--load-state`: a snapshot fixes its bodies.
+pub fn check_load_state_alone(load_state: Option<&Path>, balloons: Option<u64>) -> Result<()> {
+    if load_state.is_some() && balloons.is_some() {
         bail!("--balloons cannot change a world loaded with --load-state");
     }
+    Ok(())
+}
+
+pub fn run(args: &RunArgs) -> Result<()> {
+    check_load_state_alone(args.load_state.as_deref(), args.balloons)?;
     let scene = load_scene(args.scene.as_deref(), args.seed, args.balloons)?;
     let seconds = args.seconds.unwrap_or(f64::from(scene.sim.duration_s));
     if !(seconds.is_finite() && seconds > 0.0 && seconds <= MAX_SECONDS) {
         bail!("--seconds: expected a number in (0, {MAX_SECONDS}], found {seconds}");
     }
-    let mut built = build_world(&scene)?;
-    if let Some(path) = &args.load_state {
-        let bytes = std::fs::read(path)
-            .with_context(|| format!("cannot read the state file {}", path.display()))?;
-        built.world = World::restore(&bytes).with_context(|| format!("{}", path.display()))?;
-    }
+    let mut built = build_or_restore(&scene, args.load_state.as_deref())?;
     let world = &mut built.world;
     let dt = f64::from(world.def().dt);
     let steps = (seconds / dt).round().max(1.0) as u64;

@@ -339,6 +339,35 @@ fn bench_reports_timings_and_stages() {
 }
 
 #[test]
+fn bench_times_a_saved_state_from_where_it_stopped() {
+    let dir = TempDir::new("bench-state");
+    let state = dir.str("half.upsnap");
+    let common = ["--balloons", "3", "--seed", "9", "--json"];
+    let whole = up_ok(&[&["run", "--seconds", "0.5"][..], &common].concat());
+    up_ok(
+        &[
+            &["run", "--seconds", "0.25", "--save-state", &state][..],
+            &common,
+        ]
+        .concat(),
+    );
+    // 15 steps from the snapshot end where the whole 0.5 s run ends.
+    let timed = up_ok(&["bench", "--steps", "15", "--load-state", &state, "--json"]);
+    let (timed, whole) = (last_json(&timed), last_json(&whole));
+    assert_eq!(timed["state_hash"], whole["state_hash"]);
+    assert_eq!(timed["balloons"], 3);
+    assert!(
+        (timed["sim_seconds"].as_f64().unwrap() - 0.5).abs() < 1e-6,
+        "{timed}"
+    );
+
+    let err = up_err(&["bench", "--load-state", &dir.str("absent.upsnap")]);
+    assert!(err.contains("absent.upsnap"), "{err}");
+    let err = up_err(&["bench", "--load-state", &state, "--balloons", "2"]);
+    assert!(err.contains("--balloons"), "{err}");
+}
+
+#[test]
 fn colliders_show_the_default_tree_and_mass() {
     let text = up_ok(&["colliders"]);
     assert!(
