@@ -20,6 +20,8 @@ mod sleep;
 mod snapshot;
 mod solver;
 mod spare;
+#[cfg(feature = "parallel")]
+mod staged;
 mod tasks;
 mod world;
 

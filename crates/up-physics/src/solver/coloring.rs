@@ -6,7 +6,13 @@
 //!
 //! Static bodies (the room, sleeping balloons) never take an impulse, so they
 //! do not count as shared. Constraints that find no free colour among the 64
-//! go to a last, overflow group that is solved serially.
+//! (a balloon deep in a big pile has more contacts) overflow into *levels*
+//! after the colours: each takes the level after the last one its bodies'
+//! earlier overflow constraints took, so every body meets its overflow
+//! constraints in the given order, as one serial pass over them would, and
+//! the constraints of a level, sharing no moving body, run at once like a
+//! colour's with the serial pass's results bit for bit. Past the last level
+//! the rest run serially, one constraint a group.
 //!
 //! Within a colour, the constraints against a fixed body (`Moving::A`: the
 //! room or a sleeper on side B; `Moving::B`: on side A) get groups of their
@@ -25,6 +31,18 @@ pub(crate) const EMPTY_LANE: u32 = u32::MAX;
 
 /// Colours a body can carry (bits of a `u64`).
 const COLORS: usize = 64;
+
+/// Overflow levels after the colours. The 100,000 pile's arrival overflows
+/// 8,089 of its 1.49 million constraints (at 16 s): one by one, they held
+/// every pass on one thread while the others waited.
+const LEVELS: usize = 192;
+
+/// The colour index of the constraints run serially, after the levels.
+const SERIAL: usize = COLORS + LEVELS;
+
+/// Most groups a block of a colour holds (`ColourBlocks`), but for the serial rest.
+#[cfg(feature = "parallel")]
+pub(crate) const BLOCK_GROUPS: u32 = 64;
 
 /// Which sides of a group's constraints can move: every lane of a group alike.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -69,15 +87,18 @@ pub(crate) struct ColourRun {
 /// Where each constraint goes, reused from step to step.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Coloring {
-    /// Colour of each constraint, in the narrowphase's order (`COLORS` =
-    /// overflow), and the sides it moves.
-    color: Vec<(u8, Moving)>,
+    /// Colour of each constraint, in the narrowphase's order (from `COLORS`
+    /// on the overflow's levels, `SERIAL` the serial rest), and the sides it moves.
+    color: Vec<(u16, Moving)>,
     /// Colours already used by each body's constraints.
     used: Vec<u64>,
-    /// The groups of `LANES` constraints, colour by colour, each colour in
-    /// up to three runs (`Moving::ALL`'s order); the last run is the
-    /// overflow, one constraint per group so that it runs serially, all as
-    /// `Moving::Both`.
+    /// The level after the last one each body's overflow constraints took
+    /// (sized only in a step that overflows).
+    next_level: Vec<u16>,
+    /// The groups of `LANES` constraints, colour by colour (levels after
+    /// colours), each colour in up to three runs (`Moving::ALL`'s order); the
+    /// last run is the serial rest, one constraint per group so that it runs
+    /// serially, all as `Moving::Both`.
     pub ranges: Vec<ColourRun>,
     /// For each constraint in the narrowphase's order, its slot: group · `LANES` + lane.
     pub slot: Vec<u32>,
@@ -86,68 +107,158 @@ pub(crate) struct Coloring {
     constraint_at: Vec<u32>,
     /// Groups in all.
     pub groups: usize,
+    /// The runs cut into blocks for rayon's threads.
+    #[cfg(feature = "parallel")]
+    pub blocks: ColourBlocks,
+}
+
+/// The groups of a pass cut into blocks that tasks take whole (`staged`):
+/// a colour (or level) is a stage, its runs cut into blocks of up to
+/// `BLOCK_GROUPS` groups; the serial rest is one block. Consecutive stages of
+/// one block each become one block, solved in colour order by one task: the
+/// colours' long tail of a few groups each costs no wait between them.
+#[cfg(feature = "parallel")]
+#[derive(Clone, Debug, Default)]
+pub(crate) struct ColourBlocks {
+    /// The pieces of runs, in the runs' order; a block is consecutive pieces.
+    pub pieces: Vec<ColourRun>,
+    /// Block k holds `pieces[piece_end[k - 1]..piece_end[k]]` (from 0 for k = 0).
+    pub piece_end: Vec<u32>,
+    /// The first block of block k's stage.
+    pub stage_first: Vec<u32>,
+}
+
+#[cfg(feature = "parallel")]
+impl ColourBlocks {
+    fn clear(&mut self) {
+        self.pieces.clear();
+        self.piece_end.clear();
+        self.stage_first.clear();
+    }
+
+    fn release_spare(&mut self) {
+        release_spare(&mut self.pieces, BUFFER_FLOOR);
+        release_spare(&mut self.piece_end, BUFFER_FLOOR);
+        release_spare(&mut self.stage_first, BUFFER_FLOOR);
+    }
+
+    /// The pieces of block `k`.
+    pub fn block(&self, k: usize) -> &[ColourRun] {
+        let start = if k == 0 { 0 } else { self.piece_end[k - 1] };
+        &self.pieces[start as usize..self.piece_end[k] as usize]
+    }
+
+    /// Adds one stage: `runs`, cut into blocks of up to `BLOCK_GROUPS`
+    /// groups (a block may span runs), or whole if `whole`.
+    fn add_stage(&mut self, runs: &[ColourRun], whole: bool) {
+        let first_piece = self.pieces.len();
+        let first_block = self.piece_end.len();
+        let mut room = BLOCK_GROUPS;
+        for run in runs {
+            let mut start = run.start;
+            while start < run.end {
+                let end = if whole {
+                    run.end
+                } else {
+                    run.end.min(start + room)
+                };
+                self.pieces.push(ColourRun { start, end, ..*run });
+                room -= (end - start).min(room);
+                if room == 0 && !whole {
+                    self.piece_end.push(self.pieces.len() as u32);
+                    room = BLOCK_GROUPS;
+                }
+                start = end;
+            }
+        }
+        if *self.piece_end.last().unwrap_or(&(first_piece as u32)) < self.pieces.len() as u32 {
+            self.piece_end.push(self.pieces.len() as u32);
+        }
+        let blocks = self.piece_end.len() - first_block;
+        // A one-block stage after a one-block stage joins its block.
+        let last_alone =
+            first_block > 0 && self.stage_first[first_block - 1] as usize == first_block - 1;
+        if blocks == 1 && last_alone {
+            self.piece_end.pop();
+            *self.piece_end.last_mut().unwrap() = self.pieces.len() as u32;
+            return;
+        }
+        self.stage_first
+            .extend(std::iter::repeat_n(first_block as u32, blocks));
+    }
 }
 
 impl Coloring {
     /// Gives back the capacity this step's constraints left unused (`spare`).
     pub fn release_spare(&mut self) {
         release_spare(&mut self.color, BUFFER_FLOOR);
+        release_spare(&mut self.next_level, BUFFER_FLOOR);
         release_spare(&mut self.slot, BUFFER_FLOOR);
         #[cfg(feature = "parallel")]
         release_spare(&mut self.constraint_at, BUFFER_FLOOR);
+        #[cfg(feature = "parallel")]
+        self.blocks.release_spare();
     }
 
     /// Colours the constraints between the body pairs `pairs` greedily
     /// (lowest free colour, in the given order, so room contacts, which come
-    /// first, are solved first) and gives each a slot: colour by colour,
-    /// the sides it moves within a colour, `LANES` to a group, in the given
-    /// order within those.
+    /// first, are solved first; then the overflow's levels) and gives each a
+    /// slot: colour by colour, the sides it moves within a colour, `LANES` to
+    /// a group, in the given order within those.
     pub fn assign(&mut self, pairs: impl Iterator<Item = (u32, u32)>, states: &[BodyState]) {
         self.used.clear();
         self.used.resize(states.len(), 0);
+        self.next_level.clear();
         self.color.clear();
         // Filled only when the groups are assembled in tasks; empty otherwise,
         // so that its length is this step's use (`spare`).
         #[cfg(feature = "parallel")]
         self.constraint_at.clear();
-        let mut counts = [[0u32; 3]; COLORS + 1];
+        let mut counts = [[0u32; 3]; SERIAL + 1];
         let moving = |i: u32| states[i as usize].inv_mass > 0.0;
         for (a, b) in pairs {
-            let taken = if moving(a) { self.used[a as usize] } else { 0 }
-                | if moving(b) { self.used[b as usize] } else { 0 };
-            let color = (!taken).trailing_zeros() as usize; // 64 when all are taken
+            let (a_moves, b_moves) = (moving(a), moving(b));
+            let taken = if a_moves { self.used[a as usize] } else { 0 }
+                | if b_moves { self.used[b as usize] } else { 0 };
+            let mut color = (!taken).trailing_zeros() as usize; // COLORS when all are taken
             if color < COLORS {
                 let bit = 1u64 << color;
-                if moving(a) {
+                if a_moves {
                     self.used[a as usize] |= bit;
                 }
-                if moving(b) {
+                if b_moves {
                     self.used[b as usize] |= bit;
                 }
+            } else {
+                color = self.overflow_colour([(a, a_moves), (b, b_moves)], states.len());
             }
-            let sides = if color < COLORS {
+            let sides = if color < SERIAL {
                 Moving::of(&states[a as usize], &states[b as usize])
             } else {
                 Moving::Both
             };
-            self.color.push((color as u8, sides));
+            self.color.push((color as u16, sides));
             counts[color][sides as usize] += 1;
         }
 
-        // Each run's first group; the overflow takes a group per constraint.
+        // Each run's first group; the serial rest takes a group per constraint.
         self.ranges.clear();
-        let mut first_group = [[0u32; 3]; COLORS + 1];
+        #[cfg(feature = "parallel")]
+        self.blocks.clear();
+        let mut first_group = [[0u32; 3]; SERIAL + 1];
         let mut start = 0u32;
         for (color, counts) in counts.iter().enumerate() {
+            #[cfg(feature = "parallel")]
+            let colour_runs = self.ranges.len();
             for moving in Moving::ALL {
                 let count = counts[moving as usize];
-                let groups = if color == COLORS {
+                let groups = if color == SERIAL {
                     count
                 } else {
                     count.div_ceil(LANES as u32)
                 };
                 first_group[color][moving as usize] = start;
-                if count > 0 || (color == COLORS && moving == Moving::Both) {
+                if count > 0 || (color == SERIAL && moving == Moving::Both) {
                     self.ranges.push(ColourRun {
                         start,
                         end: start + groups,
@@ -156,23 +267,46 @@ impl Coloring {
                 }
                 start += groups;
             }
+            #[cfg(feature = "parallel")]
+            self.blocks
+                .add_stage(&self.ranges[colour_runs..], color == SERIAL);
         }
         self.groups = start as usize;
 
         self.slot.clear();
-        let mut seen = [[0u32; 3]; COLORS + 1];
+        let mut seen = [[0u32; 3]; SERIAL + 1];
         for &(color, moving) in &self.color {
             let (color, moving) = (color as usize, moving as usize);
             let k = seen[color][moving];
             seen[color][moving] += 1;
             let first = first_group[color][moving];
-            let slot = if color == COLORS {
+            let slot = if color == SERIAL {
                 (first + k) * LANES as u32
             } else {
                 first * LANES as u32 + k
             };
             self.slot.push(slot);
         }
+    }
+
+    /// The colour of an overflowing constraint between `sides` (each a body
+    /// and whether it moves): the level after its moving bodies' last, or
+    /// `SERIAL` past the last level, after which their later ones stay serial too.
+    fn overflow_colour(&mut self, sides: [(u32, bool); 2], bodies: usize) -> usize {
+        if self.next_level.is_empty() {
+            self.next_level.resize(bodies, 0);
+        }
+        let moving = sides.into_iter().filter(|&(_, moves)| moves);
+        let level = moving
+            .clone()
+            .map(|(i, _)| self.next_level[i as usize])
+            .max();
+        let level = level.unwrap_or(0) as usize;
+        let next = (level + 1).min(LEVELS) as u16;
+        for (i, _) in moving {
+            self.next_level[i as usize] = next;
+        }
+        COLORS + level.min(LEVELS)
     }
 
     /// For each slot, its constraint (`EMPTY_LANE` if none): `slot` inverted.
@@ -201,9 +335,9 @@ mod tests {
         }
     }
 
-    /// The constraints of each colour (the overflow last), as (a, b) pairs.
+    /// The constraints of each colour (then each level, then the serial rest), as (a, b) pairs.
     fn colours(coloring: &Coloring, pairs: &[(u32, u32)]) -> Vec<Vec<(u32, u32)>> {
-        let mut by_colour = vec![Vec::new(); COLORS + 1];
+        let mut by_colour = vec![Vec::new(); SERIAL + 1];
         for (&pair, &(colour, _)) in pairs.iter().zip(&coloring.color) {
             by_colour[colour as usize].push(pair);
         }
@@ -278,28 +412,146 @@ mod tests {
         assert!(by_colour.last().unwrap().is_empty());
     }
 
+    /// A star of `COLORS + extra` constraints around body `hub` (its
+    /// spokes `first..`); returns the pairs.
+    fn star(hub: u32, first: u32, extra: usize) -> Vec<(u32, u32)> {
+        (first..first + (COLORS + extra) as u32)
+            .map(|i| (hub, i))
+            .collect()
+    }
+
+    /// The levels of the overflow's constraints, in the given order.
+    fn levels(coloring: &Coloring) -> Vec<usize> {
+        let over = coloring
+            .color
+            .iter()
+            .filter(|&&(c, _)| c as usize >= COLORS);
+        over.map(|&(c, _)| c as usize - COLORS).collect()
+    }
+
     #[test]
-    fn a_body_with_more_than_64_contacts_overflows_to_one_group_each() {
-        let mut states = vec![moving(); 70];
+    fn overflowing_constraints_take_levels_in_their_bodies_order() {
+        // Two stars: 5 and 3 constraints past the colours, each sharing its hub.
+        let mut states = vec![moving(); 200];
         states.push(BodyState::STATIC);
-        let pairs: Vec<(u32, u32)> = (1..70).map(|i| (0, i)).collect();
+        let mut pairs = star(0, 1, 5);
+        pairs.extend(star(100, 101, 3));
         let mut coloring = Coloring::default();
         coloring.assign(pairs.iter().copied(), &states);
-        // 64 colours of one constraint (one group each), then 5 overflow groups.
-        assert_eq!(coloring.ranges.len(), 65);
-        let overflow = ColourRun {
-            start: 64,
-            end: 69,
-            moving: Moving::Both,
-        };
-        assert_eq!(coloring.ranges[64], overflow);
-        assert_eq!(coloring.groups, 69);
-        // Each overflow constraint alone in lane 0 of its group.
-        let lanes: Vec<u32> = coloring.slot[64..]
+        assert_eq!(levels(&coloring), vec![0, 1, 2, 3, 4, 0, 1, 2]);
+        // The levels come after the colours, in order, then the empty serial run.
+        let runs = &coloring.ranges[COLORS..];
+        let sizes: Vec<u32> = runs.iter().map(|r| r.end - r.start).collect();
+        assert_eq!(sizes, vec![1, 1, 1, 1, 1, 0]);
+        // The two stars' constraints of a level share a group.
+        let slot = |i: usize| coloring.slot[i];
+        for (k, level) in [(64, 0), (65, 1), (66, 2)] {
+            let group = runs[level].start * LANES as u32;
+            assert_eq!((slot(k), slot(k + 64 + 5)), (group, group + 1));
+        }
+        // Each body meets its overflowing constraints in the given order.
+        let mut last_level = vec![None; states.len()];
+        for (&(a, b), &(colour, _)) in pairs.iter().zip(&coloring.color) {
+            if (colour as usize) < COLORS {
+                continue;
+            }
+            for body in [a as usize, b as usize] {
+                assert!(last_level[body] < Some(colour), "body {body}");
+                last_level[body] = Some(colour);
+            }
+        }
+    }
+
+    #[test]
+    fn constraints_past_the_last_level_run_serially_one_a_group() {
+        let spokes = COLORS + LEVELS + 3;
+        let mut states = vec![moving(); spokes + 3];
+        states.push(BodyState::STATIC);
+        let mut pairs = star(0, 1, LEVELS + 3);
+        // Between the hub, whose later constraints must stay serial, and a fresh body.
+        pairs.push((spokes as u32 + 1, 0));
+        let mut coloring = Coloring::default();
+        coloring.assign(pairs.iter().copied(), &states);
+        let serial = coloring.ranges.last().unwrap();
+        assert_eq!(coloring.ranges.len(), SERIAL + 1);
+        assert_eq!(serial.end - serial.start, 4);
+        assert_eq!(serial.moving, Moving::Both);
+        // Each alone in lane 0 of its group.
+        let lanes: Vec<u32> = coloring.slot[COLORS + LEVELS..]
             .iter()
             .map(|s| s % LANES as u32)
             .collect();
-        assert_eq!(lanes, vec![0; 5]);
+        assert_eq!(lanes, vec![0; 4]);
+    }
+
+    /// Each colour's runs are cut into blocks of up to `BLOCK_GROUPS` groups
+    /// (a block may span runs), in order; the overflow stays whole; stages
+    /// of one block in a row become one block; empty colours add nothing.
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn colours_are_cut_into_blocks_and_lone_blocks_join() {
+        let run = |start, end, moving| ColourRun { start, end, moving };
+        let mut blocks = ColourBlocks::default();
+        blocks.add_stage(
+            &[run(0, 150, Moving::Both), run(150, 160, Moving::A)],
+            false,
+        );
+        blocks.add_stage(&[run(160, 170, Moving::Both)], false);
+        blocks.add_stage(&[run(170, 175, Moving::B)], false);
+        blocks.add_stage(&[run(175, 175, Moving::Both)], false);
+        blocks.add_stage(&[run(175, 300, Moving::Both)], true); // an overflow: whole
+        blocks.add_stage(&[run(300, 400, Moving::Both)], false);
+
+        let spans: Vec<Vec<(u32, u32, Moving)>> = (0..blocks.stage_first.len())
+            .map(|k| {
+                let pieces = blocks.block(k).iter();
+                pieces.map(|p| (p.start, p.end, p.moving)).collect()
+            })
+            .collect();
+        assert_eq!(
+            spans,
+            vec![
+                vec![(0, 64, Moving::Both)],
+                vec![(64, 128, Moving::Both)],
+                vec![(128, 150, Moving::Both), (150, 160, Moving::A)],
+                // Three one-block stages (the empty colour adds none), one block.
+                vec![
+                    (160, 170, Moving::Both),
+                    (170, 175, Moving::B),
+                    (175, 300, Moving::Both),
+                ],
+                vec![(300, 364, Moving::Both)],
+                vec![(364, 400, Moving::Both)],
+            ]
+        );
+        assert_eq!(blocks.stage_first, vec![0, 0, 0, 3, 4, 4]);
+    }
+
+    /// The blocks of a real colouring hold every group once, in the runs' order.
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn the_blocks_hold_every_group_in_order() {
+        // A crowd of 400 bodies, each touching the room and its next 12.
+        let mut states = vec![moving(); 400];
+        states.push(BodyState::STATIC);
+        let mut pairs: Vec<(u32, u32)> = (0..400).map(|i| (i, 400)).collect();
+        pairs.extend((0..400u32).flat_map(|i| (1..=12).map(move |d| (i, (i + d) % 400))));
+        let mut coloring = Coloring::default();
+        coloring.assign(pairs.iter().copied(), &states);
+        let blocks = &coloring.blocks;
+        assert!(
+            blocks.stage_first.windows(2).any(|w| w[0] == w[1]),
+            "a stage of several blocks"
+        );
+        let mut next = 0;
+        for k in 0..blocks.stage_first.len() {
+            assert!(blocks.stage_first[k] as usize <= k);
+            for piece in blocks.block(k) {
+                assert_eq!(piece.start, next);
+                next = piece.end;
+            }
+        }
+        assert_eq!(next as usize, coloring.groups);
     }
 
     /// Within a colour, the constraints against a fixed body (the room, a

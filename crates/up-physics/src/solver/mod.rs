@@ -296,7 +296,7 @@ impl Solver {
     {
         let anchors = &self.anchors;
         for_each_colored(
-            &self.coloring.ranges,
+            &self.coloring,
             &mut self.groups,
             &mut self.states,
             |i, g, sides| kernel(g, &anchors[i], sides),
@@ -350,7 +350,7 @@ impl Solver {
         while passes < max_passes {
             beyond_target.store(false, Ordering::Relaxed);
             for_each_colored(
-                &self.coloring.ranges,
+                &self.coloring,
                 &mut self.groups,
                 &mut self.states,
                 |i, g, mut states| {

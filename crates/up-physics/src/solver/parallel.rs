@@ -9,50 +9,76 @@ use std::marker::PhantomData;
 use rayon::prelude::*;
 
 use super::body_state::BodyState;
-use super::coloring::{ColourRun, Moving};
+use super::coloring::{Coloring, Moving};
 use super::contact_constraint::ContactGroup;
 #[cfg(feature = "parallel")]
 use super::contact_constraint::{GroupAnchors, GroupRecords};
 use super::lanes::LANES;
 #[cfg(feature = "parallel")]
+use crate::staged::run_in_stages;
+#[cfg(feature = "parallel")]
 use crate::tasks::worth_splitting;
 
-/// Contact groups (of four constraints) handed to one task; below this a pass stays serial.
+/// Contact groups (of four constraints) handed to one task of a pass over
+/// all groups at once; below this such a pass stays serial.
 #[cfg(feature = "parallel")]
 const GROUP_CHUNK: usize = 64;
 /// Bodies handed to one task.
 #[cfg(feature = "parallel")]
 const BODY_CHUNK: usize = 256;
 
-/// The body states, shared by the tasks of one colour or one body pass.
-#[derive(Clone, Copy)]
-struct SharedStates {
-    ptr: *mut BodyState,
+/// A slice shared by the tasks of one pass, each touching only its own
+/// elements: the body states of a colour or a body pass, the groups of a
+/// pass's blocks.
+struct SharedSlice<T> {
+    ptr: *mut T,
     len: usize,
 }
 
-// SAFETY: tasks only touch states as the methods below allow (see their
-// contracts); the pointer outlives every task (the passes are scoped).
-unsafe impl Send for SharedStates {}
-unsafe impl Sync for SharedStates {}
+impl<T> Clone for SharedSlice<T> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
 
-impl SharedStates {
-    fn new(states: &mut [BodyState]) -> Self {
+impl<T> Copy for SharedSlice<T> {}
+
+// SAFETY: tasks only touch elements as the methods below allow (see their
+// contracts); the pointer outlives every task (the passes are scoped).
+unsafe impl<T: Send> Send for SharedSlice<T> {}
+unsafe impl<T: Send> Sync for SharedSlice<T> {}
+
+impl<T> SharedSlice<T> {
+    fn new(items: &mut [T]) -> Self {
         Self {
-            ptr: states.as_mut_ptr(),
-            len: states.len(),
+            ptr: items.as_mut_ptr(),
+            len: items.len(),
         }
     }
 
     /// # Safety
-    /// No other task may use state `i` at the same time.
+    /// No other task may use element `i` at the same time.
     #[allow(clippy::mut_from_ref)] // the point of the type: disjoint indices, shared pointer
-    unsafe fn get(&self, i: u32) -> &mut BodyState {
+    unsafe fn get(&self, i: u32) -> &mut T {
         assert!((i as usize) < self.len);
         // SAFETY: in bounds (asserted), and ours alone (the caller's contract).
         unsafe { &mut *self.ptr.add(i as usize) }
     }
+
+    /// # Safety
+    /// No other task may use elements `start..end` at the same time.
+    #[cfg(feature = "parallel")]
+    #[allow(clippy::mut_from_ref)]
+    unsafe fn range(&self, start: u32, end: u32) -> &mut [T] {
+        assert!(start <= end && (end as usize) <= self.len);
+        // SAFETY: in bounds (asserted), and ours alone (the caller's contract).
+        unsafe {
+            std::slice::from_raw_parts_mut(self.ptr.add(start as usize), (end - start) as usize)
+        }
+    }
 }
+
+type SharedStates = SharedSlice<BodyState>;
 
 /// The states of a contact group's bodies, side A and side B, one per lane,
 /// as a task of `for_each_colored` sees them: every state can be read, only
@@ -99,12 +125,14 @@ impl GroupStates<'_> {
 }
 
 /// Runs `kernel` on every contact group, with its index (for the group's
-/// other parts), run by run (`ranges` from `Coloring`: a colour's runs, one
-/// per kind of sides that move, come together; the last run, the overflow,
-/// always serially). Within a colour no moving body appears twice
-/// (`coloring`), so each task owns the moving states of its groups.
+/// other parts), colour after colour (`coloring`'s runs: a colour's runs,
+/// one per kind of sides that move, come together, the overflow's levels
+/// after the colours; the last run, the serial rest, always serially). Within
+/// a colour no moving body appears twice, so each task owns the moving states
+/// of its groups. On several threads the colours' blocks (`ColourBlocks`)
+/// run as the stages of one `run_in_stages`: one fork-join a pass.
 pub(crate) fn for_each_colored<K>(
-    ranges: &[ColourRun],
+    coloring: &Coloring,
     groups: &mut [ContactGroup],
     states: &mut [BodyState],
     kernel: K,
@@ -123,20 +151,25 @@ pub(crate) fn for_each_colored<K>(
             kernel(first + k, g, sides);
         }
     };
-    let overflow = ranges.len().saturating_sub(1);
-    for (k, r) in ranges.iter().enumerate() {
-        let (start, end) = (r.start as usize, r.end as usize);
-        let colour = &mut groups[start..end];
-        #[cfg(feature = "parallel")]
-        if k != overflow && worth_splitting(colour.len(), GROUP_CHUNK) {
-            colour
-                .par_chunks_mut(GROUP_CHUNK)
-                .enumerate()
-                .for_each(|(c, chunk)| run(start + c * GROUP_CHUNK, r.moving, chunk));
-            continue;
+    #[cfg(feature = "parallel")]
+    {
+        let blocks = &coloring.blocks;
+        if rayon::current_num_threads() > 1 && blocks.stage_first.len() > 1 {
+            let shared_groups = SharedSlice::new(groups);
+            run_in_stages(&blocks.stage_first, |k| {
+                for piece in blocks.block(k) {
+                    // SAFETY: the blocks' pieces do not overlap, and each
+                    // block is run by one task.
+                    let chunk = unsafe { shared_groups.range(piece.start, piece.end) };
+                    run(piece.start as usize, piece.moving, chunk);
+                }
+            });
+            return;
         }
-        let _ = (k, overflow);
-        run(start, r.moving, colour);
+    }
+    for r in &coloring.ranges {
+        let colour = &mut groups[r.start as usize..r.end as usize];
+        run(r.start as usize, r.moving, colour);
     }
 }
 
