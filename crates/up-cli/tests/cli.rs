@@ -279,9 +279,9 @@ fn run_rejects_bad_scenes_with_file_key_and_line() {
     up_err(&["run", "--seconds", "NaN"]);
 }
 
-#[test]
-fn saved_state_continues_exactly() {
-    let dir = TempDir::new("state");
+/// Runs 3 balloons for 0.5 s, then again for 0.25 s saving the state in
+/// `dir`; returns the whole run's output and the state file.
+fn run_whole_and_save_half(dir: &TempDir) -> (String, String) {
     let state = dir.str("half.upsnap");
     let common = ["--balloons", "3", "--seed", "9", "--json"];
     let whole = up_ok(&[&["run", "--seconds", "0.5"][..], &common].concat());
@@ -292,6 +292,13 @@ fn saved_state_continues_exactly() {
         ]
         .concat(),
     );
+    (whole, state)
+}
+
+#[test]
+fn saved_state_continues_exactly() {
+    let dir = TempDir::new("state");
+    let (whole, state) = run_whole_and_save_half(&dir);
     assert_eq!(dir.files(), vec!["half.upsnap"]);
     let resumed = up_ok(&[
         "run",
@@ -341,16 +348,7 @@ fn bench_reports_timings_and_stages() {
 #[test]
 fn bench_times_a_saved_state_from_where_it_stopped() {
     let dir = TempDir::new("bench-state");
-    let state = dir.str("half.upsnap");
-    let common = ["--balloons", "3", "--seed", "9", "--json"];
-    let whole = up_ok(&[&["run", "--seconds", "0.5"][..], &common].concat());
-    up_ok(
-        &[
-            &["run", "--seconds", "0.25", "--save-state", &state][..],
-            &common,
-        ]
-        .concat(),
-    );
+    let (whole, state) = run_whole_and_save_half(&dir);
     // 15 steps from the snapshot end where the whole 0.5 s run ends.
     let timed = up_ok(&["bench", "--steps", "15", "--load-state", &state, "--json"]);
     let (timed, whole) = (last_json(&timed), last_json(&whole));
