@@ -17,7 +17,7 @@
 //! which block changes no result.
 
 use std::hint::spin_loop;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 /// Spins before a waiting thread yields its core (to a thread that holds a
 /// block, when there are more threads than cores).
@@ -32,19 +32,23 @@ struct Counter(AtomicUsize);
 /// threads, where `stage_first[k]` is the first block of block k's stage
 /// (non-decreasing, `stage_first[k] <= k`): every block of a stage starts
 /// after all the blocks of the stages before it have finished, and the
-/// memory they wrote is visible to it.
+/// memory they wrote is visible to it. A panic in a block stops the others
+/// at their next wait and reaches the caller (rather than leaving them
+/// waiting for a block that will never be done).
 pub(crate) fn run_in_stages(stage_first: &[u32], run: impl Fn(usize) + Sync) {
     let blocks = stage_first.len();
     let next = Counter(AtomicUsize::new(0));
     let done = Counter(AtomicUsize::new(0));
+    let failed = AtomicBool::new(false);
     let work = || loop {
         // Tickets in block order: a block's stage waits only on lower tickets.
         let k = next.0.fetch_add(1, Ordering::Relaxed);
-        if k >= blocks {
+        if k >= blocks || !wait_until_done(&done.0, stage_first[k] as usize, &failed) {
             return;
         }
-        wait_until_done(&done.0, stage_first[k] as usize);
+        let unwinding = FlagOnUnwind(&failed);
         run(k);
+        std::mem::forget(unwinding);
         // Release: the block's writes are seen by whoever sees the count.
         done.0.fetch_add(1, Ordering::Release);
     };
@@ -57,13 +61,26 @@ pub(crate) fn run_in_stages(stage_first: &[u32], run: impl Fn(usize) + Sync) {
     });
 }
 
+/// Sets its flag when dropped, which only a panic does (it is forgotten otherwise).
+struct FlagOnUnwind<'a>(&'a AtomicBool);
+
+impl Drop for FlagOnUnwind<'_> {
+    fn drop(&mut self) {
+        self.0.store(true, Ordering::Relaxed);
+    }
+}
+
 /// Waits until `done` counts at least `blocks`: the blocks before a stage
 /// finish in any order, but no later block can finish first (it waits here),
-/// so the count reaching a stage's first block means they all have.
-fn wait_until_done(done: &AtomicUsize, blocks: usize) {
+/// so the count reaching a stage's first block means they all have. Returns
+/// false, at once, if a block panicked.
+fn wait_until_done(done: &AtomicUsize, blocks: usize, failed: &AtomicBool) -> bool {
     let mut spins = 0;
     // Acquire: pairs with the Release of every block counted.
     while done.load(Ordering::Acquire) < blocks {
+        if failed.load(Ordering::Relaxed) {
+            return false;
+        }
         if spins < SPINS_BEFORE_YIELD {
             spins += 1;
             spin_loop();
@@ -71,6 +88,7 @@ fn wait_until_done(done: &AtomicUsize, blocks: usize) {
             std::thread::yield_now();
         }
     }
+    true
 }
 
 #[cfg(test)]
@@ -166,5 +184,27 @@ mod tests {
                 .collect();
             assert_eq!(last, expected[STAGES % 2]);
         }
+    }
+
+    /// A block that panics ends the run with its panic, on any thread,
+    /// instead of leaving the others waiting for it.
+    #[test]
+    fn a_panicking_block_reaches_the_caller() {
+        let stage_first: Vec<u32> = (0..64).map(|k| k / 8 * 8).collect();
+        let (sender, receiver) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(4)
+                .build()
+                .unwrap();
+            let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                pool.install(|| {
+                    run_in_stages(&stage_first, |k| assert_ne!(k, 19, "block 19 fails"));
+                })
+            }));
+            sender.send(result.is_err()).unwrap();
+        });
+        let panicked = receiver.recv_timeout(std::time::Duration::from_secs(20));
+        assert_eq!(panicked, Ok(true), "the run must end, with the panic");
     }
 }
