@@ -30,13 +30,24 @@ struct Counter(AtomicUsize);
 
 /// Runs `run(k)` for every block `k` of `stage_first.len()`, on rayon's
 /// threads, where `stage_first[k]` is the first block of block k's stage
-/// (non-decreasing, `stage_first[k] <= k`): every block of a stage starts
-/// after all the blocks of the stages before it have finished, and the
-/// memory they wrote is visible to it. A panic in a block stops the others
-/// at their next wait and reaches the caller (rather than leaving them
-/// waiting for a block that will never be done).
+/// (non-decreasing, `stage_first[k] <= k`, and a stage's first block is its
+/// own stage's first): every block of a stage starts after all the blocks of
+/// the stages before it have finished, and the memory they wrote is visible
+/// to it. A panic in a block keeps the blocks of later stages from starting
+/// and reaches the caller (rather than leaving the others waiting for a block
+/// that will never be done).
+///
+/// `run` must not wait on rayon work (`join`, `scope`, parallel iterators):
+/// a thread waiting there can take up a later block of this very run, which
+/// then waits for the block below it on its own stack.
 pub(crate) fn run_in_stages(stage_first: &[u32], run: impl Fn(usize) + Sync) {
     let blocks = stage_first.len();
+    debug_assert!(stage_first.iter().enumerate().all(|(k, &first)| {
+        let first = first as usize;
+        first <= k
+            && stage_first[first] as usize == first
+            && (k == 0 || stage_first[k - 1] as usize <= first)
+    }));
     let next = Counter(AtomicUsize::new(0));
     let done = Counter(AtomicUsize::new(0));
     let failed = AtomicBool::new(false);

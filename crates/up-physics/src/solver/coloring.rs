@@ -40,7 +40,8 @@ const LEVELS: usize = 192;
 /// The colour index of the constraints run serially, after the levels.
 const SERIAL: usize = COLORS + LEVELS;
 
-/// Most groups a block of a colour holds (`ColourBlocks`), but for the serial rest.
+/// Most groups a block holds (`ColourBlocks`), but for the serial rest and
+/// the blocks that join one-block stages in a row.
 #[cfg(feature = "parallel")]
 pub(crate) const BLOCK_GROUPS: u32 = 64;
 
@@ -110,6 +111,10 @@ pub(crate) struct Coloring {
     /// The runs cut into blocks for rayon's threads.
     #[cfg(feature = "parallel")]
     pub blocks: ColourBlocks,
+    /// Tests only: every overflowing constraint runs serially, one a group
+    /// (no levels), as before levels existed.
+    #[cfg(test)]
+    pub serial_overflow: bool,
 }
 
 /// The groups of a pass cut into blocks that tasks take whole (`staged`):
@@ -293,6 +298,10 @@ impl Coloring {
     /// and whether it moves): the level after its moving bodies' last, or
     /// `SERIAL` past the last level, after which their later ones stay serial too.
     fn overflow_colour(&mut self, sides: [(u32, bool); 2], bodies: usize) -> usize {
+        #[cfg(test)]
+        if self.serial_overflow {
+            return SERIAL;
+        }
         if self.next_level.is_empty() {
             self.next_level.resize(bodies, 0);
         }
@@ -307,6 +316,17 @@ impl Coloring {
             self.next_level[i as usize] = next;
         }
         COLORS + level.min(LEVELS)
+    }
+
+    /// Tests only: every run (and block piece) as if both sides moved.
+    #[cfg(test)]
+    pub fn treat_every_side_as_moving(&mut self) {
+        self.ranges.iter_mut().for_each(|r| r.moving = Moving::Both);
+        #[cfg(feature = "parallel")]
+        self.blocks
+            .pieces
+            .iter_mut()
+            .for_each(|p| p.moving = Moving::Both);
     }
 
     /// For each slot, its constraint (`EMPTY_LANE` if none): `slot` inverted.
@@ -499,7 +519,7 @@ mod tests {
         blocks.add_stage(&[run(160, 170, Moving::Both)], false);
         blocks.add_stage(&[run(170, 175, Moving::B)], false);
         blocks.add_stage(&[run(175, 175, Moving::Both)], false);
-        blocks.add_stage(&[run(175, 300, Moving::Both)], true); // an overflow: whole
+        blocks.add_stage(&[run(175, 300, Moving::Both)], true); // the serial rest: whole
         blocks.add_stage(&[run(300, 400, Moving::Both)], false);
 
         let spans: Vec<Vec<(u32, u32, Moving)>> = (0..blocks.stage_first.len())
@@ -539,14 +559,26 @@ mod tests {
         let mut coloring = Coloring::default();
         coloring.assign(pairs.iter().copied(), &states);
         let blocks = &coloring.blocks;
+        let stage_first = &blocks.stage_first;
         assert!(
-            blocks.stage_first.windows(2).any(|w| w[0] == w[1]),
+            stage_first.windows(2).any(|w| w[0] == w[1]),
             "a stage of several blocks"
         );
         let mut next = 0;
-        for k in 0..blocks.stage_first.len() {
-            assert!(blocks.stage_first[k] as usize <= k);
-            for piece in blocks.block(k) {
+        for k in 0..stage_first.len() {
+            // What `run_in_stages` needs: k in its stage, which starts at its first block.
+            let first = stage_first[k] as usize;
+            assert!(first <= k && stage_first[first] as usize == first);
+            assert!(k == 0 || stage_first[k - 1] <= stage_first[k]);
+            let pieces = blocks.block(k);
+            let groups: u32 = pieces.iter().map(|p| p.end - p.start).sum();
+            // A block of a stage of several holds at most `BLOCK_GROUPS`.
+            let alone = stage_first.get(k + 1) != Some(&(first as u32)) && first == k;
+            assert!(
+                alone || groups <= BLOCK_GROUPS,
+                "block {k}: {groups} groups"
+            );
+            for piece in pieces {
                 assert_eq!(piece.start, next);
                 next = piece.end;
             }

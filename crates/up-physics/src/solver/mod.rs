@@ -18,6 +18,8 @@ pub(crate) mod integrate;
 pub(crate) mod lanes;
 #[cfg(test)]
 mod one_sided_tests;
+#[cfg(test)]
+mod overflow_tests;
 pub(crate) mod parallel;
 pub(crate) mod position_skips;
 pub(crate) mod softness;

@@ -89,7 +89,7 @@ fn drifting_row(n: usize, seed: u64) -> Solver {
 }
 
 /// Every bit of every state and of what every constraint hands on.
-fn bits(solver: &Solver) -> (Vec<Vec<u32>>, Vec<Vec<u32>>) {
+pub(super) fn bits(solver: &Solver) -> (Vec<Vec<u32>>, Vec<Vec<u32>>) {
     let states = solver
         .states
         .iter()
@@ -138,9 +138,7 @@ fn one_sided_groups_solve_as_groups_of_both_sides() {
             |s: &Solver, m: Moving| s.coloring.ranges.iter().filter(|r| r.moving == m).count();
         assert!(kinds(&one_sided, Moving::A) > 0 && kinds(&one_sided, Moving::B) > 0);
         let mut both = one_sided.clone();
-        for run in &mut both.coloring.ranges {
-            run.moving = Moving::Both;
-        }
+        both.coloring.treat_every_side_as_moving();
         let before = bits(&one_sided);
         for solver in [&mut one_sided, &mut both] {
             solver.solve(&params, None);

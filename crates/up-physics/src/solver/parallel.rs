@@ -158,8 +158,11 @@ pub(crate) fn for_each_colored<K>(
             let shared_groups = SharedSlice::new(groups);
             run_in_stages(&blocks.stage_first, |k| {
                 for piece in blocks.block(k) {
-                    // SAFETY: the blocks' pieces do not overlap, and each
-                    // block is run by one task.
+                    // SAFETY: the blocks' pieces do not overlap and each
+                    // block is run by one task, so its groups are its own;
+                    // blocks that run at once belong to one stage, a colour
+                    // or level, whose groups share no moving body (the
+                    // `GroupStates` writes).
                     let chunk = unsafe { shared_groups.range(piece.start, piece.end) };
                     run(piece.start as usize, piece.moving, chunk);
                 }
