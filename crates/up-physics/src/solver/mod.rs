@@ -25,6 +25,8 @@ pub(crate) mod position_skips;
 pub(crate) mod softness;
 #[cfg(test)]
 mod stabilize_tests;
+#[cfg(test)]
+mod test_support;
 
 use std::sync::atomic::{AtomicBool, Ordering};
 

@@ -6,12 +6,10 @@ use glam::{Mat3, Quat, Vec3};
 
 use super::body_state::BodyState;
 use super::coloring::Moving;
-use super::contact_constraint::{self, PreparedContact};
 use super::integrate::BodyForces;
-use super::{SolveParams, Solver, Stabilization};
+use super::test_support::{bits, solve_bounce_stabilize, sphere_contact, RADIUS};
+use super::Solver;
 use crate::hash::uniform;
-
-const RADIUS: f32 = 0.1;
 
 /// A row of `n` spinning, drifting balloons along x, from 2 mm into the next
 /// to 2 mm apart, every fifth asleep, and the room (the last state) under
@@ -70,68 +68,14 @@ fn drifting_row(n: usize, seed: u64) -> Solver {
     }
     solver.begin_constraints(contacts.iter().map(|&(a, b, ..)| (a, b)));
     for (k, &(a, b, ca, cb, normal)) in contacts.iter().enumerate() {
-        let on_room = b == room;
-        let c = PreparedContact {
-            a,
-            b,
-            normal,
-            tangent: contact_constraint::tangents(normal),
-            radius_a: RADIUS,
-            radius_b: if on_room { 0.0 } else { RADIUS },
-            center_offset: if on_room { Vec3::ZERO } else { cb - ca },
-            r_b: if on_room { cb } else { Vec3::ZERO },
-            normal_impulse: 0.01 * random(),
-            ..PreparedContact::default()
-        };
+        let c = sphere_contact((a, ca), (b, cb), room, normal, 0.01 * random());
         solver.set_constraint(k, &c);
     }
     solver
 }
 
-/// Every bit of every state and of what every constraint hands on.
-pub(super) fn bits(solver: &Solver) -> (Vec<Vec<u32>>, Vec<Vec<u32>>) {
-    let states = solver
-        .states
-        .iter()
-        .map(|s| {
-            let (v, w, dp) = (s.v.to_array(), s.w.to_array(), s.dp.to_array());
-            let (dq, q) = (s.dq.to_array(), s.q.to_array());
-            [&v[..], &w, &dp, &dq, &q]
-                .concat()
-                .iter()
-                .map(|x| x.to_bits())
-                .collect()
-        })
-        .collect();
-    let stored = (0..solver.coloring.slot.len())
-        .map(|i| {
-            let s = solver.stored(i);
-            [s.normal, s.tangent.x, s.tangent.y, s.tangent.z]
-                .map(f32::to_bits)
-                .to_vec()
-        })
-        .collect();
-    (states, stored)
-}
-
 #[test]
 fn one_sided_groups_solve_as_groups_of_both_sides() {
-    let params = SolveParams {
-        dt: 1.0 / 60.0,
-        substeps: 4,
-        iterations: 2,
-        contact_hertz: 60.0,
-        contact_damping_ratio: 10.0,
-        max_push_out: 3.0,
-        friction: 0.5,
-        angular_damping: 2.0,
-    };
-    let stabilization = Stabilization {
-        slop: 0.0005,
-        target: 0.001,
-        min_passes: 2,
-        max_passes: 16,
-    };
     for seed in 1..=3 {
         let mut one_sided = drifting_row(200, seed);
         let kinds =
@@ -141,9 +85,7 @@ fn one_sided_groups_solve_as_groups_of_both_sides() {
         both.coloring.treat_every_side_as_moving();
         let before = bits(&one_sided);
         for solver in [&mut one_sided, &mut both] {
-            solver.solve(&params, None);
-            solver.restitution(0.4, 0.01);
-            solver.stabilize(&stabilization);
+            solve_bounce_stabilize(solver);
         }
         assert_ne!(bits(&one_sided), before, "seed {seed}: nothing moved");
         assert_eq!(bits(&one_sided), bits(&both), "seed {seed}");

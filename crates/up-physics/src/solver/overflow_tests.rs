@@ -5,13 +5,11 @@
 use glam::{Mat3, Quat, Vec3};
 
 use super::body_state::BodyState;
-use super::contact_constraint::{self, PreparedContact};
 use super::integrate::BodyForces;
-use super::one_sided_tests::bits;
-use super::{SolveParams, Solver, Stabilization};
+use super::test_support::{bits, solve_bounce_stabilize, sphere_contact, RADIUS};
+use super::Solver;
 use crate::hash::uniform;
 
-const RADIUS: f32 = 0.1;
 const HUBS: usize = 20;
 const SPOKES: usize = 100;
 
@@ -72,18 +70,7 @@ fn hubs_and_spokes(seed: u64, serial_overflow: bool) -> Solver {
             centers[b as usize]
         };
         let normal = (cb - ca).normalize();
-        let c = PreparedContact {
-            a,
-            b,
-            normal,
-            tangent: contact_constraint::tangents(normal),
-            radius_a: RADIUS,
-            radius_b: if on_room { 0.0 } else { RADIUS },
-            center_offset: if on_room { Vec3::ZERO } else { cb - ca },
-            r_b: if on_room { cb } else { Vec3::ZERO },
-            normal_impulse: 0.01 * (signed() + 1.0),
-            ..PreparedContact::default()
-        };
+        let c = sphere_contact((a, ca), (b, cb), room, normal, 0.01 * (signed() + 1.0));
         solver.set_constraint(k, &c);
     }
     solver
@@ -103,22 +90,6 @@ fn moving_state(signed: &mut impl FnMut() -> f32) -> BodyState {
 
 #[test]
 fn levels_solve_as_the_overflow_one_at_a_time() {
-    let params = SolveParams {
-        dt: 1.0 / 60.0,
-        substeps: 4,
-        iterations: 2,
-        contact_hertz: 60.0,
-        contact_damping_ratio: 10.0,
-        max_push_out: 3.0,
-        friction: 0.5,
-        angular_damping: 2.0,
-    };
-    let stabilization = Stabilization {
-        slop: 0.0005,
-        target: 0.001,
-        min_passes: 2,
-        max_passes: 16,
-    };
     // Four threads, so that the colours' blocks run in stages (`parallel`).
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(4)
@@ -140,9 +111,7 @@ fn levels_solve_as_the_overflow_one_at_a_time() {
         let before = bits(&levels);
         pool.install(|| {
             for solver in [&mut levels, &mut serial] {
-                solver.solve(&params, None);
-                solver.restitution(0.4, 0.01);
-                solver.stabilize(&stabilization);
+                solve_bounce_stabilize(solver);
             }
         });
         assert_ne!(bits(&levels), before, "seed {seed}: nothing moved");
