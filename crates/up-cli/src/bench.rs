@@ -45,6 +45,8 @@ pub struct StageTime {
 pub struct BenchSummary {
     pub scene: String,
     pub balloons: usize,
+    /// Threads that stepped the world.
+    pub threads: usize,
     pub steps: u64,
     pub sim_seconds: f64,
     pub wall_seconds: f64,
@@ -100,6 +102,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let summary = BenchSummary {
         scene: scene_name(args.scene.as_ref()),
         balloons: world.body_count(),
+        threads: rayon::current_num_threads(),
         steps: args.steps,
         sim_seconds: world.time(),
         wall_seconds: wall,
@@ -121,6 +124,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let mut rows = vec![
         ("scene", summary.scene.clone()),
         ("balloons", summary.balloons.to_string()),
+        ("threads", summary.threads.to_string()),
         ("steps", summary.steps.to_string()),
         ("simulated", format!("{:.3} s", summary.sim_seconds)),
         ("wall clock", format!("{:.3} s", summary.wall_seconds)),

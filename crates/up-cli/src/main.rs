@@ -31,6 +31,10 @@ static HEAP: heap_meter::HeapMeter = heap_meter::HeapMeter;
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Threads that step the world (rayon's pool); all cores if left out,
+    /// or RAYON_NUM_THREADS. The results are the same on any number.
+    #[arg(long, global = true, value_name = "T", value_parser = clap::value_parser!(u16).range(1..=1024))]
+    threads: Option<u16>,
 }
 
 #[derive(Subcommand)]
@@ -56,6 +60,13 @@ const EXIT_ERROR: u8 = 2;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    if let Some(threads) = cli.threads {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(usize::from(threads));
+        if let Err(e) = pool.build_global() {
+            eprintln!("error: --threads {threads}: cannot start the threads: {e}");
+            return ExitCode::from(EXIT_ERROR);
+        }
+    }
     let result = match cli.command {
         Command::Run(args) => run::run(&args),
         Command::Bench(args) => bench::run(&args),

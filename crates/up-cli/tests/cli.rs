@@ -346,6 +346,22 @@ fn bench_reports_timings_and_stages() {
 }
 
 #[test]
+fn threads_set_the_pool_and_change_no_result() {
+    let bench = |threads: &str| {
+        let args = ["bench", "--balloons", "400", "--steps", "60", "--json"];
+        last_json(&up_ok(&[&args[..], &["--threads", threads]].concat()))
+    };
+    let (one, three) = (bench("1"), bench("3"));
+    assert_eq!(
+        (one["threads"].as_u64(), three["threads"].as_u64()),
+        (Some(1), Some(3))
+    );
+    assert_eq!(one["state_hash"], three["state_hash"]);
+    let err = up_err(&["bench", "--threads", "0"]);
+    assert!(err.contains("--threads"), "{err}");
+}
+
+#[test]
 fn bench_times_a_saved_state_from_where_it_stopped() {
     let dir = TempDir::new("bench-state");
     let (whole, state) = run_whole_and_save_half(&dir);
