@@ -68,8 +68,9 @@ impl Moving {
         }
     }
 
-    fn of(a: &BodyState, b: &BodyState) -> Moving {
-        match (a.is_fixed(), b.is_fixed()) {
+    /// The sides that move, from whether each is fixed.
+    fn of(a_fixed: bool, b_fixed: bool) -> Moving {
+        match (a_fixed, b_fixed) {
             (false, true) => Moving::A,
             (true, false) => Moving::B,
             _ => Moving::Both,
@@ -93,6 +94,9 @@ pub(crate) struct Coloring {
     color: Vec<(u16, Moving)>,
     /// Colours already used by each body's constraints.
     used: Vec<u64>,
+    /// Whether each body moves (takes impulses) and whether it is fixed
+    /// (`BodyState::is_fixed`), read once a step rather than per constraint.
+    kind: Vec<(bool, bool)>,
     /// The level after the last one each body's overflow constraints took
     /// (sized only in a step that overflows).
     next_level: Vec<u16>,
@@ -220,9 +224,12 @@ impl Coloring {
         #[cfg(feature = "parallel")]
         self.constraint_at.clear();
         let mut counts = [[0u32; 3]; SERIAL + 1];
-        let moving = |i: u32| states[i as usize].inv_mass > 0.0;
+        self.kind.clear();
+        self.kind
+            .extend(states.iter().map(|s| (s.inv_mass > 0.0, s.is_fixed())));
         for (a, b) in pairs {
-            let (a_moves, b_moves) = (moving(a), moving(b));
+            let ((a_moves, a_fixed), (b_moves, b_fixed)) =
+                (self.kind[a as usize], self.kind[b as usize]);
             let taken = if a_moves { self.used[a as usize] } else { 0 }
                 | if b_moves { self.used[b as usize] } else { 0 };
             let mut color = (!taken).trailing_zeros() as usize; // COLORS when all are taken
@@ -238,7 +245,7 @@ impl Coloring {
                 color = self.overflow_colour([(a, a_moves), (b, b_moves)], states.len());
             }
             let sides = if color < SERIAL {
-                Moving::of(&states[a as usize], &states[b as usize])
+                Moving::of(a_fixed, b_fixed)
             } else {
                 Moving::Both
             };
