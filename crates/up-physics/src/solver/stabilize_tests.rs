@@ -4,12 +4,11 @@
 use glam::{Mat3, Quat, Vec3};
 
 use super::body_state::BodyState;
-use super::contact_constraint::{self, Displacements, PositionPush, PreparedContact};
+use super::contact_constraint::{self, Displacements, PositionPush};
 use super::parallel::for_each_group;
+use super::test_support::{sphere_contact, RADIUS};
 use super::{Poses, Solver, Stabilization};
 use crate::hash::uniform;
-
-const RADIUS: f32 = 0.1;
 
 /// A row of `n` balloons along x, each from 1.5 mm into the next to 1 mm
 /// apart (around the slop, so that pushes travel along the row to contacts
@@ -58,20 +57,7 @@ fn pressed_row(n: usize, seed: u64) -> Solver {
     }
     solver.begin_constraints(contacts.iter().map(|&(a, b, ..)| (a, b)));
     for (k, &(a, b, ca, cb, normal)) in contacts.iter().enumerate() {
-        let on_room = b == room;
-        let radius_b = if on_room { 0.0 } else { RADIUS };
-        let c = PreparedContact {
-            a,
-            b,
-            normal,
-            tangent: contact_constraint::tangents(normal),
-            radius_a: RADIUS,
-            radius_b,
-            center_offset: if on_room { Vec3::ZERO } else { cb - ca },
-            r_b: if on_room { cb } else { Vec3::ZERO },
-            ..PreparedContact::default()
-        };
-        solver.set_constraint(k, &c);
+        solver.set_constraint(k, &sphere_contact((a, ca), (b, cb), room, normal, 0.0));
     }
     solver
 }

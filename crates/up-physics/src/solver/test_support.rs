@@ -1,5 +1,6 @@
-//! What the solver's bit-for-bit tests share: one step's passes with the
-//! world's defaults, and every bit they leave behind.
+//! What the solver's bit-for-bit tests share: the sphere contacts they
+//! prepare, one step's passes with the world's defaults, and every bit they
+//! leave behind.
 
 use glam::Vec3;
 
