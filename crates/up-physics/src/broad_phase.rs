@@ -29,7 +29,7 @@ use glam::Vec3;
 
 use crate::hash::mix64;
 use crate::spare::{release_spare, release_spare_each, BUFFER_FLOOR};
-use crate::tasks::collect_in_order;
+use crate::tasks::{collect_in_order, fill_chunks};
 
 /// Bodies whose neighbours one task looks up.
 const BODY_CHUNK: usize = 512;
@@ -74,9 +74,12 @@ impl BroadPhase {
         let mut item_radius = 0.0f32;
 
         // Counting sort of ordinary bodies into hashed buckets, in body order.
-        self.cell_of.clear();
-        self.cell_of
-            .extend(center.iter().map(|&c| cell_coords(c, inv_cell)));
+        self.cell_of.resize(n, [0; 3]);
+        fill_chunks(&mut self.cell_of, BODY_CHUNK, |first, cells| {
+            for (k, cell) in cells.iter_mut().enumerate() {
+                *cell = cell_coords(center[first + k], inv_cell);
+            }
+        });
         self.start.clear();
         self.start.resize(mask + 2, 0);
         for i in 0..n {

@@ -30,6 +30,10 @@ use crate::contact::{pair_key, ContactPoint, STATIC_BODY};
 use crate::spare::{release_spare, BUFFER_FLOOR, TASK_LIST_FLOOR};
 use crate::tasks::{collect_in_order, TaskList};
 
+/// Broadphase pairs whose knocks one task finds.
+#[cfg(feature = "parallel")]
+const KNOCK_CHUNK: usize = 2048;
+
 /// Room tests and pairs handed to one task.
 const TASK_ITEMS: usize = 256;
 
@@ -85,25 +89,59 @@ impl StepMotion {
 /// moving together have none), 2.4 mm deep in one step. Only pairs that a
 /// knock throws together get a wider margin: balloons arriving side by side
 /// under a pile that stops them do not.
+/// With several threads each pair's two knocks are found in tasks (they read
+/// only the step's motion, not the knocks), into `thrown`, then summed in
+/// pair order: the same sums as one thread's, bit for bit.
 pub(crate) fn add_knocks(
     motion: &mut [StepMotion],
     pairs: &[(u32, u32)],
-    centers: impl Fn(usize) -> Vec3,
-    roots_within: impl Fn(usize, usize, f32) -> bool,
-    share: impl Fn(usize, usize) -> f32,
+    #[cfg_attr(not(feature = "parallel"), allow(unused_variables, clippy::ptr_arg))]
+    thrown: &mut Vec<Option<[Vec3; 2]>>,
+    centers: impl Fn(usize) -> Vec3 + Sync,
+    roots_within: impl Fn(usize, usize, f32) -> bool + Sync,
+    share: impl Fn(usize, usize) -> f32 + Sync,
     speculative_distance: f32,
 ) {
-    for m in motion.iter_mut() {
-        m.knock = Vec3::ZERO;
-    }
-    for &(a, b) in pairs {
-        let (a, b) = (a as usize, b as usize);
+    // What a pair's collision may throw a and b by (a away from b, b away from a).
+    let knocks = |motion: &[StepMotion], a: usize, b: usize| {
         let closing = motion[a].closing(motion[b]);
         if closing > 0.0 && roots_within(a, b, 2.0 * speculative_distance + closing) {
             let towards_b = unit_or_zero(centers(b) - centers(a));
-            motion[a].knock -= share(a, b) * closing * towards_b;
-            motion[b].knock += share(b, a) * closing * towards_b;
+            Some([
+                share(a, b) * closing * towards_b,
+                share(b, a) * closing * towards_b,
+            ])
+        } else {
+            None
         }
+    };
+    let sum = |motion: &mut [StepMotion], (a, b): (u32, u32), knocks: Option<[Vec3; 2]>| {
+        if let Some([to_a, to_b]) = knocks {
+            motion[a as usize].knock -= to_a;
+            motion[b as usize].knock += to_b;
+        }
+    };
+    for m in motion.iter_mut() {
+        m.knock = Vec3::ZERO;
+    }
+    #[cfg(feature = "parallel")]
+    if crate::tasks::worth_splitting(pairs.len(), KNOCK_CHUNK) {
+        thrown.resize(pairs.len(), None);
+        let read: &[StepMotion] = motion;
+        crate::tasks::fill_chunks(thrown, KNOCK_CHUNK, |first, out| {
+            for (k, t) in out.iter_mut().enumerate() {
+                let (a, b) = pairs[first + k];
+                *t = knocks(read, a as usize, b as usize);
+            }
+        });
+        for (&pair, &t) in pairs.iter().zip(thrown.iter()) {
+            sum(motion, pair, t);
+        }
+        return;
+    }
+    for &(a, b) in pairs {
+        let t = knocks(motion, a as usize, b as usize);
+        sum(motion, (a, b), t);
     }
 }
 

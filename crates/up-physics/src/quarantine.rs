@@ -7,6 +7,7 @@ use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
 use crate::body::{Bodies, BodyId};
+use crate::tasks::collect_in_order;
 
 /// A body taken out of the world because its state was no longer finite.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -38,18 +39,24 @@ pub(crate) fn is_sane_motion(v: Vec3, w: Vec3) -> bool {
         && w.length_squared() < MAX_SPIN * MAX_SPIN
 }
 
+/// Bodies one task checks.
+const CHECK_CHUNK: usize = 512;
+
 /// Adds to `out` the dense indices of the bodies with a non-finite position
 /// or orientation, or a runaway velocity, then sorts `out` highest first
 /// without repeats (so that swap-removal keeps the other indices valid).
-pub(crate) fn find_faulty(bodies: &Bodies, out: &mut Vec<usize>) {
-    for i in 0..bodies.len() {
-        let sane = bodies.center[i].is_finite()
-            && bodies.rotation[i].is_finite()
-            && is_sane_motion(bodies.linear_velocity[i], bodies.angular_velocity[i]);
-        if !sane {
-            out.push(i);
+/// `lists` are the tasks' own (kept for their buffers).
+pub(crate) fn find_faulty(bodies: &Bodies, lists: &mut Vec<Vec<usize>>, out: &mut Vec<usize>) {
+    collect_in_order(bodies.len(), CHECK_CHUNK, lists, out, |range, out| {
+        for i in range {
+            let sane = bodies.center[i].is_finite()
+                && bodies.rotation[i].is_finite()
+                && is_sane_motion(bodies.linear_velocity[i], bodies.angular_velocity[i]);
+            if !sane {
+                out.push(i);
+            }
         }
-    }
+    });
     out.sort_unstable_by(|a, b| b.cmp(a));
     out.dedup();
 }

@@ -22,16 +22,127 @@ where
     T: Send,
     F: Fn(usize, &mut [T]) + Sync,
 {
-    #[cfg(feature = "parallel")]
-    if worth_splitting(items.len(), chunk) {
-        items
-            .par_chunks_mut(chunk)
-            .enumerate()
-            .for_each(|(k, run)| fill(k * chunk, run));
-        return;
+    for_each_run(items.len(), chunk, items, fill);
+}
+
+/// Per-item buffers that a pass over items `0..len` hands out in runs: a
+/// slice (an element an item), `Ragged` (items of any length, back to back),
+/// or a tuple of these, cut at the same item.
+pub(crate) trait Runs: Sized + Send {
+    /// The items before `mid` and those from `mid` on.
+    // Without `parallel` nothing is split: a pass gets all the items at once.
+    #[cfg_attr(not(feature = "parallel"), allow(dead_code))]
+    fn split_at(self, mid: usize) -> (Self, Self);
+}
+
+impl<T: Send> Runs for &mut [T] {
+    fn split_at(self, mid: usize) -> (Self, Self) {
+        self.split_at_mut(mid)
     }
-    let _ = chunk;
-    fill(0, items);
+}
+
+macro_rules! runs_for_tuple {
+    ($($part:ident),+) => {
+        impl<$($part: Runs),+> Runs for ($($part,)+) {
+            #[allow(non_snake_case)]
+            fn split_at(self, mid: usize) -> (Self, Self) {
+                let ($($part,)+) = self;
+                $(let $part = $part.split_at(mid);)+
+                (($($part.0,)+), ($($part.1,)+))
+            }
+        }
+    };
+}
+runs_for_tuple!(A, B);
+runs_for_tuple!(A, B, C);
+runs_for_tuple!(A, B, C, D);
+runs_for_tuple!(A, B, C, D, E);
+runs_for_tuple!(A, B, C, D, E, F);
+
+/// Items of varying lengths stored back to back (a body's sphere-tree nodes,
+/// say): item `k` starts at `start[k]` (counted from where `start[0]` is)
+/// and ends where the next starts, the last at the end of `items`.
+pub(crate) struct Ragged<'a, T> {
+    items: &'a mut [T],
+    start: &'a [u32],
+}
+
+impl<'a, T> Ragged<'a, T> {
+    /// `items[start[0]..]`, cut by `start`.
+    pub fn new(items: &'a mut [T], start: &'a [u32]) -> Self {
+        let first = start.first().map_or(items.len(), |&s| s as usize);
+        Ragged {
+            items: &mut items[first..],
+            start,
+        }
+    }
+
+    /// Item `k` of this run.
+    pub fn item(&mut self, k: usize) -> &mut [T] {
+        let offset = |s: u32| (s - self.start[0]) as usize;
+        let end = self
+            .start
+            .get(k + 1)
+            .map_or(self.items.len(), |&s| offset(s));
+        &mut self.items[offset(self.start[k])..end]
+    }
+}
+
+impl<T: Send> Runs for Ragged<'_, T> {
+    fn split_at(self, mid: usize) -> (Self, Self) {
+        let (start_before, start_after) = self.start.split_at(mid);
+        let cut = start_after
+            .first()
+            .map_or(self.items.len(), |&s| (s - self.start[0]) as usize);
+        let (before, after) = self.items.split_at_mut(cut);
+        (
+            Ragged {
+                items: before,
+                start: start_before,
+            },
+            Ragged {
+                items: after,
+                start: start_after,
+            },
+        )
+    }
+}
+
+/// Calls `run(first, parts)` on runs of at most `chunk` consecutive items
+/// of `parts` (`first` being the index of the run's first item, of `len`):
+/// split in halves on rayon's threads when worth it, else once with all of
+/// them. Each item's work must depend on no other item's, so that any split
+/// gives the same results.
+pub(crate) fn for_each_run<P, F>(len: usize, chunk: usize, parts: P, run: F)
+where
+    P: Runs,
+    F: Fn(usize, P) + Sync,
+{
+    #[cfg(feature = "parallel")]
+    if worth_splitting(len, chunk) {
+        return split_runs(0, len, chunk, parts, &run);
+    }
+    let _ = (len, chunk);
+    run(0, parts);
+}
+
+/// `for_each_run`'s splitting: halves (at a multiple of `chunk`) forked
+/// until a run is at most `chunk` long.
+#[cfg(feature = "parallel")]
+fn split_runs<P, F>(first: usize, len: usize, chunk: usize, parts: P, run: &F)
+where
+    P: Runs,
+    F: Fn(usize, P) + Sync,
+{
+    if len <= chunk {
+        return run(first, parts);
+    }
+    let mid = len.div_ceil(chunk) / 2 * chunk;
+    let (before, after) = parts.split_at(mid);
+    rayon::join(
+        || split_runs(first, mid, chunk, before, run),
+        || split_runs(first + mid, len - mid, chunk, after, run),
+    );
 }
 
 /// A list a task pushes into, joined after the lists of the tasks before it.
@@ -93,4 +204,69 @@ pub(crate) fn collect_in_order<L, F>(
     lists.iter_mut().for_each(L::reset);
     let _ = chunk;
     collect(0..len, out);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Items of lengths 0 to 4 (item k holds k % 5 slots), cut into runs of
+    /// every size on 1 to 4 threads: each item is handed out once, whole,
+    /// with its own index, alongside its element of a plain slice.
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn runs_hand_out_every_item_once_with_its_index() {
+        let len = 1000;
+        let start: Vec<u32> = (0..len)
+            .scan(0, |next, k| {
+                let s = *next;
+                *next += k % 5;
+                Some(s)
+            })
+            .collect();
+        let slots = (0..len).map(|k| k % 5).sum::<u32>() as usize;
+        for threads in [1, 2, 3, 4] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            for chunk in [1, 7, 64, 999, 1000, 4096] {
+                let mut owner = vec![u32::MAX; slots];
+                let mut index = vec![u32::MAX; len as usize];
+                pool.install(|| {
+                    let parts = (Ragged::new(&mut owner, &start), &mut index[..]);
+                    for_each_run(len as usize, chunk, parts, |first, (mut items, index)| {
+                        assert!(index.len() <= chunk.max(1) || threads == 1);
+                        for (k, slot) in index.iter_mut().enumerate() {
+                            *slot = (first + k) as u32;
+                            let item = items.item(k);
+                            assert_eq!(item.len() as u32, (first + k) as u32 % 5);
+                            item.fill((first + k) as u32);
+                        }
+                    });
+                });
+                assert!(index.iter().enumerate().all(|(k, &i)| i == k as u32));
+                let expected = (0..len).flat_map(|k| std::iter::repeat_n(k, (k % 5) as usize));
+                assert!(
+                    owner.iter().copied().eq(expected),
+                    "{threads} threads, chunk {chunk}"
+                );
+            }
+        }
+    }
+
+    /// A ragged buffer whose first item starts past 0 (a run's view) keeps
+    /// its items where `start` says.
+    #[test]
+    fn a_ragged_buffer_counts_from_its_first_start() {
+        let mut items = [9, 9, 1, 2, 2, 3, 3, 3];
+        let start = [2u32, 3, 5];
+        let mut ragged = Ragged::new(&mut items, &start);
+        assert_eq!(ragged.item(0), &[1]);
+        assert_eq!(ragged.item(2), &[3, 3, 3]);
+        let (mut before, mut after) = ragged.split_at(1);
+        assert_eq!(before.item(0), &[1]);
+        assert_eq!(after.item(0), &[2, 2]);
+        assert_eq!(after.item(1), &[3, 3, 3]);
+    }
 }

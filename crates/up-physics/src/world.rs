@@ -27,9 +27,12 @@ use crate::solver::contact_constraint;
 use crate::solver::contact_constraint::PreparedContact;
 use crate::solver::integrate::{BodyForces, GrabSpring};
 use crate::solver::{SolveParams, Solver, Stabilization};
-use crate::tasks::collect_in_order;
 #[cfg(feature = "parallel")]
-use crate::tasks::{fill_chunks, worth_splitting};
+use crate::tasks::worth_splitting;
+use crate::tasks::{collect_in_order, fill_chunks, for_each_run, Ragged};
+
+/// Bodies one task places (or finishes, or prepares for the solver).
+const PLACE_CHUNK: usize = 512;
 
 /// Awake bodies one task sweeps.
 const SWEEP_CHUNK: usize = 256;
@@ -194,6 +197,9 @@ struct Scratch {
     placed_asleep: Vec<bool>,
     /// Per body: how far it moves this step (zero for sleepers).
     motion: Vec<StepMotion>,
+    /// Per broadphase pair, with several threads: the knocks it gives its
+    /// bodies (`add_knocks`).
+    thrown: Vec<Option<[Vec3; 2]>>,
     handle: Vec<u32>,
     broad: BroadPhase,
     narrow: NarrowPhase,
@@ -213,6 +219,7 @@ struct Scratch {
     sweep_hits: Vec<(u32, f32, Vec3)>,
     task_hits: Vec<Vec<(u32, f32, Vec3)>>,
     non_finite: Vec<usize>,
+    task_faulty: Vec<Vec<usize>>,
 }
 
 /// A world of balloons in a room. See the crate docs for conventions.
@@ -495,7 +502,7 @@ impl World {
     fn quarantine_non_finite(&mut self) {
         // Runaways found by the solve are already listed.
         let mut bad = std::mem::take(&mut self.scratch.non_finite);
-        quarantine::find_faulty(&self.bodies, &mut bad);
+        quarantine::find_faulty(&self.bodies, &mut self.scratch.task_faulty, &mut bad);
         for &i in &bad {
             let (id, user_data) = (self.bodies.id[i], self.bodies.user_data[i]);
             // The body is still registered: removal cannot fail.
@@ -969,6 +976,7 @@ impl World {
         s.narrow.release_spare();
         #[cfg(feature = "parallel")]
         crate::spare::release_spare(&mut s.prepared, crate::spare::BUFFER_FLOOR);
+        crate::spare::release_spare(&mut s.thrown, crate::spare::BUFFER_FLOOR);
         s.solver.release_spare();
         self.warm.release_spare();
         self.sleeping.release_spare();
@@ -979,10 +987,6 @@ impl World {
         let n = self.bodies.len();
         let s = &mut self.scratch;
         s.node_start.clear();
-        s.bound_center.clear();
-        s.bound_radius.clear();
-        s.motion.clear();
-        s.handle.clear();
         let mut total = 0u32;
         for i in 0..n {
             s.node_start.push(total);
@@ -991,40 +995,56 @@ impl World {
                 .nodes()
                 .len() as u32;
         }
+        // Every body's entries are written below (a sleeper's nodes stay
+        // where they were placed): only the lengths matter here.
         s.node_centers.resize(total as usize, Vec3::ZERO);
         s.placed_asleep.resize(n, false);
-        let dt = self.def.dt;
-        for i in 0..n {
-            let shape = &self.shapes[self.bodies.shape[i] as usize];
-            let start = s.node_start[i] as usize;
-            let nodes = shape.tree.nodes().len();
-            // A sleeper does not move: placed once, its nodes stay where they are.
-            let asleep = !self.bodies.awake[i];
-            if !(asleep && s.placed_asleep[i]) {
-                let pose = Pose::new(self.bodies.center[i], self.bodies.rotation[i]);
-                shape
-                    .tree
-                    .place(&pose, &mut s.node_centers[start..start + nodes]);
-            }
-            s.placed_asleep[i] = asleep;
-            let motion = if at_rest || !self.bodies.awake[i] {
-                StepMotion::default()
-            } else {
-                let rate = self.bodies.angular_velocity[i].norm();
-                StepMotion {
-                    linear: self.bodies.linear_velocity[i] * dt,
-                    spin: rate * shape.bound_radius * dt,
-                    turn: rate * dt,
-                    ..StepMotion::default()
+        s.motion.resize(n, StepMotion::default());
+        s.bound_center.resize(n, Vec3::ZERO);
+        s.bound_radius.resize(n, 0.0);
+        s.handle.resize(n, 0);
+        let (bodies, shapes, dt) = (&self.bodies, &self.shapes, self.def.dt);
+        let speculative_distance = self.def.speculative_distance;
+        let parts = (
+            Ragged::new(&mut s.node_centers, &s.node_start),
+            &mut s.placed_asleep[..],
+            &mut s.motion[..],
+            &mut s.bound_center[..],
+            &mut s.bound_radius[..],
+            &mut s.handle[..],
+        );
+        for_each_run(n, PLACE_CHUNK, parts, |first, run| {
+            let (mut nodes, placed_asleep, motions, bound_center, bound_radius, handle) = run;
+            for k in 0..placed_asleep.len() {
+                let i = first + k;
+                let shape = &shapes[bodies.shape[i] as usize];
+                let nodes = nodes.item(k);
+                // A sleeper does not move: placed once, its nodes stay where they are.
+                let asleep = !bodies.awake[i];
+                if !(asleep && placed_asleep[k]) {
+                    let pose = Pose::new(bodies.center[i], bodies.rotation[i]);
+                    shape.tree.place(&pose, nodes);
                 }
-            };
-            // Wide enough for every pair the narrowphase may find a contact in.
-            let margin = self.def.speculative_distance + motion.reach();
-            s.motion.push(motion);
-            s.bound_center.push(s.node_centers[start]);
-            s.bound_radius.push(shape.tree.root().radius + margin);
-            s.handle.push(self.bodies.id[i].index);
-        }
+                placed_asleep[k] = asleep;
+                let motion = if at_rest || asleep {
+                    StepMotion::default()
+                } else {
+                    let rate = bodies.angular_velocity[i].norm();
+                    StepMotion {
+                        linear: bodies.linear_velocity[i] * dt,
+                        spin: rate * shape.bound_radius * dt,
+                        turn: rate * dt,
+                        ..StepMotion::default()
+                    }
+                };
+                // Wide enough for every pair the narrowphase may find a contact in.
+                let margin = speculative_distance + motion.reach();
+                motions[k] = motion;
+                bound_center[k] = nodes[0];
+                bound_radius[k] = shape.tree.root().radius + margin;
+                handle[k] = bodies.id[i].index;
+            }
+        });
     }
 
     /// Each body's knock, from the broadphase's pairs (`narrow_phase::add_knocks`).
@@ -1039,19 +1059,22 @@ impl World {
         add_knocks(
             &mut s.motion,
             &s.broad.pairs,
+            &mut s.thrown,
             |i| centers[i],
             within,
             share,
             self.def.speculative_distance,
         );
         // Once a body, not in each of its pairs: the turn its knock may give.
-        for (i, m) in s.motion.iter_mut().enumerate() {
-            m.knock_turn = if m.knock == Vec3::ZERO {
-                0.0
-            } else {
-                m.knock.norm() * shapes[shape[i] as usize].turn_per_knock()
-            };
-        }
+        fill_chunks(&mut s.motion, PLACE_CHUNK, |first, motions| {
+            for (k, m) in motions.iter_mut().enumerate() {
+                m.knock_turn = if m.knock == Vec3::ZERO {
+                    0.0
+                } else {
+                    m.knock.norm() * shapes[shape[first + k] as usize].turn_per_knock()
+                };
+            }
+        });
     }
 
     /// Cell radius: the largest root sphere plus its margin at a brisk ascent.
@@ -1241,39 +1264,49 @@ impl World {
         let air = self.def.atmosphere.air_density();
         let g = self.def.gravity;
         let solver = &mut self.scratch.solver;
-        solver.states.clear();
-        solver.forces.clear();
         solver.awake.clear();
-        for i in 0..n {
-            let shape = &self.shapes[self.bodies.shape[i] as usize];
-            if !self.bodies.awake[i] {
-                let mut st = BodyState::STATIC;
-                st.q = self.bodies.rotation[i];
-                solver.states.push(st);
-                solver.forces.push(BodyForces::default());
-                continue;
+        solver
+            .awake
+            .extend((0..n as u32).filter(|&i| self.bodies.awake[i as usize]));
+        // Every body's entries are written below: only the lengths matter here.
+        solver.states.resize(n, BodyState::STATIC);
+        solver.forces.resize(n, BodyForces::default());
+        let (bodies, shapes) = (&self.bodies, &self.shapes);
+        let drag_coefficient = self.def.drag_coefficient;
+        let parts = (&mut solver.states[..n], &mut solver.forces[..n]);
+        for_each_run(n, PLACE_CHUNK, parts, |first, (states, forces)| {
+            for (k, (state, forces)) in states.iter_mut().zip(forces).enumerate() {
+                let i = first + k;
+                let q = bodies.rotation[i];
+                if !bodies.awake[i] {
+                    *state = BodyState {
+                        q,
+                        ..BodyState::STATIC
+                    };
+                    *forces = BodyForces::default();
+                    continue;
+                }
+                let shape = &shapes[bodies.shape[i] as usize];
+                *state = BodyState {
+                    v: bodies.linear_velocity[i],
+                    w: bodies.angular_velocity[i],
+                    dp: Vec3::ZERO,
+                    dq: Quat::IDENTITY,
+                    q,
+                    inv_mass: shape.inv_mass_translational,
+                    inv_inertia: world_inverse_inertia(q, shape.inv_inertia_local),
+                    runaway: false,
+                };
+                let buoyancy = buoyancy_force(air, shape.def.volume, g);
+                *forces = BodyForces {
+                    force: gravity_force(shape.def.mass, g) + buoyancy + bodies.force[i],
+                    buoyancy,
+                    buoyancy_arm: shape.buoyancy_arm,
+                    torque: bodies.torque[i],
+                    drag_factor: drag_factor(air, drag_coefficient, shape.def.reference_area),
+                };
             }
-            solver.awake.push(i as u32);
-            let q = self.bodies.rotation[i];
-            solver.states.push(BodyState {
-                v: self.bodies.linear_velocity[i],
-                w: self.bodies.angular_velocity[i],
-                dp: Vec3::ZERO,
-                dq: Quat::IDENTITY,
-                q,
-                inv_mass: shape.inv_mass_translational,
-                inv_inertia: world_inverse_inertia(q, shape.inv_inertia_local),
-                runaway: false,
-            });
-            let buoyancy = buoyancy_force(air, shape.def.volume, g);
-            solver.forces.push(BodyForces {
-                force: gravity_force(shape.def.mass, g) + buoyancy + self.bodies.force[i],
-                buoyancy,
-                buoyancy_arm: shape.buoyancy_arm,
-                torque: self.bodies.torque[i],
-                drag_factor: drag_factor(air, self.def.drag_coefficient, shape.def.reference_area),
-            });
-        }
+        });
         // The room: one static state after the bodies.
         solver.states.push(BodyState::STATIC);
         self.prepare_contacts(n as u32);
@@ -1379,34 +1412,43 @@ impl World {
 
     /// Copies the solver's results back to the bodies; clears held forces.
     fn finish_motion(&mut self) {
-        self.scratch.non_finite.clear();
         let solver = &self.scratch.solver;
-        for &i in &solver.awake {
-            let i = i as usize;
-            let s = &solver.states[i];
-            if s.runaway {
-                // Left where the step found it; quarantined at the step's end.
-                self.scratch.non_finite.push(i);
-                continue;
+        // Left where the step found them; quarantined at the step's end.
+        self.scratch.non_finite.clear();
+        self.scratch.non_finite.extend(
+            (solver.awake.iter().map(|&i| i as usize)).filter(|&i| solver.states[i].runaway),
+        );
+        let b = &mut self.bodies;
+        let (n, shapes, shape, awake) = (b.len(), &self.shapes, &b.shape, &b.awake);
+        let parts = (
+            &mut b.center[..],
+            &mut b.rotation[..],
+            &mut b.linear_velocity[..],
+            &mut b.angular_velocity[..],
+            &mut b.force[..],
+            &mut b.torque[..],
+        );
+        for_each_run(n, PLACE_CHUNK, parts, |first, run| {
+            let (center, rotation, linear_velocity, angular_velocity, force, torque) = run;
+            for k in 0..center.len() {
+                let i = first + k;
+                force[k] = Vec3::ZERO;
+                torque[k] = Vec3::ZERO;
+                let s = &solver.states[i];
+                if !awake[i] || s.runaway {
+                    continue;
+                }
+                center[k] += s.dp;
+                rotation[k] = s.q;
+                linear_velocity[k] = s.v;
+                // Keep angular momentum L = I·ω across the rotation (the gyroscopic
+                // effect): the solve used the inertia at the step's start.
+                let momentum = s.inv_inertia.inverse() * s.w;
+                let inv_inertia_local = shapes[shape[i] as usize].inv_inertia_local;
+                let w = world_inverse_inertia(s.q, inv_inertia_local) * momentum;
+                angular_velocity[k] = if w.is_finite() { w } else { s.w };
             }
-            self.bodies.center[i] += s.dp;
-            self.bodies.rotation[i] = s.q;
-            self.bodies.linear_velocity[i] = s.v;
-            // Keep angular momentum L = I·ω across the rotation (the gyroscopic
-            // effect): the solve used the inertia at the step's start.
-            let shape = &self.shapes[self.bodies.shape[i] as usize];
-            let momentum = s.inv_inertia.inverse() * s.w;
-            let w = world_inverse_inertia(s.q, shape.inv_inertia_local) * momentum;
-            self.bodies.angular_velocity[i] = if w.is_finite() { w } else { s.w };
-        }
-        for f in self
-            .bodies
-            .force
-            .iter_mut()
-            .chain(self.bodies.torque.iter_mut())
-        {
-            *f = Vec3::ZERO;
-        }
+        });
     }
 
     /// Continuous collision against the room: a body that moved far this step
@@ -1503,18 +1545,26 @@ impl World {
         let n = self.bodies.len();
         let dt = self.def.dt;
         let grabbed = self.grab.and_then(|g| self.handles.dense(g.body));
-        for i in 0..n {
-            if !self.bodies.awake[i] {
-                continue;
+        let b = &mut self.bodies;
+        let (awake, linear_velocity, angular_velocity) =
+            (&b.awake, &b.linear_velocity, &b.angular_velocity);
+        let (linear_speed, angular_speed) =
+            (self.def.sleep_linear_speed, self.def.sleep_angular_speed);
+        fill_chunks(&mut b.sleep_time, PLACE_CHUNK, |first, times| {
+            for (k, time) in times.iter_mut().enumerate() {
+                let i = first + k;
+                if !awake[i] {
+                    continue;
+                }
+                let slow = linear_velocity[i].norm() < linear_speed
+                    && angular_velocity[i].norm() < angular_speed;
+                if slow && grabbed != Some(i) {
+                    *time += dt;
+                } else {
+                    *time = 0.0;
+                }
             }
-            let slow = self.bodies.linear_velocity[i].norm() < self.def.sleep_linear_speed
-                && self.bodies.angular_velocity[i].norm() < self.def.sleep_angular_speed;
-            if slow && grabbed != Some(i) {
-                self.bodies.sleep_time[i] += dt;
-            } else {
-                self.bodies.sleep_time[i] = 0.0;
-            }
-        }
+        });
         if !self.def.enable_sleep {
             return;
         }
