@@ -89,6 +89,7 @@ impl StepMotion {
 /// moving together have none), 2.4 mm deep in one step. Only pairs that a
 /// knock throws together get a wider margin: balloons arriving side by side
 /// under a pile that stops them do not.
+///
 /// With several threads each pair's two knocks are found in tasks (they read
 /// only the step's motion, not the knocks), into `thrown`, then summed in
 /// pair order: the same sums as one thread's, bit for bit.

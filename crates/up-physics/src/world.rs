@@ -977,6 +977,7 @@ impl World {
         #[cfg(feature = "parallel")]
         crate::spare::release_spare(&mut s.prepared, crate::spare::BUFFER_FLOOR);
         crate::spare::release_spare(&mut s.thrown, crate::spare::BUFFER_FLOOR);
+        crate::spare::release_spare_each(&mut s.task_faulty);
         s.solver.release_spare();
         self.warm.release_spare();
         self.sleeping.release_spare();
@@ -1416,7 +1417,11 @@ impl World {
         // Left where the step found them; quarantined at the step's end.
         self.scratch.non_finite.clear();
         self.scratch.non_finite.extend(
-            (solver.awake.iter().map(|&i| i as usize)).filter(|&i| solver.states[i].runaway),
+            solver
+                .awake
+                .iter()
+                .map(|&i| i as usize)
+                .filter(|&i| solver.states[i].runaway),
         );
         let b = &mut self.bodies;
         let (n, shapes, shape, awake) = (b.len(), &self.shapes, &b.shape, &b.awake);
