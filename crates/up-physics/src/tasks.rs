@@ -108,16 +108,17 @@ impl<T: Send> Runs for Ragged<'_, T> {
     }
 }
 
-/// Calls `run(first, parts)` on runs of at most `chunk` consecutive items
-/// of `parts` (`first` being the index of the run's first item, of `len`):
-/// split in halves on rayon's threads when worth it, else once with all of
-/// them. Each item's work must depend on no other item's, so that any split
-/// gives the same results.
+/// Calls `run(first, parts)` on runs of consecutive items of `parts`
+/// (`first` being the index of the run's first item, of `len`): split in
+/// halves on rayon's threads down to runs of at most `chunk` when worth it,
+/// else once with all of them. Each item's work must depend on no other
+/// item's, so that any split gives the same results.
 pub(crate) fn for_each_run<P, F>(len: usize, chunk: usize, parts: P, run: F)
 where
     P: Runs,
     F: Fn(usize, P) + Sync,
 {
+    debug_assert!(chunk > 0, "runs of no items");
     #[cfg(feature = "parallel")]
     if worth_splitting(len, chunk) {
         return split_runs(0, len, chunk, parts, &run);
@@ -236,7 +237,7 @@ mod tests {
                 pool.install(|| {
                     let parts = (Ragged::new(&mut owner, &start), &mut index[..]);
                     for_each_run(len as usize, chunk, parts, |first, (mut items, index)| {
-                        assert!(index.len() <= chunk.max(1) || threads == 1);
+                        assert!(index.len() <= chunk || threads == 1);
                         for (k, slot) in index.iter_mut().enumerate() {
                             *slot = (first + k) as u32;
                             let item = items.item(k);

@@ -31,7 +31,8 @@ use crate::solver::{SolveParams, Solver, Stabilization};
 use crate::tasks::worth_splitting;
 use crate::tasks::{collect_in_order, fill_chunks, for_each_run, Ragged};
 
-/// Bodies one task places (or finishes, or prepares for the solver).
+/// Bodies one task takes in a pass over the bodies (placing them, their
+/// solver states, finishing their motion, their sleep clocks...).
 const PLACE_CHUNK: usize = 512;
 
 /// Awake bodies one task sweeps.
@@ -197,8 +198,8 @@ struct Scratch {
     placed_asleep: Vec<bool>,
     /// Per body: how far it moves this step (zero for sleepers).
     motion: Vec<StepMotion>,
-    /// Per broadphase pair, with several threads: the knocks it gives its
-    /// bodies (`add_knocks`).
+    /// Per broadphase pair, in a step whose knocks are found in tasks: the
+    /// knocks it gives its bodies (`add_knocks`); empty otherwise.
     thrown: Vec<Option<[Vec3; 2]>>,
     handle: Vec<u32>,
     broad: BroadPhase,

@@ -101,15 +101,20 @@ fn bodies_added_and_removed_while_running() {
 /// With the `parallel` feature the narrowphase, the preparation of the
 /// constraints (in contact order, then gathered group by group), the colours
 /// of the solve and the body passes run on rayon's threads (on one thread the
-/// constraints go straight to their slots); a crowd large enough to split into many tasks
-/// must end bit for bit the same on 1, 2 and 4 threads, and when stepped
-/// from a thread outside any pool.
+/// constraints go straight to their slots); a crowd large enough to split into many tasks,
+/// with sleepers among its awake bodies, must end bit for bit the same on 1, 2 and 4 threads,
+/// and when stepped from a thread outside any pool.
 #[cfg(feature = "parallel")]
 #[test]
 fn the_state_hash_does_not_depend_on_the_thread_count() {
     let crowd = || {
+        // Quick to fall asleep, so that the body passes' runs hold sleepers
+        // and awake bodies both.
         let def = WorldDef {
             room: Some(room(4.0, 4.0, 2.5, Some(1.0))),
+            sleep_linear_speed: 0.3,
+            sleep_angular_speed: 3.0,
+            time_to_sleep: 0.2,
             ..WorldDef::default()
         };
         let (mut world, shape) = world_with(def);
@@ -132,10 +137,16 @@ fn the_state_hash_does_not_depend_on_the_thread_count() {
         pool.install(|| {
             let mut world = crowd();
             let mut most_contacts = 0;
+            let mut fewest_awake = u32::MAX;
             for _ in 0..150 {
                 world.step();
                 most_contacts = most_contacts.max(world.stats().contact_count);
+                fewest_awake = fewest_awake.min(world.stats().awake_count);
             }
+            assert!(
+                (1..=600).contains(&fewest_awake),
+                "no step with both sleepers and awake bodies: {fewest_awake} awake at the fewest"
+            );
             assert!(
                 most_contacts > 3 * 1024, // four tasks of preparation, at the busiest
                 "too few contacts to split: {most_contacts}"
