@@ -16,12 +16,12 @@ use super::contact_constraint::{GroupAnchors, GroupRecords};
 use super::lanes::LANES;
 #[cfg(feature = "parallel")]
 use crate::staged::run_in_stages;
+use crate::tasks::for_each_run;
 #[cfg(feature = "parallel")]
 use crate::tasks::worth_splitting;
 
 /// Contact groups (of four constraints) handed to one task of a pass over
 /// all groups at once; below this such a pass stays serial.
-#[cfg(feature = "parallel")]
 const GROUP_CHUNK: usize = 64;
 /// Bodies handed to one task.
 #[cfg(feature = "parallel")]
@@ -187,8 +187,9 @@ pub(crate) fn for_each_group<P, K>(
     K: Fn(&mut ContactGroup, &mut P, [&BodyState; LANES], [&BodyState; LANES]) + Sync,
 {
     assert_eq!(groups.len(), parts.len());
-    let run = |(chunk, parts): (&mut [ContactGroup], &mut [P])| {
-        for (g, part) in chunk.iter_mut().zip(parts) {
+    let len = groups.len();
+    for_each_run(len, GROUP_CHUNK, (groups, parts), |_, (groups, parts)| {
+        for (g, part) in groups.iter_mut().zip(parts) {
             let (a, b) = (g.a, g.b);
             kernel(
                 g,
@@ -197,16 +198,7 @@ pub(crate) fn for_each_group<P, K>(
                 b.map(|i| &states[i as usize]),
             );
         }
-    };
-    #[cfg(feature = "parallel")]
-    if worth_splitting(groups.len(), GROUP_CHUNK) {
-        groups
-            .par_chunks_mut(GROUP_CHUNK)
-            .zip(parts.par_chunks_mut(GROUP_CHUNK))
-            .for_each(run);
-        return;
-    }
-    run((groups, parts));
+    });
 }
 
 /// The three parts of a run of contact groups (see `Solver`).
@@ -224,22 +216,19 @@ where
     F: Fn(usize, (&mut ContactGroup, &mut GroupAnchors, &mut GroupRecords)) + Sync,
 {
     assert!(groups.len() == anchors.len() && groups.len() == records.len());
-    let run = |first: usize, (groups, anchors, records): GroupParts| {
-        let parts = groups.iter_mut().zip(anchors).zip(records);
-        for (k, ((g, anchors), records)) in parts.enumerate() {
-            fill(first + k, (g, anchors, records));
-        }
-    };
-    if worth_splitting(groups.len(), GROUP_CHUNK) {
-        groups
-            .par_chunks_mut(GROUP_CHUNK)
-            .zip(anchors.par_chunks_mut(GROUP_CHUNK))
-            .zip(records.par_chunks_mut(GROUP_CHUNK))
-            .enumerate()
-            .for_each(|(c, ((g, a), r))| run(c * GROUP_CHUNK, (g, a, r)));
-        return;
-    }
-    run(0, (groups, anchors, records));
+    let len = groups.len();
+    let parts = (groups, anchors, records);
+    for_each_run(
+        len,
+        GROUP_CHUNK,
+        parts,
+        |first, (groups, anchors, records)| {
+            let parts = groups.iter_mut().zip(anchors).zip(records);
+            for (k, ((g, anchors), records)) in parts.enumerate() {
+                fill(first + k, (g, anchors, records));
+            }
+        },
+    );
 }
 
 /// Runs `kernel` on the state (and index) of every body in `bodies`, which
