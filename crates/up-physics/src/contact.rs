@@ -24,14 +24,23 @@ pub(crate) struct ContactPoint {
     pub point_b: Vec3,
     /// Negative when overlapping, m.
     pub separation: f32,
-    /// Which sphere/triangle touched: `feature_a << 32 | feature_b`.
-    pub feature: u64,
+    pub feature: ContactFeature,
+}
+
+/// Which parts of the two bodies touched: the same feature in two steps is
+/// the same contact, which warm-starts from the last one's impulses.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub(crate) struct ContactFeature {
+    /// Leaf sphere of body A (index among its tree's nodes).
+    pub leaf_a: u32,
+    /// Leaf sphere of body B, or the room's triangle.
+    pub part_b: u32,
 }
 
 /// The impulses a contact point ended the last step with.
 #[derive(Clone, Copy, Debug, Default, Serialize, Deserialize)]
 pub(crate) struct StoredImpulse {
-    pub feature: u64,
+    pub feature: ContactFeature,
     /// N·s per substep, along the normal.
     pub normal: f32,
     /// N·s per substep, tangential, as a world vector (so that a new tangent basis can take it).

@@ -1,6 +1,7 @@
 //! UP's physics world: rigid balloons made of sphere trees, a static
 //! triangle-mesh room, a substepped soft contact solver with friction and
-//! restitution, and the forces of air (buoyancy, drag, added mass).
+//! restitution, joints solved in the same substeps, and the forces of air
+//! (buoyancy, drag, added mass) and of the scene's force fields.
 //!
 //! Conventions, stated once: SI units (m, kg, s, N), right-handed, Y up.
 //! Deterministic: the same inputs give bit-identical states on every run and
@@ -10,10 +11,12 @@
 mod body;
 mod broad_phase;
 mod contact;
+mod continuous;
 mod counters;
 pub mod forces;
 mod grab;
 mod hash;
+mod joint;
 mod narrow_phase;
 mod quarantine;
 mod sleep;
@@ -28,6 +31,8 @@ mod world;
 pub use body::{BalloonShape, BodyDef, BodyId, ShapeId};
 pub use counters::Counters;
 pub use forces::atmosphere::Atmosphere;
+pub use forces::field::{FieldSample, ForceField};
+pub use joint::{DistanceJointDef, DistanceLimit, JointAnchor, JointId};
 pub use quarantine::{QuarantinedBody, MAX_QUARANTINE_REPORTS};
 pub use snapshot::SnapshotError;
 pub use up_geom;

@@ -26,7 +26,7 @@ use up_geom::query::contact_tree_trimesh::contact_tree_trimesh;
 use up_geom::{prune_shadowed, Contact, PlacedTree, RelativeMotion, TriMesh};
 
 use crate::body::ShapeData;
-use crate::contact::{pair_key, ContactPoint, STATIC_BODY};
+use crate::contact::{pair_key, ContactFeature, ContactPoint, STATIC_BODY};
 use crate::spare::{release_spare, BUFFER_FLOOR, TASK_LIST_FLOOR};
 use crate::tasks::{collect_in_order, TaskList};
 
@@ -276,7 +276,10 @@ impl ContactList {
                 point_a: c.point_a,
                 point_b: c.point_b,
                 separation: c.separation,
-                feature: ((c.feature_a as u64) << 32) | c.feature_b as u64,
+                feature: ContactFeature {
+                    leaf_a: c.feature_a,
+                    part_b: c.feature_b,
+                },
             });
         }
         self.runs.push((key, start, found.len() as u32));

@@ -60,3 +60,20 @@ pub(crate) fn find_faulty(bodies: &Bodies, lists: &mut Vec<Vec<usize>>, out: &mu
     out.sort_unstable_by(|a, b| b.cmp(a));
     out.dedup();
 }
+
+/// The quarantine check's buffers.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct FaultBuffers {
+    /// Dense indices of the bodies to take out this step (the solve's
+    /// runaways first, then `find_faulty`'s).
+    pub non_finite: Vec<usize>,
+    /// Each task's finds.
+    pub task_faulty: Vec<Vec<usize>>,
+}
+
+impl FaultBuffers {
+    /// Gives back the capacity the tasks' lists left unused (`spare`).
+    pub fn release_spare(&mut self) {
+        crate::spare::release_spare_each(&mut self.task_faulty);
+    }
+}

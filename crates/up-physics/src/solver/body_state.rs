@@ -106,6 +106,25 @@ impl BodyState {
         self.runaway = true;
     }
 
+    /// Moves the body by a position impulse `p` (kg·m) at `r` from its centre
+    /// of mass, and adds the velocity that move implies over a substep of
+    /// `1 / inv_h` s (a joint's projection). An immovable body is left alone,
+    /// bit for bit.
+    #[inline]
+    pub fn apply_position_correction(&mut self, p: Vec3, r: Vec3, inv_h: f32) {
+        if self.inv_mass == 0.0 {
+            return;
+        }
+        let dp = self.inv_mass * p;
+        let turn = self.inv_inertia * r.cross(p);
+        self.dp += dp;
+        self.v += inv_h * dp;
+        let spin = Quat::from_xyzw(turn.x, turn.y, turn.z, 0.0);
+        self.q = add_scaled(self.q, spin * self.q, 0.5).unit();
+        self.dq = add_scaled(self.dq, spin * self.dq, 0.5).unit();
+        self.w += inv_h * turn;
+    }
+
     /// Advances position and orientation by substep `h` (the step's start pose stays put;
     /// `dp`/`dq` carry the motion).
     #[inline]

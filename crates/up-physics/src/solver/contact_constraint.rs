@@ -18,7 +18,7 @@ use up_geom::norm::Norm;
 use super::body_state::BodyState;
 use super::lanes::{max, select, F4, LANES, M4, Q4, V4};
 use super::softness::Softness;
-use crate::contact::{ContactPoint, StoredImpulse};
+use crate::contact::{ContactFeature, ContactPoint, StoredImpulse};
 
 /// One prepared contact, before it takes its lane in a group.
 #[derive(Clone, Copy, Debug, Default)]
@@ -44,7 +44,7 @@ pub(crate) struct PreparedContact {
     /// Warm start: last step's impulses.
     pub normal_impulse: f32,
     pub tangent_impulse: [f32; 2],
-    pub feature: u64,
+    pub feature: ContactFeature,
 }
 
 impl PreparedContact {
@@ -111,7 +111,7 @@ pub(crate) struct GroupAnchors {
 /// step's warm start).
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct GroupRecords {
-    pub feature: [u64; LANES],
+    pub feature: [ContactFeature; LANES],
 }
 
 /// Fills lane `i` of a group's three parts with a prepared contact.

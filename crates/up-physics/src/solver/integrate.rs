@@ -1,28 +1,12 @@
-//! Integrating velocities under the air forces, once per substep.
+//! Integrating velocities under the step's forces (`forces::BodyForces`), once per substep.
 
 use glam::Vec3;
 use up_geom::norm::Norm;
 
 use super::body_state::BodyState;
 use super::parallel;
-use crate::forces::buoyancy::buoyancy_torque;
-use crate::forces::drag::drag_force;
+use crate::forces::BodyForces;
 use crate::quarantine;
-
-/// Per-body forces for one step, gathered at prepare time.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct BodyForces {
-    /// Gravity + buoyancy + the user's force, N (all constant over the step).
-    pub force: Vec3,
-    /// Buoyancy alone, N: it also turns the body, about the centre of buoyancy.
-    pub buoyancy: Vec3,
-    /// Centre of buoyancy from the centre of mass, body frame, m.
-    pub buoyancy_arm: Vec3,
-    /// The user's torque, N·m.
-    pub torque: Vec3,
-    /// ½·ρ·C_D·A, kg/m.
-    pub drag_factor: f32,
-}
 
 /// A soft spring pulling a point of one body toward a target (the mouse).
 #[derive(Clone, Copy, Debug)]
@@ -54,9 +38,7 @@ pub(crate) fn integrate_velocities(
             return; // frozen until the step ends (its forces may be infinite)
         }
         let f = &forces[i as usize];
-        let arm = s.q * f.buoyancy_arm;
-        let drag = drag_force(f.drag_factor, s.v);
-        let torque = f.torque + buoyancy_torque(arm, f.buoyancy) + arm.cross(drag);
+        let torque = f.torque_at(s.q, s.v);
         let speed_damping = h * f.drag_factor * s.v.norm() * s.inv_mass;
         s.v = (s.v + h * s.inv_mass * f.force) / (1.0 + speed_damping);
         s.w = (s.w + h * (s.inv_inertia * torque)) / (1.0 + h * angular_damping);

@@ -5,7 +5,8 @@
 //!    step, so that each pass solves four constraints with one stream of SIMD
 //!    instructions and can run a colour's groups on several threads (`parallel`);
 //! 2. per substep: integrate velocities (forces), warm start, solve (soft
-//!    push-out of overlap), integrate positions, relax (no push-out, so the
+//!    push-out of overlap), integrate positions, project the joints to their
+//!    lengths (`joint_constraint`, position level), relax (no push-out, so the
 //!    push-out's velocity does not linger as jitter; each contact's separation
 //!    is first brought to the new positions in the same pass);
 //! 3. restitution (bounces), and store impulses for the next step;
@@ -15,6 +16,7 @@ pub(crate) mod body_state;
 pub(crate) mod coloring;
 pub(crate) mod contact_constraint;
 pub(crate) mod integrate;
+pub(crate) mod joint_constraint;
 pub(crate) mod lanes;
 #[cfg(test)]
 mod one_sided_tests;
@@ -36,12 +38,14 @@ use contact_constraint::{
     Bias, ContactGroup, Displacements, GroupAnchors, GroupRecords, Poses, PreparedContact,
     Velocities,
 };
-use integrate::{BodyForces, GrabSpring};
+use integrate::GrabSpring;
+use joint_constraint::{JointColouring, PreparedJoint};
 use lanes::LANES;
 use parallel::{for_each_body, for_each_colored, for_each_group, GroupStates};
 use position_skips::PositionSkips;
 
 use crate::contact::StoredImpulse;
+use crate::forces::BodyForces;
 use crate::spare::{release_spare, BUFFER_FLOOR};
 use crate::tasks::fill_chunks;
 
@@ -51,8 +55,10 @@ const STORE_CHUNK: usize = 1024;
 /// Buffers reused from step to step.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Solver {
-    /// One per body (dense order) plus the static room at the end.
+    /// One per body (dense order), then the static room's at `room`.
     pub states: Vec<BodyState>,
+    /// The room's state: fixed ends of contacts and joints.
+    pub room: u32,
     pub forces: Vec<BodyForces>,
     /// The contact constraints, `LANES` to a group, colour by colour
     /// (`coloring.slot` says where each went), in three parts: what the
@@ -63,6 +69,9 @@ pub(crate) struct Solver {
     coloring: Coloring,
     /// Which groups the position passes can skip.
     skips: PositionSkips,
+    /// This step's joints, colour after colour (`joint_constraint`).
+    pub joints: Vec<PreparedJoint>,
+    joint_colouring: JointColouring,
     /// Dense indices of the awake bodies.
     pub awake: Vec<u32>,
 }
@@ -160,10 +169,25 @@ impl Solver {
     }
 
     /// Colours the constraints; returns how many groups they fill and the
-    /// room's state (the static state after the bodies').
+    /// room's state.
     fn colour(&mut self, pairs: impl Iterator<Item = (u32, u32)>) -> (usize, u32) {
         self.coloring.assign(pairs, &self.states);
-        (self.coloring.groups, (self.states.len() - 1) as u32)
+        (self.coloring.groups, self.room)
+    }
+
+    /// This step's joints, in the world's order; call after the states are
+    /// in place. They are solved colour after colour, each colour in that order.
+    pub fn set_joints(&mut self, joints: impl Iterator<Item = PreparedJoint>) {
+        self.joints.clear();
+        self.joints.extend(joints);
+        self.joint_colouring.sort(&mut self.joints, &self.states);
+    }
+
+    /// Each joint moves its ends back to its length (once a substep).
+    fn project_joints(&mut self, h: f32) {
+        for joint in &mut self.joints {
+            joint.project(&mut self.states, h);
+        }
     }
 
     /// Puts the narrowphase's `i`-th contact, prepared, in its slot.
@@ -265,6 +289,7 @@ impl Solver {
             for_each_body(&self.awake, &mut self.states, |_, s| {
                 s.integrate_position(h)
             });
+            self.project_joints(h);
             self.refresh_and_relax(&relax);
         }
     }

@@ -6,9 +6,9 @@ use glam::{Mat3, Quat, Vec3};
 
 use super::body_state::BodyState;
 use super::coloring::Moving;
-use super::integrate::BodyForces;
 use super::test_support::{bits, solve_bounce_stabilize, sphere_contact, RADIUS};
 use super::Solver;
+use crate::forces::BodyForces;
 use crate::hash::uniform;
 
 /// A row of `n` spinning, drifting balloons along x, from 2 mm into the next
@@ -53,6 +53,7 @@ fn drifting_row(n: usize, seed: u64) -> Solver {
         forces: vec![BodyForces::default(); states.len()],
         states,
         awake,
+        room,
         ..Solver::default()
     };
     let mut contacts = Vec::new();

@@ -5,9 +5,9 @@
 use glam::{Mat3, Quat, Vec3};
 
 use super::body_state::BodyState;
-use super::integrate::BodyForces;
 use super::test_support::{bits, solve_bounce_stabilize, sphere_contact, RADIUS};
 use super::Solver;
+use crate::forces::BodyForces;
 use crate::hash::uniform;
 
 const HUBS: usize = 20;
@@ -57,6 +57,7 @@ fn hubs_and_spokes(seed: u64, serial_overflow: bool) -> Solver {
         forces: vec![BodyForces::default(); states.len()],
         states,
         awake,
+        room,
         ..Solver::default()
     };
     solver.coloring.serial_overflow = serial_overflow;

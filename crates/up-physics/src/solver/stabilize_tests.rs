@@ -40,6 +40,7 @@ fn pressed_row(n: usize, seed: u64) -> Solver {
     let room = n as u32;
     let mut solver = Solver {
         states,
+        room,
         ..Solver::default()
     };
     let mut contacts = Vec::new();

@@ -1,15 +1,5 @@
-//! Sleeping: a settled group of touching balloons stops costing anything.
-//!
-//! A body is rested once it has been slow for `time_to_sleep`. Each step the
-//! rested bodies that no restless body reaches fall asleep, in groups of
-//! touching ones (union-find over contacts); those a restless body reaches
-//! stay awake between it and the sleepers. A sleeping body is static to its
-//! awake neighbours. A slow restless body wakes only the sleepers it
-//! touches, and they keep their rest time (so a slow shuffle in a big pile
-//! wakes just what it moves); a fast one (an impact: faster than the
-//! restitution threshold) wakes whole the groups of all it can reach this
-//! step, as the user does (an impulse, a grab, a removal next door). A group
-//! keeps its contacts' impulses while it sleeps, so it wakes without a jolt.
+//! The sleeping groups (islands), their kept impulses, and the union-find
+//! that forms them.
 
 use serde::{Deserialize, Serialize};
 

@@ -1,0 +1,30 @@
+//! What the world's calls answer when they refuse.
+
+use thiserror::Error;
+
+use crate::body::BodyId;
+use crate::joint::JointId;
+
+#[derive(Debug, Error, PartialEq)]
+pub enum PhysicsError {
+    #[error("invalid world parameter `{key}` = {value}: expected {expected}")]
+    BadParameter {
+        key: &'static str,
+        value: f32,
+        expected: &'static str,
+    },
+    #[error("invalid balloon shape: {0}")]
+    BadShape(String),
+    #[error("unknown shape {0}")]
+    UnknownShape(u32),
+    #[error("body {0:?} does not exist (removed, or from another world)")]
+    StaleBody(BodyId),
+    #[error("non-finite {what}")]
+    NonFinite { what: &'static str },
+    #[error("the world is full: at most {0} bodies")]
+    Full(usize),
+    #[error("joint {0:?} does not exist (removed with a body, or from another world)")]
+    StaleJoint(JointId),
+    #[error("invalid joint: {0}")]
+    BadJoint(String),
+}

@@ -1,0 +1,132 @@
+//! The world: bodies, joints, the static room, and their step.
+//!
+//! This file holds the `World` and its buffers; the public calls are in
+//! `bodies` (adding and removing), `actions` (pushing, grabbing, waking),
+//! `queries` (reading the state), `joints` and `state` (hash, snapshots).
+//! The step is `step.rs`: a list of named stages, each in a file of its own
+//! here or in the crate (`place`, `contacts`, `prepare`, the solver,
+//! `finish`, `crate::continuous`, `crate::sleep`), each stage owning its buffers.
+
+mod actions;
+mod bodies;
+mod contacts;
+mod def;
+mod error;
+mod finish;
+mod joints;
+mod place;
+mod prepare;
+mod queries;
+mod state;
+mod step;
+
+use serde::{Deserialize, Serialize};
+
+use crate::body::{Bodies, HandleMap, ShapeData};
+use crate::broad_phase::BroadPhase;
+use crate::contact::WarmStartCache;
+use crate::continuous::SweepBuffers;
+use crate::counters::Counters;
+use crate::forces::field::ForceFields;
+use crate::grab::Grab;
+use crate::joint::Joints;
+use crate::narrow_phase::NarrowPhase;
+use crate::quarantine::{FaultBuffers, QuarantinedBody};
+use crate::sleep::{SleepBuffers, SleepingIslands};
+
+pub use contacts::ContactInfo;
+pub use def::WorldDef;
+pub use error::PhysicsError;
+pub use step::StepStats;
+
+pub(crate) use place::roots_within;
+use place::Placement;
+use prepare::SolverStage;
+
+/// Bodies one task takes in a pass over the bodies (placing them, their
+/// solver states, finishing their motion, their sleep clocks...).
+pub(crate) const PLACE_CHUNK: usize = 512;
+
+/// The most bodies a world holds (handles and buffers are sized by u32).
+pub const MAX_BODIES: usize = 4_000_000;
+
+/// Each stage's buffers, rebuilt every step; never part of the state.
+#[derive(Clone, Debug, Default)]
+struct Stages {
+    place: Placement,
+    broad: BroadPhase,
+    narrow: NarrowPhase,
+    solve: SolverStage,
+    sweep: SweepBuffers,
+    sleep: SleepBuffers,
+    faults: FaultBuffers,
+    /// Pairs of bodies held by a joint, dense indices (`joints`).
+    joined: Vec<(u32, u32)>,
+}
+
+/// A world of balloons in a room. See the crate docs for conventions.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct World {
+    def: WorldDef,
+    shapes: Vec<ShapeData>,
+    bodies: Bodies,
+    handles: HandleMap,
+    joints: Joints,
+    warm: WarmStartCache,
+    sleeping: SleepingIslands,
+    grab: Option<Grab>,
+    time: f64,
+    step_count: u64,
+    stats: StepStats,
+    /// Reports of bodies taken out as non-finite, not yet collected (events, not state).
+    #[serde(skip)]
+    quarantined: Vec<QuarantinedBody>,
+    /// Code, not state (`forces::field`).
+    #[serde(skip)]
+    fields: ForceFields,
+    #[serde(skip)]
+    counters: Counters,
+    #[serde(skip)]
+    stages: Stages,
+}
+
+impl World {
+    pub fn new(def: WorldDef) -> Result<World, PhysicsError> {
+        def.validate()?;
+        Ok(World {
+            def,
+            shapes: Vec::new(),
+            bodies: Bodies::default(),
+            handles: HandleMap::default(),
+            joints: Joints::default(),
+            warm: WarmStartCache::default(),
+            sleeping: SleepingIslands::default(),
+            grab: None,
+            time: 0.0,
+            step_count: 0,
+            stats: StepStats::default(),
+            quarantined: Vec::new(),
+            fields: ForceFields::default(),
+            counters: Counters::default(),
+            stages: Stages::default(),
+        })
+    }
+
+    pub fn def(&self) -> &WorldDef {
+        &self.def
+    }
+
+    /// Adds a force field (`forces::field`): from the next step on, its
+    /// force acts on every awake body; the sleepers wake, since the forces
+    /// that held them changed. Not kept by snapshots.
+    pub fn add_force_field(&mut self, field: std::sync::Arc<dyn crate::ForceField>) {
+        self.fields.push(field);
+        self.wake_all();
+    }
+
+    /// Removes every force field; the sleepers wake.
+    pub fn clear_force_fields(&mut self) {
+        self.fields.clear();
+        self.wake_all();
+    }
+}

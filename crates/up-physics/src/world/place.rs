@@ -1,0 +1,172 @@
+//! Stage 1, placing: every body's sphere tree at its pose, its bounding
+//! sphere widened by how far it may move this step (its velocity and the
+//! knocks its pairs may give it), and the broadphase's pairs of those bounds.
+
+use glam::Vec3;
+use up_geom::norm::{distance, Norm};
+use up_geom::Pose;
+
+use super::{World, PLACE_CHUNK};
+use crate::body::ShapeData;
+use crate::narrow_phase::{add_knocks, StepMotion};
+use crate::tasks::{fill_chunks, for_each_run, Ragged};
+
+/// The placing stage's buffers: per body unless said otherwise.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Placement {
+    /// World centres of every body's sphere-tree nodes, back to back.
+    pub node_centers: Vec<Vec3>,
+    /// Where each body's nodes start in `node_centers`.
+    pub node_start: Vec<u32>,
+    pub bound_center: Vec<Vec3>,
+    /// Root radius plus the speculative margin and this step's reach, m.
+    pub bound_radius: Vec<f32>,
+    /// Asleep, and its nodes placed since it fell asleep.
+    pub placed_asleep: Vec<bool>,
+    /// How far it moves this step (zero for sleepers).
+    pub motion: Vec<StepMotion>,
+    /// Per broadphase pair, in a step whose knocks are found in tasks: the
+    /// knocks it gives its bodies (`add_knocks`); empty otherwise.
+    pub thrown: Vec<Option<[Vec3; 2]>>,
+    /// Handle index of each body (the narrowphase keys pairs by them).
+    pub handle: Vec<u32>,
+}
+
+impl Placement {
+    /// Gives back the capacity the knocks' buffer left unused (`spare`).
+    pub fn release_spare(&mut self) {
+        crate::spare::release_spare(&mut self.thrown, crate::spare::BUFFER_FLOOR);
+    }
+}
+
+/// Whether the root spheres of bodies `a` and `b`, placed at `centers`, are
+/// within `gap` of touching.
+pub(crate) fn roots_within(
+    shapes: &[ShapeData],
+    shape: &[u32],
+    centers: &[Vec3],
+    a: usize,
+    b: usize,
+    gap: f32,
+) -> bool {
+    let root = |i: usize| shapes[shape[i] as usize].tree.root().radius;
+    distance(centers[a], centers[b]) < root(a) + root(b) + gap
+}
+
+impl World {
+    /// World centres of every node of every body, bounding spheres and speculative margins.
+    pub(super) fn place_bodies(&mut self, at_rest: bool) {
+        let n = self.bodies.len();
+        let s = &mut self.stages.place;
+        s.node_start.clear();
+        let mut total = 0u32;
+        for i in 0..n {
+            s.node_start.push(total);
+            total += self.shapes[self.bodies.shape[i] as usize]
+                .tree
+                .nodes()
+                .len() as u32;
+        }
+        // Every body's entries are written below (a sleeper's nodes stay
+        // where they were placed): only the lengths matter here.
+        s.node_centers.resize(total as usize, Vec3::ZERO);
+        s.placed_asleep.resize(n, false);
+        s.motion.resize(n, StepMotion::default());
+        s.bound_center.resize(n, Vec3::ZERO);
+        s.bound_radius.resize(n, 0.0);
+        s.handle.resize(n, 0);
+        let (bodies, shapes, dt) = (&self.bodies, &self.shapes, self.def.dt);
+        let speculative_distance = self.def.speculative_distance;
+        let parts = (
+            Ragged::new(&mut s.node_centers, &s.node_start),
+            &mut s.placed_asleep[..],
+            &mut s.motion[..],
+            &mut s.bound_center[..],
+            &mut s.bound_radius[..],
+            &mut s.handle[..],
+        );
+        for_each_run(n, PLACE_CHUNK, parts, |first, run| {
+            let (mut nodes, placed_asleep, motions, bound_center, bound_radius, handle) = run;
+            for k in 0..placed_asleep.len() {
+                let i = first + k;
+                let shape = &shapes[bodies.shape[i] as usize];
+                let nodes = nodes.item(k);
+                // A sleeper does not move: placed once, its nodes stay where they are.
+                let asleep = !bodies.awake[i];
+                if !(asleep && placed_asleep[k]) {
+                    let pose = Pose::new(bodies.center[i], bodies.rotation[i]);
+                    shape.tree.place(&pose, nodes);
+                }
+                placed_asleep[k] = asleep;
+                let motion = if at_rest || asleep {
+                    StepMotion::default()
+                } else {
+                    let rate = bodies.angular_velocity[i].norm();
+                    StepMotion {
+                        linear: bodies.linear_velocity[i] * dt,
+                        spin: rate * shape.bound_radius * dt,
+                        turn: rate * dt,
+                        ..StepMotion::default()
+                    }
+                };
+                // Wide enough for every pair the narrowphase may find a contact in.
+                let margin = speculative_distance + motion.reach();
+                motions[k] = motion;
+                bound_center[k] = nodes[0];
+                bound_radius[k] = shape.tree.root().radius + margin;
+                handle[k] = bodies.id[i].index;
+            }
+        });
+    }
+
+    /// Each body's knock, from the broadphase's pairs (`narrow_phase::add_knocks`).
+    pub(super) fn add_knocks(&mut self) {
+        let s = &mut self.stages.place;
+        let (shapes, shape) = (&self.shapes, &self.bodies.shape);
+        let centers = &s.bound_center;
+        let within = |a, b, gap| roots_within(shapes, shape, centers, a, b, gap);
+        let inv_mass = |i: usize| shapes[shape[i] as usize].inv_mass_translational;
+        let bounce = 1.0 + self.def.restitution;
+        let share = |a: usize, b: usize| bounce * inv_mass(a) / (inv_mass(a) + inv_mass(b));
+        add_knocks(
+            &mut s.motion,
+            &self.stages.broad.pairs,
+            &mut s.thrown,
+            |i| centers[i],
+            within,
+            share,
+            self.def.speculative_distance,
+        );
+        // Once a body, not in each of its pairs: the turn its knock may give.
+        fill_chunks(&mut s.motion, PLACE_CHUNK, |first, motions| {
+            for (k, m) in motions.iter_mut().enumerate() {
+                m.knock_turn = if m.knock == Vec3::ZERO {
+                    0.0
+                } else {
+                    m.knock.norm() * shapes[shape[first + k] as usize].turn_per_knock()
+                };
+            }
+        });
+    }
+
+    /// Cell radius: the largest root sphere plus its margin at a brisk ascent.
+    pub(super) fn cell_radius(&self) -> f32 {
+        let largest = self
+            .shapes
+            .iter()
+            .map(|s| s.tree.root().radius)
+            .fold(0.0, f32::max);
+        largest + self.def.speculative_distance + 3.0 * self.def.dt
+    }
+
+    pub(super) fn find_pairs(&mut self) {
+        let cell_radius = self.cell_radius();
+        let s = &self.stages.place;
+        self.stages.broad.update(
+            &s.bound_center,
+            &s.bound_radius,
+            &self.bodies.awake,
+            cell_radius,
+        );
+    }
+}
