@@ -4,6 +4,7 @@
 //!   up-bench --balloons 1000 --print-scene > s.json    the scene for web/bench
 //!   up-bench measure --balloons 1000 --poses p.f32     overlap of poses from Node
 //!   up-bench report                                    the sweep → docs/benchmarks.md
+//!   up-bench report --keep-results                     its method rewritten, results kept
 
 use std::path::PathBuf;
 
@@ -38,7 +39,7 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Cmd {
-    /// Run the sweep and write docs/benchmarks.md and docs/benchmarks.svg.
+    /// Run the sweep and write docs/benchmarks.md (the method, then the results) and docs/benchmarks.svg.
     Report(ReportArgs),
     /// Measure overlap and escapes of poses recorded elsewhere (web/bench).
     Measure(MeasureArgs),
@@ -124,6 +125,10 @@ struct ReportArgs {
     /// web/bench/bench.mjs.
     #[arg(long, default_value = "web/bench/bench.mjs")]
     node_script: PathBuf,
+    /// Run nothing: write the method (crates/up-bench/src/method.md) again
+    /// around the results already in the markdown.
+    #[arg(long)]
+    keep_results: bool,
     #[arg(long, default_value = "docs/benchmarks.md")]
     markdown: PathBuf,
     #[arg(long, default_value = "docs/benchmarks.svg")]
@@ -208,6 +213,7 @@ fn print_table(results: &[EngineResult]) {
 fn main() -> Result<()> {
     let cli = Cli::parse();
     match cli.command {
+        Some(Cmd::Report(args)) if args.keep_results => report::keep_results(&args.markdown),
         Some(Cmd::Report(args)) => report::report(&ReportOptions {
             sizes: args.sizes,
             up_only_sizes: args.up_only_sizes,

@@ -58,11 +58,17 @@ pub fn to_csv(engines: &[&str], times: &[Vec<f64>]) -> String {
 
 /// Writes `to_csv` to `path`, replacing it only once the whole text is down.
 pub fn write(path: &Path, engines: &[&str], times: &[Vec<f64>]) -> Result<()> {
+    write_whole(path, &to_csv(engines, times))
+        .with_context(|| format!("--step-times: writing {}", path.display()))
+}
+
+/// Writes `text` to a temporary file beside `path`, then renames it over
+/// `path`: a reader finds the old file or the new one, never a part.
+pub fn write_whole(path: &Path, text: &str) -> std::io::Result<()> {
     let mut temporary = PathBuf::from(path);
     temporary.as_mut_os_string().push(".partial");
-    fs::write(&temporary, to_csv(engines, times))
+    fs::write(&temporary, text)
         .and_then(|()| fs::rename(&temporary, path))
-        .with_context(|| format!("--step-times: writing {}", path.display()))
         .inspect_err(|_| {
             let _ = fs::remove_file(&temporary);
         })

@@ -4,8 +4,8 @@
 //! step does not allocate; but a stir of a pile, or a crowd's arrival, needs
 //! several times what the pile needs asleep. Without a way back, a world holds
 //! the capacity of its busiest step forever, and a long run's memory creeps up
-//! with every new busiest step (10,000 balloons stirred every 5 minutes for
-//! an hour: 66 → 97 MiB held, the pile asleep at both ends).
+//! with every new busiest step, even with the pile asleep (the stirred hour's
+//! figures: docs/perf-log.md).
 
 /// Use below which one of the step's buffers is treated as using this many
 /// bytes, so that it keeps up to twice this whatever its use: below that,
@@ -13,8 +13,8 @@
 pub(crate) const BUFFER_FLOOR: usize = 64 << 10;
 
 /// The same for one task's list (`tasks`): small, since a busy step splits
-/// its work into hundreds of tasks and a floor for each adds up (10,000
-/// balloons on two threads held 20 MiB more asleep with 64 KiB each).
+/// its work into hundreds of tasks and a floor for each adds up (measured
+/// with 64 KiB each: docs/perf-log.md).
 pub(crate) const TASK_LIST_FLOOR: usize = 4 << 10;
 
 /// Shrinks `v` to twice its length when it holds more than four times that

@@ -3,9 +3,9 @@
 //!
 //! A solver pass is a few dozen colours, each a stage whose blocks are
 //! independent while the colours must run in order. Handing each colour to
-//! rayon on its own cost a fork-join per colour (20–60 a pass), against a few
-//! microseconds of work per block and thread: on 16 cores the 10,000 crowd's
-//! solve ran barely faster than on 4.
+//! rayon on its own costs a fork-join per colour, against a few microseconds
+//! of work per block and thread, so that more threads barely speed the solve
+//! up (docs/perf-log.md).
 //!
 //! Here the threads take blocks by ticket instead: one counter hands out the
 //! blocks in order, and a thread waits before running its block until every

@@ -32,9 +32,9 @@ pub(crate) const EMPTY_LANE: u32 = u32::MAX;
 /// Colours a body can carry (bits of a `u64`).
 const COLORS: usize = 64;
 
-/// Overflow levels after the colours. The 100,000 pile's arrival overflows
-/// 8,089 of its 1.49 million constraints (at 16 s): one by one, they held
-/// every pass on one thread while the others waited.
+/// Overflow levels after the colours: a big pile's arrival overflows
+/// thousands of constraints, which one by one would hold every pass on one
+/// thread while the others wait (docs/perf-log.md).
 const LEVELS: usize = 192;
 
 /// The colour index of the constraints run serially, after the levels.
@@ -116,7 +116,7 @@ pub(crate) struct Coloring {
     #[cfg(feature = "parallel")]
     pub blocks: ColourBlocks,
     /// Tests only: every overflowing constraint runs serially, one a group
-    /// (no levels), as before levels existed.
+    /// (no levels): the serial order the levels must reproduce.
     #[cfg(test)]
     pub serial_overflow: bool,
 }
