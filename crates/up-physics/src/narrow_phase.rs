@@ -250,7 +250,7 @@ impl ContactList {
             // contacts, buoyancy) not at all. Stricter bounds (the knocks'
             // whole lengths, their turns' arcs) keep most of the gaps; with
             // this one a few impacts close a dropped gap, within the soaks'
-            // bound (docs/benchmarks.md, Changes).
+            // bound (docs/perf-log.md).
             let motion = RelativeMotion {
                 displacement: margin,
                 turn: ma.most_turn() + mb.most_turn(),
