@@ -12,6 +12,7 @@
 //! 3. restitution (bounces), and store impulses for the next step;
 //! 4. stabilise: overlap beyond a slop is removed from the positions directly.
 
+pub(crate) mod body_lanes;
 pub(crate) mod body_state;
 pub(crate) mod coloring;
 pub(crate) mod contact_constraint;
@@ -32,12 +33,10 @@ mod test_support;
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
+use body_lanes::{Displacements, Poses, Velocities};
 use body_state::BodyState;
 use coloring::{Coloring, Moving};
-use contact_constraint::{
-    Bias, ContactGroup, Displacements, GroupAnchors, GroupRecords, Poses, PreparedContact,
-    Velocities,
-};
+use contact_constraint::{Bias, ContactGroup, GroupAnchors, GroupRecords, PreparedContact};
 use integrate::GrabSpring;
 use joint_constraint::{JointColouring, PreparedJoint};
 use lanes::LANES;

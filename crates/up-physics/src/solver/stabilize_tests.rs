@@ -3,8 +3,9 @@
 
 use glam::{Mat3, Quat, Vec3};
 
+use super::body_lanes::Displacements;
 use super::body_state::BodyState;
-use super::contact_constraint::{self, Displacements, PositionPush};
+use super::contact_constraint::{self, PositionPush};
 use super::parallel::for_each_group;
 use super::test_support::{sphere_contact, RADIUS};
 use super::{Poses, Solver, Stabilization};
