@@ -17,9 +17,9 @@ use anyhow::{bail, Result};
 use clap::Args;
 use glam::Vec3;
 use serde::Serialize;
+use up_geom::SplitMix64;
 use up_physics::{BodyId, World};
 use up_scene::build::build_world;
-use up_scene::build::rng::SplitMix64;
 use up_scene::room::RoomMesh;
 use up_scene::scene::Scene;
 
