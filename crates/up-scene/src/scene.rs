@@ -15,6 +15,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Location, SceneError};
+use crate::palette::{color_rgb, DEFAULT_COLOR_COUNT, PALETTE};
 
 #[path = "scene_lines.rs"]
 mod lines;
@@ -35,8 +36,16 @@ pub const DEFAULT_DIAMETER_M: f32 = 0.28;
 pub const DEFAULT_ENVELOPE_MASS_G_11IN: f32 = 3.0;
 /// Knot and neck latex, g.
 pub const DEFAULT_KNOT_MASS_G: f32 = 0.5;
-/// The original's six colours.
-pub const DEFAULT_COLORS: [&str; 6] = ["red", "yellow", "blue", "green", "purple", "orange"];
+/// The original's six colours: the palette's first six.
+pub const DEFAULT_COLORS: [&str; DEFAULT_COLOR_COUNT] = {
+    let mut names = [""; DEFAULT_COLOR_COUNT];
+    let mut i = 0;
+    while i < DEFAULT_COLOR_COUNT {
+        names[i] = PALETTE[i].name;
+        i += 1;
+    }
+    names
+};
 /// Largest scene file read, bytes (1 MiB: the full documented example is
 /// about 2 KiB). A bigger file, or a device that never ends, is refused.
 pub const MAX_SCENE_BYTES: u64 = 1 << 20;
@@ -542,7 +551,7 @@ fn read_scene_text(path: &Path) -> Result<String, SceneError> {
     })
 }
 
-/// `"#rrggbb"` → RGB in 0–1 (sRGB, as written); colour names are looked up in `obj::color_rgb`.
+/// `"#rrggbb"` → RGB in 0–1 (sRGB, as written); colour names are looked up in the `palette`.
 pub fn parse_color(name: &str) -> Option<[f32; 3]> {
     if let Some(hex) = name.strip_prefix('#') {
         if hex.len() != 6 || !hex.is_ascii() {
@@ -551,7 +560,7 @@ pub fn parse_color(name: &str) -> Option<[f32; 3]> {
         let channel = |i: usize| u8::from_str_radix(&hex[i..i + 2], 16).ok();
         return Some([channel(0)?, channel(2)?, channel(4)?].map(|c| f32::from(c) / 255.0));
     }
-    crate::obj::color_rgb(name)
+    color_rgb(name)
 }
 
 #[cfg(test)]
