@@ -40,7 +40,7 @@ impl KeyLines {
     pub fn from_toml(text: &str) -> Self {
         let mut out = KeyLines::default();
         if let Ok(root) = toml::from_str::<TomlNode>(text) {
-            out.add_toml(text, String::new(), &root);
+            out.add_toml(&LineStarts::new(text), String::new(), &root);
         }
         out
     }
@@ -49,66 +49,84 @@ impl KeyLines {
     pub fn from_json(text: &str) -> Self {
         let mut out = KeyLines::default();
         if let Ok(root) = serde_json::from_str::<&RawValue>(text) {
-            out.add_json(text, String::new(), root);
+            out.add_json(text, &LineStarts::new(text), String::new(), root);
         }
         out
     }
 
-    fn add(&mut self, path: String, text: &str, offset: usize) {
+    fn add(&mut self, path: String, starts: &LineStarts, offset: usize) {
         if !path.is_empty() {
-            self.lines.insert(path, line_of_offset(text, offset));
+            self.lines.insert(path, starts.line_of(offset));
         }
     }
 
-    fn add_toml(&mut self, text: &str, path: String, node: &TomlNode) {
+    fn add_toml(&mut self, starts: &LineStarts, path: String, node: &TomlNode) {
         match node {
             TomlNode::Table(entries) => {
                 for (key, value) in entries {
                     let path = join(&path, key);
-                    self.add(path.clone(), text, value.span().start);
-                    self.add_toml(text, path, value.get_ref());
+                    self.add(path.clone(), starts, value.span().start);
+                    self.add_toml(starts, path, value.get_ref());
                 }
             }
             TomlNode::Array(items) => {
                 for (i, item) in items.iter().enumerate() {
                     let path = format!("{path}[{i}]");
-                    self.add(path.clone(), text, item.span().start);
-                    self.add_toml(text, path, item.get_ref());
+                    self.add(path.clone(), starts, item.span().start);
+                    self.add_toml(starts, path, item.get_ref());
                 }
             }
             TomlNode::Leaf => {}
         }
     }
 
-    fn add_json(&mut self, text: &str, path: String, value: &RawValue) {
+    fn add_json(&mut self, text: &str, starts: &LineStarts, path: String, value: &RawValue) {
         let raw = value.get();
         // The raw value is a slice of `text`: its address gives its offset.
         let offset = raw.as_ptr() as usize - text.as_ptr() as usize;
-        self.add(path.clone(), text, offset);
+        self.add(path.clone(), starts, offset);
         if raw.starts_with('{') {
             if let Ok(entries) = serde_json::from_str::<BTreeMap<String, &RawValue>>(raw) {
                 for (key, value) in entries {
-                    self.add_json(text, join(&path, &key), value);
+                    self.add_json(text, starts, join(&path, &key), value);
                 }
             }
         } else if raw.starts_with('[') {
             if let Ok(items) = serde_json::from_str::<Vec<&RawValue>>(raw) {
                 for (i, value) in items.into_iter().enumerate() {
-                    self.add_json(text, format!("{path}[{i}]"), value);
+                    self.add_json(text, starts, format!("{path}[{i}]"), value);
                 }
             }
         }
     }
 }
 
+/// The offsets of a text's newlines, so that a line is found in log time
+/// (a scene may hold thousands of values).
+struct LineStarts {
+    newlines: Vec<usize>,
+}
+
+impl LineStarts {
+    fn new(text: &str) -> Self {
+        let newlines = text
+            .bytes()
+            .enumerate()
+            .filter(|&(_, b)| b == b'\n')
+            .map(|(i, _)| i)
+            .collect();
+        Self { newlines }
+    }
+
+    /// 1-based line of a byte offset.
+    fn line_of(&self, offset: usize) -> usize {
+        self.newlines.partition_point(|&nl| nl < offset) + 1
+    }
+}
+
 /// 1-based line of a byte offset.
 pub fn line_of_offset(text: &str, offset: usize) -> usize {
-    let end = offset.min(text.len());
-    text.as_bytes()[..end]
-        .iter()
-        .filter(|&&b| b == b'\n')
-        .count()
-        + 1
+    LineStarts::new(text).line_of(offset.min(text.len()))
 }
 
 fn join(table: &str, key: &str) -> String {
@@ -253,7 +271,23 @@ dt = 0.01
     #[test]
     fn offsets_map_to_lines() {
         assert_eq!(line_of_offset("a\nb\nc", 0), 1);
+        assert_eq!(line_of_offset("a\nb\nc", 1), 1);
         assert_eq!(line_of_offset("a\nb\nc", 2), 2);
         assert_eq!(line_of_offset("a\nb\nc", 99), 3);
+        assert_eq!(line_of_offset("", 0), 1);
+    }
+
+    #[test]
+    fn a_long_array_is_indexed_quickly() {
+        // 100,000 values on as many lines: quadratic line counting would take minutes.
+        let values = vec!["1"; 100_000].join(",\n");
+        let text = format!("{{\"balloons\": [{{\"colors\": [\n{values}]}}]}}");
+        let started = std::time::Instant::now();
+        let k = KeyLines::from_json(&text);
+        assert_eq!(k.line_of("balloons[0].colors[99999]"), Some(100_001));
+        let toml_text = format!("[[balloons]]\ncolors = [\n{values}]\n");
+        let k = KeyLines::from_toml(&toml_text);
+        assert_eq!(k.line_of("balloons[0].colors[99999]"), Some(100_002));
+        assert!(started.elapsed().as_secs() < 10, "{:?}", started.elapsed());
     }
 }
