@@ -8,7 +8,7 @@ use clap::Args;
 use serde::Serialize;
 
 use crate::run::{build_or_restore, check_load_state_alone, progress_bar};
-use crate::scene_arg::{load_scene, scene_name};
+use crate::scene_arg::SceneArgs;
 use crate::summary::print_table;
 
 /// Most steps `--steps` accepts.
@@ -16,11 +16,8 @@ const MAX_STEPS: u64 = 10_000_000;
 
 #[derive(Args, Debug)]
 pub struct BenchArgs {
-    /// Scene file (.toml or .json); the original room with 50 balloons if left out.
-    pub scene: Option<PathBuf>,
-    /// Total number of balloons, spread over the scene's groups (overrides the scene).
-    #[arg(long, value_name = "N")]
-    pub balloons: Option<u64>,
+    #[command(flatten)]
+    pub scene: SceneArgs,
     /// Steps to time (after the scene is built; building is not timed).
     #[arg(long, value_name = "K", default_value_t = 600)]
     pub steps: u64,
@@ -65,8 +62,8 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     if args.steps == 0 || args.steps > MAX_STEPS {
         bail!("--steps: expected 1 to {MAX_STEPS}, found {}", args.steps);
     }
-    check_load_state_alone(args.load_state.as_deref(), args.balloons)?;
-    let scene = load_scene(args.scene.as_deref(), None, args.balloons)?;
+    check_load_state_alone(args.load_state.as_deref(), args.scene.balloons)?;
+    let scene = args.scene.load()?;
     let mut built = build_or_restore(&scene, args.load_state.as_deref())?;
     let world = &mut built.world;
 
@@ -100,7 +97,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     sorted.sort_by(f64::total_cmp);
     let percentile = |p: f64| sorted[((sorted.len() - 1) as f64 * p).round() as usize];
     let summary = BenchSummary {
-        scene: scene_name(args.scene.as_ref()),
+        scene: args.scene.name(),
         balloons: world.body_count(),
         threads: rayon::current_num_threads(),
         steps: args.steps,

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use clap::Args;
 use up_scene::build::build_room;
-use up_scene::obj::{export_balloon_assets, export_room_obj};
+use up_scene::obj_export::{export_balloon_assets, export_room_obj};
 
 use crate::scene_arg::load_scene;
 

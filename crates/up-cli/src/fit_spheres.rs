@@ -8,7 +8,7 @@ use clap::Args;
 use up_geom::fit::{fit_sphere_tree, FitOptions, DEFAULT_LEAVES, MAX_LEAVES};
 use up_scene::obj::read_obj_mesh;
 
-use crate::atomic_file::write_atomically;
+use up_scene::atomic_file::write_atomically;
 
 #[derive(Args, Debug)]
 pub struct FitSpheresArgs {

@@ -73,7 +73,8 @@ mod tests {
 
     #[test]
     fn counts_what_is_held_and_nothing_once_freed() {
-        // The test binary's allocator is the meter too (see main.rs); other
+        // The test binary's allocator is the meter too (up's main.rs, and
+        // up-physics' soak test, which shares this file); other
         // tests run on other threads, so only a large, unmistakable change is
         // asserted.
         const SIZE: usize = 64 << 20;

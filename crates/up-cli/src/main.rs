@@ -5,7 +5,6 @@
 //! that cannot be read or written), with a message on standard error that
 //! starts with `error:`.
 
-mod atomic_file;
 mod bench;
 mod colliders;
 mod export_obj;

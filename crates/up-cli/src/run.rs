@@ -11,26 +11,20 @@ use up_physics::World;
 use up_scene::build::{build_world, BuiltScene};
 use up_scene::scene::Scene;
 
-use crate::atomic_file::{write_atomically, AtomicFile};
-use crate::scene_arg::{load_scene, scene_name};
+use crate::scene_arg::SceneArgs;
 use crate::summary::{measure, print_table, RunSummary};
+use up_scene::atomic_file::{write_atomically, AtomicFile};
 
 /// Longest run `--seconds` accepts, s (one simulated day).
 const MAX_SECONDS: f64 = 86_400.0;
 
 #[derive(Args, Debug)]
 pub struct RunArgs {
-    /// Scene file (.toml or .json); the original room with 50 balloons if left out.
-    pub scene: Option<PathBuf>,
-    /// Total number of balloons, spread over the scene's groups (overrides the scene).
-    #[arg(long, value_name = "N")]
-    pub balloons: Option<u64>,
+    #[command(flatten)]
+    pub scene: SceneArgs,
     /// Simulated seconds; the scene's `sim.duration_s` (10 s by default) if left out.
     #[arg(long, value_name = "S")]
     pub seconds: Option<f64>,
-    /// Seed of the spawn layout (overrides `sim.seed`).
-    #[arg(long, value_name = "K")]
-    pub seed: Option<u64>,
     /// Write the trajectory as CSV: `t,id,x,y,z,qx,qy,qz,qw` (s, m, unit quaternion; Y up).
     #[arg(long, value_name = "FILE.csv")]
     pub out: Option<PathBuf>,
@@ -70,8 +64,8 @@ pub fn check_load_state_alone(load_state: Option<&Path>, balloons: Option<u64>) 
 }
 
 pub fn run(args: &RunArgs) -> Result<()> {
-    check_load_state_alone(args.load_state.as_deref(), args.balloons)?;
-    let scene = load_scene(args.scene.as_deref(), args.seed, args.balloons)?;
+    check_load_state_alone(args.load_state.as_deref(), args.scene.balloons)?;
+    let scene = args.scene.load()?;
     let seconds = args.seconds.unwrap_or(f64::from(scene.sim.duration_s));
     if !(seconds.is_finite() && seconds > 0.0 && seconds <= MAX_SECONDS) {
         bail!("--seconds: expected a number in (0, {MAX_SECONDS}], found {seconds}");
@@ -132,7 +126,7 @@ pub fn run(args: &RunArgs) -> Result<()> {
 
     let end = measure(world, &built.room);
     let summary = RunSummary {
-        scene: scene_name(args.scene.as_ref()),
+        scene: args.scene.name(),
         balloons: world.body_count(),
         steps,
         sim_seconds: world.time(),

@@ -4,7 +4,35 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::Result;
+use clap::Args;
 use up_scene::scene::Scene;
+
+/// The scene, `--balloons` and `--seed` of `up run`, `bench` and `soak`,
+/// flattened into each (`#[command(flatten)]`); a command words them its own
+/// way with `mut_arg` (`up soak` sizes its room for `--balloons`).
+#[derive(Args, Debug)]
+pub struct SceneArgs {
+    /// Scene file (.toml or .json); the original room with 50 balloons if left out.
+    pub scene: Option<PathBuf>,
+    /// Total number of balloons, spread over the scene's groups (overrides the scene).
+    #[arg(long, value_name = "N")]
+    pub balloons: Option<u64>,
+    /// Seed of the spawn layout (overrides `sim.seed`).
+    #[arg(long, value_name = "K")]
+    pub seed: Option<u64>,
+}
+
+impl SceneArgs {
+    /// The scene file, or the default scene, with `--seed` and `--balloons` applied.
+    pub fn load(&self) -> Result<Scene> {
+        load_scene(self.scene.as_deref(), self.seed, self.balloons)
+    }
+
+    /// How the scene is named in output.
+    pub fn name(&self) -> String {
+        scene_name(self.scene.as_ref())
+    }
+}
 
 /// Reads `path` (or takes the default scene) and applies `--seed` and `--balloons`.
 pub fn load_scene(path: Option<&Path>, seed: Option<u64>, balloons: Option<u64>) -> Result<Scene> {

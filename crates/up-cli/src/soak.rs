@@ -10,21 +10,20 @@
 //! watching it sleep. The checks print as a table, one row per check;
 //! the run fails (exit 2) at the end if any check failed.
 
-use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::{bail, Result};
 use clap::Args;
 use glam::Vec3;
 use serde::Serialize;
+use up_geom::SplitMix64;
 use up_physics::{BodyId, World};
 use up_scene::build::build_world;
-use up_scene::build::rng::SplitMix64;
 use up_scene::room::RoomMesh;
 use up_scene::scene::Scene;
 
 use crate::heap_meter::held_bytes;
-use crate::scene_arg::{load_scene, scene_name};
+use crate::scene_arg::SceneArgs;
 use crate::summary::print_table;
 
 /// Longest soak `--seconds` accepts, s (one simulated day).
@@ -44,12 +43,13 @@ const STIR_SEED: u64 = 0x5715_0000;
 const BALLOONS_PER_M2: f64 = 20.0;
 
 #[derive(Args, Debug)]
+#[command(
+    mut_arg("scene", |a| a.help("Scene file (.toml or .json); without one, a room sized for --balloons")),
+    mut_arg("balloons", |a| a.help("Total number of balloons (overrides the scene)").default_value("10000")),
+)]
 pub struct SoakArgs {
-    /// Scene file (.toml or .json); without one, a room sized for --balloons.
-    pub scene: Option<PathBuf>,
-    /// Total number of balloons (overrides the scene).
-    #[arg(long, value_name = "N", default_value_t = 10_000)]
-    pub balloons: u64,
+    #[command(flatten)]
+    pub scene: SceneArgs,
     /// Simulated seconds.
     #[arg(long, value_name = "S", default_value_t = 3600.0)]
     pub seconds: f64,
@@ -57,9 +57,6 @@ pub struct SoakArgs {
     #[arg(long, value_name = "K", default_value_t = 600,
           value_parser = clap::value_parser!(u64).range(1..))]
     pub check_every: u64,
-    /// Seed of the spawn layout (overrides `sim.seed`).
-    #[arg(long, value_name = "K")]
-    pub seed: Option<u64>,
     /// Every S simulated seconds, throw every tenth balloon at up to 2 m/s along
     /// each axis, spinning up to 3 rad/s (seeded), so that the run keeps
     /// waking the pile instead of watching it sleep; 0: never.
@@ -107,6 +104,9 @@ pub struct SoakSummary {
     pub penetration_bound_m: f32,
     pub max_non_finite: usize,
     pub max_escaped: usize,
+    /// Whether the run reached a minute, so that the heap was held to staying
+    /// flat after it; a shorter run says so rather than pass the check unmade.
+    pub heap_checked: bool,
     /// Heap held at the first check at or after one simulated minute, and at the end, bytes.
     pub heap_at_1min_bytes: u64,
     pub heap_end_bytes: u64,
@@ -158,14 +158,18 @@ pub fn run(args: &SoakArgs) -> Result<()> {
             args.stir_every
         );
     }
-    let scene = match &args.scene {
-        Some(_) => load_scene(args.scene.as_deref(), args.seed, Some(args.balloons))?,
+    // `--balloons` has a default here, so it is always given.
+    let Some(balloons) = args.scene.balloons else {
+        bail!("--balloons: expected a number of balloons");
+    };
+    let scene = match &args.scene.scene {
+        Some(_) => args.scene.load()?,
         None => {
-            let mut scene = room_for(args.balloons);
-            if let Some(seed) = args.seed {
+            let mut scene = room_for(balloons);
+            if let Some(seed) = args.scene.seed {
                 scene.sim.seed = seed;
             }
-            scene.with_total_balloons(args.balloons)?
+            scene.with_total_balloons(balloons)?
         }
     };
     let mut scene = scene;
@@ -234,15 +238,16 @@ pub fn run(args: &SoakArgs) -> Result<()> {
     }
     let wall = started.elapsed().as_secs_f64();
     let last = checks.last().cloned();
+    let heap_checked = at_1min.is_some();
     let (heap_at_1min, rss_at_1min) = at_1min.unwrap_or((0, 0));
     let (heap_end, rss_end) = last
         .as_ref()
         .map_or((0, 0), |c| (c.heap_bytes, c.rss_bytes));
     let summary = SoakSummary {
-        scene: args.scene.as_ref().map_or_else(
-            || "a room sized for the balloons".into(),
-            |_| scene_name(args.scene.as_ref()),
-        ),
+        scene: match &args.scene.scene {
+            Some(_) => args.scene.name(),
+            None => "a room sized for the balloons".into(),
+        },
         balloons: world.body_count(),
         steps,
         stirs,
@@ -256,6 +261,7 @@ pub fn run(args: &SoakArgs) -> Result<()> {
         penetration_bound_m: bound,
         max_non_finite: checks.iter().map(|c| c.non_finite).max().unwrap_or(0),
         max_escaped: checks.iter().map(|c| c.escaped).max().unwrap_or(0),
+        heap_checked,
         heap_at_1min_bytes: heap_at_1min,
         heap_end_bytes: heap_end,
         rss_at_1min_bytes: rss_at_1min,
@@ -331,7 +337,7 @@ fn failures(s: &SoakSummary) -> Vec<String> {
             s.penetration_bound_m * 1000.0
         ));
     }
-    if s.heap_at_1min_bytes > 0 && s.heap_end_bytes > s.heap_at_1min_bytes + HEAP_SLACK_BYTES {
+    if s.heap_checked && s.heap_end_bytes > s.heap_at_1min_bytes + HEAP_SLACK_BYTES {
         failed.push(format!(
             "the heap grew from {} to {} bytes after the first minute (allowed: {} more)",
             s.heap_at_1min_bytes, s.heap_end_bytes, HEAP_SLACK_BYTES
@@ -371,6 +377,17 @@ fn rows(s: &SoakSummary) -> Vec<(&'static str, String)> {
         ),
         ("non-finite bodies", s.max_non_finite.to_string()),
         ("escaped", s.max_escaped.to_string()),
+        (
+            "heap check",
+            if s.heap_checked {
+                format!(
+                    "after the first minute, within {:.0} MiB",
+                    mib(HEAP_SLACK_BYTES)
+                )
+            } else {
+                "not made: the run is shorter than a minute".to_string()
+            },
+        ),
         ("heap at 1 min", shown(s.heap_at_1min_bytes)),
         ("heap at the end", shown(s.heap_end_bytes)),
         ("resident at 1 min", shown(s.rss_at_1min_bytes)),
@@ -404,6 +421,7 @@ mod tests {
             penetration_bound_m: 0.0014,
             max_non_finite: 0,
             max_escaped: 0,
+            heap_checked: heap.0 > 0,
             heap_at_1min_bytes: heap.0,
             heap_end_bytes: heap.1,
             rss_at_1min_bytes: rss.0,
@@ -424,5 +442,17 @@ mod tests {
         assert!(leak[0].contains("heap grew"), "{leak:?}");
         // Within the slack is not a leak.
         assert!(failures(&summary((60 * MIB, 60 * MIB + HEAP_SLACK_BYTES), (0, 0))).is_empty());
+        // A run shorter than a minute makes no heap check, and the table says so.
+        let short = SoakSummary {
+            heap_checked: false,
+            ..summary((0, 90 * MIB), (0, 0))
+        };
+        assert!(failures(&short).is_empty());
+        let table = rows(&short);
+        let row = table
+            .iter()
+            .find(|(name, _)| *name == "heap check")
+            .unwrap();
+        assert!(row.1.contains("not made"), "{row:?}");
     }
 }

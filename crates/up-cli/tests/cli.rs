@@ -279,6 +279,78 @@ fn run_rejects_bad_scenes_with_file_key_and_line() {
     up_err(&["run", "--seconds", "NaN"]);
 }
 
+#[test]
+fn a_wrong_type_names_its_key_and_writes_no_output() {
+    let dir = TempDir::new("wrong-type");
+    let out = dir.str("out.csv");
+    let state = dir.str("end.upsnap");
+    std::fs::write(
+        dir.path("room.json"),
+        r#"{"room": {"width": [1,2], "depth": 6, "wall_height": 3, "ceiling": "flat"}}"#,
+    )
+    .unwrap();
+    let err = up_err(&[
+        "run",
+        &dir.str("room.json"),
+        "--out",
+        &out,
+        "--save-state",
+        &state,
+    ]);
+    assert!(
+        err.contains("room.json:1: room.width: invalid type: sequence, expected f32"),
+        "{err}"
+    );
+    assert!(!err.contains("room.ceiling"), "{err}");
+
+    std::fs::write(
+        dir.path("room.toml"),
+        "[room]\ndepth = 6\nwidth = [1, 2]\nceiling = \"flat\"\n",
+    )
+    .unwrap();
+    let err = up_err(&["run", &dir.str("room.toml"), "--out", &out]);
+    assert!(
+        err.contains("room.toml:3: room.width: invalid type: sequence, expected f32"),
+        "{err}"
+    );
+    assert_eq!(
+        dir.files(),
+        vec!["room.json", "room.toml"],
+        "no output written"
+    );
+}
+
+#[test]
+fn empty_scene_files_are_refused_by_every_command() {
+    let dir = TempDir::new("empty");
+    std::fs::write(dir.path("zero.toml"), "").unwrap();
+    std::fs::write(dir.path("zero.json"), "").unwrap();
+    std::fs::write(dir.path("blank.toml"), " \n\t\n").unwrap();
+    std::fs::write(dir.path("blank.json"), "\n   \n").unwrap();
+    let out = dir.str("out.csv");
+    let obj = dir.str("obj");
+    for name in ["zero.toml", "zero.json", "blank.toml", "blank.json"] {
+        let scene = dir.str(name);
+        let expected = format!("{scene}: the scene is empty");
+        let commands: [&[&str]; 5] = [
+            &["run", &scene, "--out", &out, "--seconds", "0.1"],
+            &["validate", &scene],
+            &["bench", &scene, "--steps", "1"],
+            &["soak", &scene, "--balloons", "2", "--seconds", "0.1"],
+            &["export-obj", &obj, "--scene", &scene],
+        ];
+        for args in commands {
+            let err = up_err(args);
+            assert!(err.contains(&expected), "up {args:?}: {err}");
+        }
+    }
+    assert_eq!(
+        dir.files(),
+        vec!["blank.json", "blank.toml", "zero.json", "zero.toml"],
+        "no output written"
+    );
+}
+
 /// Runs 3 balloons for 0.5 s, then again for 0.25 s saving the state in
 /// `dir`; returns the whole run's output and the state file.
 fn run_whole_and_save_half(dir: &TempDir) -> (String, String) {
@@ -592,6 +664,12 @@ fn soak_checks_and_reports_its_figures() {
         "{j}"
     );
     assert!(j["heap_end_bytes"].as_u64().unwrap() > 0, "{j}");
+    // Two seconds are too short to hold the heap flat after a minute: said, not passed over.
+    assert_eq!(j["heap_checked"], false, "{j}");
+    assert!(
+        text.contains("not made: the run is shorter than a minute"),
+        "{text}"
+    );
     assert!(text.contains("result") && text.contains("passed"), "{text}");
     up_err(&["soak", "--seconds", "0"]);
     up_err(&["soak", "--check-every", "0"]);

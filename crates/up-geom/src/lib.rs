@@ -10,7 +10,7 @@ pub mod norm;
 pub mod pose;
 pub mod query;
 pub mod shape;
-mod split_mix;
+pub mod split_mix;
 #[cfg(test)]
 mod test_meshes;
 
@@ -37,3 +37,4 @@ pub use shape::bvh::{Bvh, BvhNode};
 pub use shape::sphere::Sphere;
 pub use shape::sphere_tree::{PlacedTree, SphereNode, SphereTree, SphereTreeError};
 pub use shape::trimesh::{EdgeAdjacency, EdgeKind, TriMesh, TriMeshData, TriMeshError};
+pub use split_mix::SplitMix64;

@@ -48,12 +48,10 @@ pub(crate) fn mix64(mut x: u64) -> u64 {
     x ^ (x >> 33)
 }
 
-/// Numbers in [0, 1) from `seed`, the same on every platform: for tests.
+/// Numbers in [0, 1) from `seed`, the same on every platform: for tests
+/// (the project's one generator, `up_geom::SplitMix64`).
 #[cfg(test)]
 pub(crate) fn uniform(seed: u64) -> impl FnMut() -> f32 {
-    let mut state = seed;
-    move || {
-        state = mix64(state.wrapping_add(0x9e37_79b9_7f4a_7c15));
-        (state >> 40) as f32 / (1u64 << 24) as f32
-    }
+    let mut rng = up_geom::SplitMix64::new(seed);
+    move || rng.unit()
 }

@@ -47,9 +47,7 @@ fn five_hundred_balloons_settle_under_the_ceiling_without_overlap() {
         world.step();
         let p = world.stats().max_penetration;
         worst = worst.max(p);
-        if std::env::var("UP_MEASURE").is_err() {
-            assert!(p <= limit, "step {step}: penetration {p} m > {limit} m");
-        }
+        assert!(p <= limit, "step {step}: penetration {p} m > {limit} m");
     }
     let final_penetration = world.max_penetration_now();
     assert!(

@@ -22,9 +22,9 @@
 //!   collision on. Positions, tilts and turns come from `seed`.
 
 use glam::Vec3;
+use up_geom::SplitMix64;
 
 use crate::build::build_group_model;
-use crate::build::rng::SplitMix64;
 use crate::build::spawn::{place_spheres, Occupancy, SpawnRegion};
 use crate::error::SceneError;
 use crate::room::{box_room, Ceiling};

@@ -6,7 +6,7 @@
 //! (see `user_data_for`, `color_index`, `group_index`).
 
 use glam::{Quat, Vec3};
-use up_geom::Pose;
+use up_geom::{Pose, SplitMix64};
 use up_physics::{BodyDef, BodyId, World, WorldDef};
 
 use crate::balloon::{build_balloon, BalloonModel, BalloonSpec, Gas};
@@ -14,12 +14,9 @@ use crate::error::SceneError;
 use crate::room::{box_room, room_from_obj, Ceiling, RoomMesh};
 use crate::scene::{parse_color, CeilingKind, GasKind, Scene};
 
-#[path = "build_rng.rs"]
-pub mod rng;
 #[path = "build_spawn.rs"]
 pub mod spawn;
 
-use rng::SplitMix64;
 use spawn::{place_spheres, Occupancy, SpawnRegion};
 
 /// Most groups a scene may have (the group index lives in 16 bits of `user_data`).

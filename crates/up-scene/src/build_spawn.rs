@@ -15,7 +15,7 @@ use std::collections::HashMap;
 
 use glam::Vec3;
 
-use super::rng::SplitMix64;
+use up_geom::SplitMix64;
 
 /// Gap between neighbouring balloons' bounding cubes: 5 % of the diameter plus 5 mm.
 fn cell_size(radius: f32) -> f32 {

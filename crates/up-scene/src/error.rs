@@ -46,6 +46,9 @@ pub enum SceneError {
     /// The file is larger than a scene can be (`scene::MAX_SCENE_BYTES`).
     #[error("{}: too large: expected a scene file of at most {max} bytes", path.display())]
     TooLarge { path: PathBuf, max: u64 },
+    /// The scene is empty or only whitespace (a failed write leaves such a file).
+    #[error("{file}: the scene is empty: expected TOML or JSON text (`{{}}` in JSON, or a comment in TOML, for the default scene)")]
+    Empty { file: String },
     /// The extension is neither `.toml` nor `.json`.
     #[error("{}: unknown scene file type: expected a `.toml` or `.json` extension", path.display())]
     UnknownFormat { path: PathBuf },

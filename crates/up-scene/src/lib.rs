@@ -3,10 +3,15 @@
 //!
 //! SI units, Y up, origin at the centre of the floor.
 
+// Files written whole or not at all.
+pub mod atomic_file;
+
 // The balloon and the room.
 pub mod balloon;
 pub mod balloon_mesh;
 pub mod obj;
+pub mod obj_export;
+pub mod palette;
 pub mod room;
 
 // Scene files and building a world from them.

@@ -110,7 +110,8 @@ fn obj_room_with_outward_normals_is_flipped_inward() {
         .iter()
         .map(|t| [t[0], t[2], t[1]])
         .collect();
-    let text = crate::obj::flat_obj_text("hall", original.vertices(), &outward, "x.mtl", "x");
+    let text =
+        crate::obj_export::flat_obj_text("hall", original.vertices(), &outward, "x.mtl", "x");
     let path = dir.join("hall.obj");
     std::fs::write(&path, text).unwrap();
     let room = room_from_obj(&path).unwrap();
@@ -119,7 +120,7 @@ fn obj_room_with_outward_normals_is_flipped_inward() {
     assert!(room.contains_point(Vec3::new(0.0, 1.0, 0.0)));
 
     // Already inward: kept as it is.
-    crate::obj::export_room_obj(&dir, &original).unwrap();
+    crate::obj_export::export_room_obj(&dir, &original).unwrap();
     let again = room_from_obj(&dir.join("room.obj")).unwrap();
     assert_eq!(corners(&again), corners(&original));
 }

@@ -4,22 +4,25 @@
 //! Every section and every key may be left out and takes its default; the
 //! defaults are the original project's scene: a 6 m × 6 m room with 3 m walls
 //! and a pyramidal ceiling, 50 balloons in six colours released from the floor.
-//! Unknown keys are errors. After parsing, `validate` checks every number is
+//! Unknown keys are errors, and so is a file of nothing but whitespace (what a
+//! failed write leaves). After parsing, `validate` checks every number is
 //! finite and within its documented range; errors name the file, the key path
-//! and the line.
+//! and the line. The key path of a parse error is serde's own
+//! (`serde_path_to_error`), its line the parser's.
 
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Location, SceneError};
+use crate::palette::{color_rgb, DEFAULT_COLOR_COUNT, PALETTE};
 
-#[path = "scene_locate.rs"]
-mod locate;
+#[path = "scene_lines.rs"]
+mod lines;
 #[path = "scene_validate.rs"]
 mod validate;
 
-pub use locate::KeyLines;
+pub use lines::KeyLines;
 pub use validate::{
     MAX_BALLOON_DIAMETER_M, MAX_BALLOON_GROUPS, MAX_GROUP_COLORS, MAX_ROOM_SIZE_M,
     MAX_SCENE_LEAVES, MAX_SEED, MAX_TOTAL_BALLOONS, MIN_BALLOON_DIAMETER_M, MIN_ROOM_SIZE_M,
@@ -33,8 +36,16 @@ pub const DEFAULT_DIAMETER_M: f32 = 0.28;
 pub const DEFAULT_ENVELOPE_MASS_G_11IN: f32 = 3.0;
 /// Knot and neck latex, g.
 pub const DEFAULT_KNOT_MASS_G: f32 = 0.5;
-/// The original's six colours.
-pub const DEFAULT_COLORS: [&str; 6] = ["red", "yellow", "blue", "green", "purple", "orange"];
+/// The original's six colours: the palette's first six.
+pub const DEFAULT_COLORS: [&str; DEFAULT_COLOR_COUNT] = {
+    let mut names = [""; DEFAULT_COLOR_COUNT];
+    let mut i = 0;
+    while i < DEFAULT_COLOR_COUNT {
+        names[i] = PALETTE[i].name;
+        i += 1;
+    }
+    names
+};
 /// Largest scene file read, bytes (1 MiB: the full documented example is
 /// about 2 KiB). A bigger file, or a device that never ends, is refused.
 pub const MAX_SCENE_BYTES: u64 = 1 << 20;
@@ -375,20 +386,27 @@ impl Scene {
 
     /// Parses and validates TOML; `source` names it in messages (a file name).
     pub fn from_toml_str(text: &str, source: &str) -> Result<Scene, SceneError> {
-        let lines = KeyLines::scan_toml(text);
-        let parsed = toml::from_str(text).map_err(|e: toml::de::Error| {
-            let line = e
-                .span()
-                .map(|span| locate::line_of_offset(text, span.start));
-            (line, e.message().trim().to_string())
-        });
-        Self::finish_parse(parsed, source, lines)
+        refuse_empty(text, source)?;
+        let parsed = serde_path_to_error::deserialize(toml::Deserializer::new(text));
+        let scene = parsed.map_err(|e| {
+            let key = key_path(e.path());
+            let e = e.into_inner();
+            let line = e.span().map(|span| lines::line_of_offset(text, span.start));
+            parse_error(source, key, line, e.message().trim().to_string())
+        })?;
+        Self::finish_parse(scene, source, KeyLines::from_toml(text))
     }
 
     /// Parses and validates JSON; `source` names it in messages (a file name).
     pub fn from_json_str(text: &str, source: &str) -> Result<Scene, SceneError> {
-        let lines = KeyLines::scan_json(text);
-        let parsed = serde_json::from_str(text).map_err(|e| {
+        refuse_empty(text, source)?;
+        let mut deserializer = serde_json::Deserializer::from_str(text);
+        // `end` refuses text after the scene, as `serde_json::from_str` does.
+        let parsed = match serde_path_to_error::deserialize(&mut deserializer) {
+            Ok(scene) => deserializer.end().map(|()| scene).map_err(|e| (None, e)),
+            Err(e) => Err((key_path(e.path()), e.into_inner())),
+        };
+        let scene = parsed.map_err(|(key, e)| {
             let line = (e.line() > 0).then_some(e.line());
             // serde_json appends " at line L column C"; the location says it already.
             let full = e.to_string();
@@ -396,26 +414,13 @@ impl Scene {
                 Some(cut) => full[..cut].to_string(),
                 None => full,
             };
-            (line, message)
-        });
-        Self::finish_parse(parsed, source, lines)
+            parse_error(source, key, line, message)
+        })?;
+        Self::finish_parse(scene, source, KeyLines::from_json(text))
     }
 
-    /// Either format's result: a parse error located at its line and key, or
-    /// the scene with its source attached, validated.
-    fn finish_parse(
-        parsed: Result<Scene, (Option<usize>, String)>,
-        source: &str,
-        lines: KeyLines,
-    ) -> Result<Scene, SceneError> {
-        let mut scene = parsed.map_err(|(line, message)| SceneError::Parse {
-            at: Location {
-                file: source.to_string(),
-                key: line.and_then(|l| lines.key_at(l)).map(str::to_string),
-                line,
-            },
-            message,
-        })?;
+    /// A parsed scene with its source attached, validated.
+    fn finish_parse(mut scene: Scene, source: &str, lines: KeyLines) -> Result<Scene, SceneError> {
         scene.source = SceneSource {
             name: source.to_string(),
             dir: None,
@@ -484,6 +489,39 @@ impl Scene {
     }
 }
 
+/// A scene of nothing but whitespace is an error, not the default scene: it is
+/// what an interrupted write or a truncated copy leaves.
+fn refuse_empty(text: &str, source: &str) -> Result<(), SceneError> {
+    if text.trim().is_empty() {
+        return Err(SceneError::Empty {
+            file: source.to_string(),
+        });
+    }
+    Ok(())
+}
+
+/// The key path serde was in when it failed (`room.width`, `balloons[0].count`);
+/// `None` at the top level.
+fn key_path(path: &serde_path_to_error::Path) -> Option<String> {
+    path.iter().next().is_some().then(|| path.to_string())
+}
+
+fn parse_error(
+    source: &str,
+    key: Option<String>,
+    line: Option<usize>,
+    message: String,
+) -> SceneError {
+    SceneError::Parse {
+        at: Location {
+            file: source.to_string(),
+            key,
+            line,
+        },
+        message,
+    }
+}
+
 /// The text of a scene file: at most `MAX_SCENE_BYTES`, UTF-8.
 fn read_scene_text(path: &Path) -> Result<String, SceneError> {
     use std::io::Read as _;
@@ -513,7 +551,7 @@ fn read_scene_text(path: &Path) -> Result<String, SceneError> {
     })
 }
 
-/// `"#rrggbb"` → RGB in 0–1 (sRGB, as written); colour names are looked up in `obj::color_rgb`.
+/// `"#rrggbb"` → RGB in 0–1 (sRGB, as written); colour names are looked up in the `palette`.
 pub fn parse_color(name: &str) -> Option<[f32; 3]> {
     if let Some(hex) = name.strip_prefix('#') {
         if hex.len() != 6 || !hex.is_ascii() {
@@ -522,7 +560,7 @@ pub fn parse_color(name: &str) -> Option<[f32; 3]> {
         let channel = |i: usize| u8::from_str_radix(&hex[i..i + 2], 16).ok();
         return Some([channel(0)?, channel(2)?, channel(4)?].map(|c| f32::from(c) / 255.0));
     }
-    crate::obj::color_rgb(name)
+    color_rgb(name)
 }
 
 #[cfg(test)]

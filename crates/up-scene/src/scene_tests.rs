@@ -18,11 +18,87 @@ fn json_err(text: &str) -> SceneError {
 }
 
 #[test]
-fn empty_file_is_the_default_scene() {
-    let scene = Scene::from_toml_str("", "empty.toml").unwrap();
+fn empty_table_and_comment_are_the_default_scene() {
+    let scene = Scene::from_toml_str("# the original\n", "comment.toml").unwrap();
     assert_eq!(scene, Scene::default());
     let scene = Scene::from_json_str("{}", "empty.json").unwrap();
     assert_eq!(scene, Scene::default());
+}
+
+#[test]
+fn empty_and_whitespace_only_files_are_errors_that_say_so() {
+    for text in ["", " ", "\n\n", " \t\r\n  \n"] {
+        let e = toml_err(text);
+        assert!(matches!(e, SceneError::Empty { .. }), "{text:?}: {e}");
+        assert!(
+            e.to_string().starts_with("test.toml: the scene is empty"),
+            "{e}"
+        );
+        let e = json_err(text);
+        assert!(matches!(e, SceneError::Empty { .. }), "{text:?}: {e}");
+        assert!(
+            e.to_string().starts_with("test.json: the scene is empty"),
+            "{e}"
+        );
+    }
+    // Read from a file, the message names the file.
+    let dir = std::env::temp_dir().join(format!("up-scene-empty-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for name in ["zero.toml", "zero.json", "blank.toml"] {
+        let path = dir.join(name);
+        let text = if name.starts_with("blank") {
+            "  \n\t\n"
+        } else {
+            ""
+        };
+        std::fs::write(&path, text).unwrap();
+        let e = Scene::from_path(&path).unwrap_err();
+        assert_eq!(
+            e.to_string().split(':').next(),
+            Some(path.display().to_string().as_str()),
+            "{e}"
+        );
+        assert!(e.to_string().contains("the scene is empty"), "{e}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_wrong_type_in_json_names_its_own_key_not_the_last_one_on_the_line() {
+    let text = r#"{"room": {"width": [1,2], "depth": 6, "wall_height": 3, "ceiling": "flat"}}"#;
+    let e = json_err(text);
+    assert!(matches!(e, SceneError::Parse { .. }), "{e}");
+    assert_eq!(e.key(), Some("room.width"), "{e}");
+    assert_eq!(e.line(), Some(1));
+    assert!(
+        e.to_string()
+            .starts_with("test.json:1: room.width: invalid type: sequence, expected f32"),
+        "{e}"
+    );
+    // Spread over lines, the line is the value's.
+    let text = "{\n \"sim\": {\"dt\": 0.01,\n  \"substeps\": 4},\n \"balloons\": [\n  {\"count\": 2},\n  {\"count\": 3, \"colors\": [\"red\",\n   7]}\n ]\n}";
+    let e = json_err(text);
+    assert_eq!(e.key(), Some("balloons[1].colors[1]"), "{e}");
+    assert_eq!(e.line(), Some(7), "{e}");
+}
+
+#[test]
+fn a_wrong_type_in_toml_names_its_key_and_line() {
+    let text = "[room]\nwidth = [1, 2]\ndepth = 6\nwall_height = 3\nceiling = \"flat\"\n";
+    let e = toml_err(text);
+    assert!(matches!(e, SceneError::Parse { .. }), "{e}");
+    assert_eq!(e.key(), Some("room.width"), "{e}");
+    assert_eq!(e.line(), Some(2), "{e}");
+    assert!(
+        e.to_string()
+            .starts_with("test.toml:2: room.width: invalid type: sequence, expected f32"),
+        "{e}"
+    );
+    let text =
+        "[[balloons]]\ncount = 1\n\n[[balloons]]\ncount = 2\ncolors = [\n  \"red\",\n  7,\n]\n";
+    let e = toml_err(text);
+    assert_eq!(e.key(), Some("balloons[1].colors[1]"), "{e}");
+    assert_eq!(e.line(), Some(8), "{e}");
 }
 
 #[test]
@@ -446,12 +522,15 @@ fn json_gets_the_same_checks_as_toml() {
     );
     let e = json_err("{\"sim\": {\"sleep\": \"yes\"}}");
     assert_eq!(e.key(), Some("sim.sleep"), "{e}");
+    // serde reads a struct from an array field by field: the first is the room.
     let e = json_err("[1, 2]");
     assert!(
         e.to_string()
-            .starts_with("test.json:1: invalid type: integer `1`, expected struct RoomSpec"),
+            .starts_with("test.json:1: [0]: invalid type: integer `1`, expected struct RoomSpec"),
         "{e}"
     );
+    let e = json_err("{\"sim\": {}} {}");
+    assert!(e.to_string().contains("trailing characters"), "{e}");
 }
 
 #[test]

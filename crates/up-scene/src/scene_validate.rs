@@ -211,9 +211,10 @@ pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
         }
         for (j, color) in group.colors.iter().enumerate() {
             if parse_color(color).is_none() {
+                let names: Vec<&str> = crate::palette::color_names().collect();
                 return Err(c.fail(
                     &format!("balloons[{i}].colors[{j}]"),
-                    "a colour name (red, yellow, blue, green, purple, orange, ...) or \"#rrggbb\"",
+                    format!("a colour name ({}) or \"#rrggbb\"", names.join(", ")),
                     format!("{color:?}"),
                 ));
             }

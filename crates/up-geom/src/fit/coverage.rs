@@ -52,14 +52,14 @@ pub fn surface_samples(
     if total <= 0.0 {
         return points;
     }
-    let mut rng = SplitMix64(seed);
+    let mut rng = SplitMix64::new(seed);
     for _ in 0..random_points {
-        let pick = rng.next_f64() * total;
+        let pick = rng.unit_f64() * total;
         let k = cumulative
             .partition_point(|&c| c <= pick)
             .min(triangles.len() - 1);
         let [a, b, c] = triangles[k].map(|i| vertices[i as usize].as_dvec3());
-        let (mut u, mut v) = (rng.next_f64(), rng.next_f64());
+        let (mut u, mut v) = (rng.unit_f64(), rng.unit_f64());
         if u + v > 1.0 {
             (u, v) = (1.0 - u, 1.0 - v);
         }

@@ -192,8 +192,8 @@ mod tests {
             ceiling.normal(0).dot(normal) > 0.999,
             "the ceiling must face the bounds"
         );
-        let mut rng = crate::split_mix::SplitMix64(7);
-        let mut random = move || rng.next_f32();
+        let mut rng = crate::SplitMix64::new(7);
+        let mut random = move || rng.unit();
         let (mut let_go, mut looked_at) = (0, 0);
         for _ in 0..4000 {
             let radius = 0.05 + 0.4 * random();

@@ -1,13 +1,57 @@
 //! Output files written whole or not at all: into a temporary file beside
 //! the target, renamed over it when complete. A failed or interrupted run
-//! leaves no half file under the target's name.
+//! leaves no half file under the target's name. Every file UP writes (the
+//! CLI's trajectories, snapshots and fits; the OBJ and MTL exports) goes
+//! through here.
 
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result};
+use thiserror::Error;
 
+/// A file that could not be written; the message names it.
+#[derive(Debug, Error)]
+pub enum WriteError {
+    /// The temporary file could not be made (a missing directory, no permission).
+    #[error("cannot create {}", path.display())]
+    Create {
+        path: PathBuf,
+        #[source]
+        source: io::Error,
+    },
+    /// Writing, syncing or the final rename failed.
+    #[error("cannot write {}", path.display())]
+    Write {
+        path: PathBuf,
+        #[source]
+        source: io::Error,
+    },
+}
+
+impl WriteError {
+    /// The target the error is about.
+    pub fn path(&self) -> &Path {
+        match self {
+            WriteError::Create { path, .. } | WriteError::Write { path, .. } => path,
+        }
+    }
+
+    /// The I/O error underneath.
+    pub fn io_error(&self) -> &io::Error {
+        match self {
+            WriteError::Create { source, .. } | WriteError::Write { source, .. } => source,
+        }
+    }
+
+    pub fn into_io_error(self) -> io::Error {
+        match self {
+            WriteError::Create { source, .. } | WriteError::Write { source, .. } => source,
+        }
+    }
+}
+
+/// A file being written: nothing appears under the target's name until `commit`.
 pub struct AtomicFile {
     target: PathBuf,
     temp: PathBuf,
@@ -17,14 +61,20 @@ pub struct AtomicFile {
 
 impl AtomicFile {
     /// Creates the temporary file now, so a missing directory fails before any work.
-    pub fn create(target: &Path) -> Result<AtomicFile> {
-        let name = target
-            .file_name()
-            .with_context(|| format!("{}: expected a file name", target.display()))?;
+    pub fn create(target: &Path) -> Result<AtomicFile, WriteError> {
+        let create_error = |source| WriteError::Create {
+            path: target.to_path_buf(),
+            source,
+        };
+        let name = target.file_name().ok_or_else(|| {
+            create_error(io::Error::new(
+                io::ErrorKind::InvalidInput,
+                "expected a file name",
+            ))
+        })?;
         let temp_name = format!(".{}.{}.tmp", name.to_string_lossy(), std::process::id());
         let temp = target.with_file_name(temp_name);
-        let file =
-            File::create(&temp).with_context(|| format!("cannot create {}", target.display()))?;
+        let file = File::create(&temp).map_err(create_error)?;
         Ok(AtomicFile {
             target: target.to_path_buf(),
             temp,
@@ -33,7 +83,7 @@ impl AtomicFile {
     }
 
     /// Flushes, syncs, closes and renames the temporary file onto the target.
-    pub fn commit(mut self) -> Result<()> {
+    pub fn commit(mut self) -> Result<(), WriteError> {
         let writer = self.writer.take();
         let finish = || -> io::Result<()> {
             if let Some(writer) = writer {
@@ -42,7 +92,10 @@ impl AtomicFile {
             }
             std::fs::rename(&self.temp, &self.target)
         };
-        finish().with_context(|| format!("cannot write {}", self.target.display()))
+        finish().map_err(|source| WriteError::Write {
+            path: self.target.clone(),
+            source,
+        })
     }
 }
 
@@ -73,10 +126,12 @@ impl Drop for AtomicFile {
 }
 
 /// Writes `bytes` to `target` atomically.
-pub fn write_atomically(target: &Path, bytes: &[u8]) -> Result<()> {
+pub fn write_atomically(target: &Path, bytes: &[u8]) -> Result<(), WriteError> {
     let mut file = AtomicFile::create(target)?;
-    file.write_all(bytes)
-        .with_context(|| format!("cannot write {}", target.display()))?;
+    file.write_all(bytes).map_err(|source| WriteError::Write {
+        path: target.to_path_buf(),
+        source,
+    })?;
     file.commit()
 }
 
@@ -142,11 +197,19 @@ mod tests {
         let mut file = AtomicFile::create(&target).unwrap();
         file.write_all(b"data").unwrap();
         let e = file.commit().unwrap_err();
-        assert!(format!("{e:#}").contains("cannot write"), "{e:#}");
+        assert!(matches!(e, WriteError::Write { .. }), "{e}");
+        assert_eq!(e.to_string(), format!("cannot write {}", target.display()));
+        assert_eq!(e.path(), target);
         assert_eq!(names(&dir), vec!["taken"]);
         assert!(target.is_dir());
-        let e = write_atomically(&dir.join("no/such/dir/f"), b"x").unwrap_err();
-        assert!(format!("{e:#}").contains("cannot create"), "{e:#}");
+        let missing = dir.join("no/such/dir/f");
+        let e = write_atomically(&missing, b"x").unwrap_err();
+        assert!(matches!(e, WriteError::Create { .. }), "{e}");
+        assert_eq!(
+            e.to_string(),
+            format!("cannot create {}", missing.display())
+        );
+        assert_eq!(e.io_error().kind(), io::ErrorKind::NotFound);
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

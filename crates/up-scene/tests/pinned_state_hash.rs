@@ -1,0 +1,86 @@
+//! The state hash of a fixed scene after a fixed number of steps, pinned.
+//!
+//! Every result of the engine feeds `World::state_hash`: the spawn layout
+//! (the scene's seeded generator), the forces, the contacts, the solver. The
+//! constants below are the hashes the engine gives today; a change of any of
+//! them is a change of results. Editing one must be deliberate, and the
+//! commit that does it says why the results changed (a bug fix, a new
+//! model), never "to make the test pass".
+
+use std::path::PathBuf;
+
+use up_scene::build::build_world;
+use up_scene::scene::Scene;
+
+/// The original room: 50 balloons released from the floor, seed 1.
+const DEFAULT_SCENE: &str = "default.toml";
+/// Four simulated seconds at 1/60 s: the crowd rises, meets the pyramid
+/// ceiling and starts to settle, so contacts, sleep and the solver all count.
+const STEPS: u32 = 240;
+/// `World::state_hash()` of `DEFAULT_SCENE` after `STEPS` steps.
+const DEFAULT_SCENE_HASH: u64 = 0x41b5_8c24_fcad_80d2;
+/// The party hall: 1,000 balloons of two sizes and nine colours (one a hex
+/// code), seed 2024; enough bodies that the parallel passes split into tasks.
+const PARTY_HALL: &str = "party-hall.toml";
+/// Three simulated seconds: the crowd rises through the 5 m hall.
+const PARTY_HALL_STEPS: u32 = 180;
+/// `World::state_hash()` of `PARTY_HALL` after `PARTY_HALL_STEPS` steps.
+const PARTY_HALL_HASH: u64 = 0x21da_955e_0eb8_7a75;
+
+fn asset(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../assets/scenes")
+        .join(name)
+}
+
+/// The scene file built and stepped `steps` times on a pool of `threads` threads.
+fn hash_after(name: &str, steps: u32, threads: usize) -> u64 {
+    let scene = Scene::from_path(asset(name)).unwrap_or_else(|e| panic!("{e}"));
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("a thread pool");
+    pool.install(|| {
+        let mut built = build_world(&scene).unwrap_or_else(|e| panic!("{e}"));
+        for _ in 0..steps {
+            built.world.step();
+        }
+        built.world.state_hash()
+    })
+}
+
+#[test]
+fn default_scene_after_four_seconds_on_one_thread() {
+    let hash = hash_after(DEFAULT_SCENE, STEPS, 1);
+    assert_eq!(
+        hash, DEFAULT_SCENE_HASH,
+        "state hash {hash:#018x}, pinned {DEFAULT_SCENE_HASH:#018x}: the results changed"
+    );
+}
+
+#[test]
+fn default_scene_after_four_seconds_on_three_threads() {
+    let hash = hash_after(DEFAULT_SCENE, STEPS, 3);
+    assert_eq!(
+        hash, DEFAULT_SCENE_HASH,
+        "state hash {hash:#018x}, pinned {DEFAULT_SCENE_HASH:#018x}: the results changed"
+    );
+}
+
+#[test]
+fn party_hall_after_three_seconds_on_one_thread() {
+    let hash = hash_after(PARTY_HALL, PARTY_HALL_STEPS, 1);
+    assert_eq!(
+        hash, PARTY_HALL_HASH,
+        "state hash {hash:#018x}, pinned {PARTY_HALL_HASH:#018x}: the results changed"
+    );
+}
+
+#[test]
+fn party_hall_after_three_seconds_on_three_threads() {
+    let hash = hash_after(PARTY_HALL, PARTY_HALL_STEPS, 3);
+    assert_eq!(
+        hash, PARTY_HALL_HASH,
+        "state hash {hash:#018x}, pinned {PARTY_HALL_HASH:#018x}: the results changed"
+    );
+}
