@@ -36,4 +36,5 @@ pub use joint::{DistanceJointDef, DistanceLimit, JointAnchor, JointId};
 pub use quarantine::{QuarantinedBody, MAX_QUARANTINE_REPORTS};
 pub use snapshot::SnapshotError;
 pub use up_geom;
+pub use world::limits;
 pub use world::{ContactInfo, PhysicsError, StepStats, World, WorldDef, MAX_BODIES};

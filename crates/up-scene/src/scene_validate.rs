@@ -3,6 +3,8 @@
 
 use super::{parse_color, CeilingKind, Scene};
 use crate::error::SceneError;
+use up_physics::limits::{self, Limit};
+
 /// At most this many balloons over all groups: far below
 /// `up_physics::MAX_BODIES` (4 000 000), and about 0.2 GB of world and
 /// broadphase memory; a run of that many steps at several seconds each.
@@ -39,6 +41,14 @@ impl Checker<'_> {
             expected: expected.into(),
             found: found.into(),
         }
+    }
+
+    /// `value` inside a world parameter's shared limit.
+    fn limit(&self, key: &str, value: f32, limit: &Limit) -> Result<(), SceneError> {
+        if limit.contains(value) {
+            return Ok(());
+        }
+        Err(self.fail(key, limit.describe(), value.to_string()))
     }
 
     /// `lo <= value <= hi` (or `lo < value` when `lo_open`), finite.
@@ -122,11 +132,12 @@ pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
             sim.seed.to_string(),
         ));
     }
-    c.range("sim.dt", sim.dt, 0.0, 0.1, true, "s")?;
-    if !(1..=64).contains(&sim.substeps) {
+    c.limit("sim.dt", sim.dt, &limits::DT)?;
+    let substeps = limits::SUBSTEPS;
+    if !substeps.contains(sim.substeps as f32) {
         return Err(c.fail(
             "sim.substeps",
-            "an integer in [1, 64]",
+            format!("an integer in [{}, {}]", substeps.min, substeps.max),
             sim.substeps.to_string(),
         ));
     }
@@ -141,47 +152,28 @@ pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
             "m/s²",
         )?;
     }
-    c.range("sim.friction", sim.friction, 0.0, 10.0, false, "")?;
-    c.range("sim.restitution", sim.restitution, 0.0, 1.0, false, "")?;
-    c.range(
-        "sim.drag_coefficient",
-        sim.drag_coefficient,
-        0.0,
-        10.0,
-        false,
-        "",
-    )?;
-    c.range(
+    c.limit("sim.friction", sim.friction, &limits::FRICTION)?;
+    c.limit("sim.restitution", sim.restitution, &limits::RESTITUTION)?;
+    let drag = sim.drag_coefficient;
+    c.limit("sim.drag_coefficient", drag, &limits::DRAG_COEFFICIENT)?;
+    let added = sim.added_mass_coefficient;
+    c.limit(
         "sim.added_mass_coefficient",
-        sim.added_mass_coefficient,
-        0.0,
-        10.0,
-        false,
-        "",
+        added,
+        &limits::ADDED_MASS_COEFFICIENT,
     )?;
-    c.range(
-        "sim.angular_damping",
-        sim.angular_damping,
-        0.0,
-        1000.0,
-        false,
-        "1/s",
-    )?;
-    c.range(
+    let damping = sim.angular_damping;
+    c.limit("sim.angular_damping", damping, &limits::ANGULAR_DAMPING)?;
+    c.limit(
         "sim.contact_hertz",
         sim.contact_hertz,
-        0.0,
-        10_000.0,
-        true,
-        "Hz",
+        &limits::CONTACT_HERTZ,
     )?;
-    c.range(
+    let zeta = sim.contact_damping_ratio;
+    c.limit(
         "sim.contact_damping_ratio",
-        sim.contact_damping_ratio,
-        0.0,
-        1000.0,
-        false,
-        "",
+        zeta,
+        &limits::CONTACT_DAMPING_RATIO,
     )?;
 
     if scene.balloons.len() > MAX_BALLOON_GROUPS {

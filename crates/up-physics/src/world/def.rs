@@ -4,6 +4,7 @@ use glam::Vec3;
 use serde::{Deserialize, Serialize};
 use up_geom::TriMesh;
 
+use super::limits::{self, Limit};
 use super::PhysicsError;
 use crate::forces::atmosphere::Atmosphere;
 
@@ -123,6 +124,18 @@ fn check(
     }
 }
 
+/// The parameter `key` inside its shared limit (`limits`).
+fn within(limit: &Limit, key: &'static str, value: f32) -> Result<(), PhysicsError> {
+    if limit.contains(value) {
+        return Ok(());
+    }
+    Err(PhysicsError::OutOfRange {
+        key,
+        value,
+        expected: limit.describe(),
+    })
+}
+
 impl WorldDef {
     /// Checks every parameter against its accepted range.
     pub fn validate(&self) -> Result<(), PhysicsError> {
@@ -142,19 +155,9 @@ impl WorldDef {
             a.pressure_pa,
             "> 0 Pa",
         )?;
-        check(
-            self.dt > 0.0 && self.dt <= 0.1,
-            "dt",
-            self.dt,
-            "0 < dt ≤ 0.1 s",
-        )?;
+        within(&limits::DT, "dt", self.dt)?;
         let substeps = self.substeps as f32;
-        check(
-            (1..=64).contains(&self.substeps),
-            "substeps",
-            substeps,
-            "1 to 64",
-        )?;
+        within(&limits::SUBSTEPS, "substeps", substeps)?;
         let slop = self.stabilization_slop;
         check(slop >= 0.0, "stabilization_slop", slop, "≥ 0 m")?;
         let passes = self.stabilization_iterations as f32;
@@ -185,31 +188,34 @@ impl WorldDef {
             iterations,
             "1 to 32",
         )?;
-        check(
-            self.contact_hertz >= 0.0,
-            "contact_hertz",
-            self.contact_hertz,
-            "≥ 0 Hz",
-        )?;
+        within(&limits::CONTACT_HERTZ, "contact_hertz", self.contact_hertz)?;
         let zeta = self.contact_damping_ratio;
-        check(zeta >= 0.0, "contact_damping_ratio", zeta, "≥ 0")?;
+        within(
+            &limits::CONTACT_DAMPING_RATIO,
+            "contact_damping_ratio",
+            zeta,
+        )?;
         check(
             self.max_push_out > 0.0,
             "max_push_out",
             self.max_push_out,
             "> 0 m/s",
         )?;
-        check(self.friction >= 0.0, "friction", self.friction, "≥ 0")?;
+        within(&limits::FRICTION, "friction", self.friction)?;
         let e = self.restitution;
-        check((0.0..=1.0).contains(&e), "restitution", e, "0 to 1")?;
+        within(&limits::RESTITUTION, "restitution", e)?;
         let th = self.restitution_threshold;
         check(th >= 0.0, "restitution_threshold", th, "≥ 0 m/s")?;
         let cd = self.drag_coefficient;
-        check(cd >= 0.0, "drag_coefficient", cd, "≥ 0")?;
+        within(&limits::DRAG_COEFFICIENT, "drag_coefficient", cd)?;
         let ca = self.added_mass_coefficient;
-        check(ca >= 0.0, "added_mass_coefficient", ca, "≥ 0")?;
+        within(
+            &limits::ADDED_MASS_COEFFICIENT,
+            "added_mass_coefficient",
+            ca,
+        )?;
         let ad = self.angular_damping;
-        check(ad >= 0.0, "angular_damping", ad, "≥ 0 1/s")?;
+        within(&limits::ANGULAR_DAMPING, "angular_damping", ad)?;
         let sd = self.speculative_distance;
         check(sd >= 0.0, "speculative_distance", sd, "≥ 0 m")?;
         let sl = self.sleep_linear_speed;

@@ -13,6 +13,12 @@ pub enum PhysicsError {
         value: f32,
         expected: &'static str,
     },
+    #[error("invalid world parameter `{key}` = {value}: expected {expected}")]
+    OutOfRange {
+        key: &'static str,
+        value: f32,
+        expected: String,
+    },
     #[error("invalid balloon shape: {0}")]
     BadShape(String),
     #[error("unknown shape {0}")]

@@ -14,6 +14,7 @@ mod def;
 mod error;
 mod finish;
 mod joints;
+pub mod limits;
 mod place;
 mod prepare;
 mod queries;
