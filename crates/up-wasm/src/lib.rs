@@ -23,9 +23,8 @@
 //!   of wasm memory, one view per array: call `write_*`, then view
 //!   `*_len()` elements at `*_ptr()` in the module's `memory`. A view is
 //!   valid until the next call (memory may grow and move).
-//! - The stage timers of up-physics import `env.up_now_ms`; this crate
-//!   defines that symbol over `performance.now()`, so the module needs no
-//!   import beyond wasm-bindgen's own.
+//! - The stage timers of up-physics import `env.up_now_ms() -> f64` (ms,
+//!   monotonic); the Makefile points it at `performance.now()` in the glue.
 //!
 //! SI units, Y up, origin at the centre of the floor.
 
@@ -46,28 +45,10 @@ pub use state::{
 
 use error::named;
 
-/// up-physics' stage clock in the browser and in Node, ms (monotonic).
-#[cfg(target_arch = "wasm32")]
-mod clock {
-    use wasm_bindgen::prelude::*;
-
-    #[wasm_bindgen]
-    extern "C" {
-        #[wasm_bindgen(js_namespace = performance, js_name = now)]
-        fn performance_now() -> f64;
-    }
-
-    /// Resolves up-physics' `env.up_now_ms` import inside the module.
-    #[no_mangle]
-    pub extern "C" fn up_now_ms() -> f64 {
-        performance_now()
-    }
-}
-
 /// The strides as literal types in the `.d.ts`: the page's own stride
 /// constants are typed with them, so they cannot drift from these (the test
 /// below holds this text to the Rust constants).
-#[cfg_attr(not(target_arch = "wasm32"), allow(dead_code))] // natively, only the test reads it
+#[allow(dead_code)] // read at compile time by the custom section below, and by the test
 const STRIDE_TYPES: &str = r#"
 /** Floats per pose: x, y, z, qx, qy, qz, qw (`constants().pose_stride`). */
 export type PoseStride = 7;
