@@ -20,9 +20,12 @@
 //!   a refused call leaves the world as it was. Bad arguments (NaN, out of
 //!   range, too fast, too many) are errors, never traps.
 //! - Bulk data (poses, colours, contacts, the room, trees) are read as views
-//!   of wasm memory, one view per array: call `write_*`, then view
-//!   `*_len()` elements at `*_ptr()` in the module's `memory`. A view is
-//!   valid until the next call (memory may grow and move).
+//!   of wasm memory, one view per array, never one call per body: a
+//!   `write_*` call fills the array and returns its length (floats of poses,
+//!   bodies, contacts or tree nodes: see each), the room's arrays have
+//!   `*_len()`, and the view is that many elements (times the stride) at
+//!   `*_ptr()` in the module's `memory`. A view is valid until the next call
+//!   (memory may grow and move).
 //! - The stage timers of up-physics import `env.up_now_ms() -> f64` (ms,
 //!   monotonic); the Makefile points it at `performance.now()` in the glue.
 //!

@@ -428,9 +428,9 @@ impl State {
         Ok(EngineStats {
             stages,
             bodies: world.body_count() as u32,
-            awake: s.awake_count as u32,
-            pairs: s.pair_count as u32,
-            contacts: s.contact_count as u32,
+            awake: s.awake_count,
+            pairs: s.pair_count,
+            contacts: s.contact_count,
             max_penetration: s.max_penetration,
         })
     }
