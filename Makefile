@@ -14,6 +14,8 @@ PORT ?= 8080
 CARGO ?= cargo
 WASM_TARGET := wasm32-unknown-unknown
 WASM_OUT := web/public/wasm/up_wasm.wasm
+# The JS glue must come from the wasm-bindgen-cli of the version Cargo.lock holds.
+WASM_BINDGEN_VERSION := $(shell sed -n '/^name = "wasm-bindgen"$$/{n;s/^version = "\(.*\)"$$/\1/p;}' Cargo.lock)
 RUST_SOURCES := $(shell find crates -name '*.rs' -o -name Cargo.toml) Cargo.toml Cargo.lock .cargo/config.toml
 WEB_SOURCES := $(shell find web/src web/index.html web/vite.config.* web/tsconfig*.json web/scripts -type f 2>/dev/null) $(shell find assets -type f 2>/dev/null)
 
@@ -32,6 +34,8 @@ setup-rust:
 	@rustup target list --installed 2>/dev/null | grep -qx $(WASM_TARGET) || rustup target add $(WASM_TARGET)
 	@rustup component list --installed 2>/dev/null | grep -q '^clippy' || rustup component add clippy
 	@rustup component list --installed 2>/dev/null | grep -q '^rustfmt' || rustup component add rustfmt
+	@wasm-bindgen --version 2>/dev/null | grep -qx 'wasm-bindgen $(WASM_BINDGEN_VERSION)' || \
+	  $(CARGO) install wasm-bindgen-cli --version $(WASM_BINDGEN_VERSION) --locked --no-default-features
 
 # npm ci only when the lock file changed since the last install.
 setup-web: web/node_modules/.installed
@@ -50,8 +54,15 @@ setup-browser:
 $(WASM_OUT): $(RUST_SOURCES) | setup-rust
 	# No debug info in the wasm (10.7 MB with it, 0.9 MB without).
 	CARGO_PROFILE_RELEASE_DEBUG=0 $(CARGO) build --release -p up-wasm --target $(WASM_TARGET)
-	mkdir -p $(dir $@)
-	cp target/$(WASM_TARGET)/release/up_wasm.wasm $@
+	# up_wasm.js (glue), up_wasm.d.ts (types), and the module, renamed from
+	# up_wasm_bg.wasm: the page and the tools pass its bytes to initSync.
+	wasm-bindgen --target web --out-dir $(dir $@) target/$(WASM_TARGET)/release/up_wasm.wasm
+	# up-physics' stage clock imports env.up_now_ms; the glue would import it from
+	# a module named "env", which no browser resolves: it is performance.now here.
+	sed -i 's|^import \* as \(import[0-9]*\) from "env"$$|const \1 = { up_now_ms: () => performance.now() };|' $(dir $@)up_wasm.js
+	! grep -n 'from "env"' $(dir $@)up_wasm.js
+	mv $(dir $@)up_wasm_bg.wasm $@
+	mv $(dir $@)up_wasm_bg.wasm.d.ts $(dir $@)up_wasm.wasm.d.ts
 
 web/dist/index.html: $(WASM_OUT) $(WEB_SOURCES) web/node_modules/.installed
 	cd web && npm run --silent build
@@ -66,7 +77,8 @@ lint: setup-rust
 test-rust:
 	$(CARGO) test --workspace --release
 
-test-web: setup-web
+# The web tests load the built module (the contract test checks both sides agree).
+test-web: setup-web $(WASM_OUT)
 	cd web && npm test
 
 test-e2e: setup-browser build

@@ -8,20 +8,20 @@
 //
 // Needs target/release/up-bench (the scene, Rapier's matched parameters, and
 // the overlap measure — one measurement for both engines, natively) and
-// web/public/wasm/up_wasm.wasm (`make web/public/wasm/up_wasm.wasm`).
+// web/public/wasm/up_wasm.wasm with its glue up_wasm.js (`make web/public/wasm/up_wasm.wasm`).
 // Peak memory: each engine alone in a child process (`--rss-probe ENGINE`).
 
 import { execFileSync, spawnSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join, resolve } from 'node:path';
-import { fileURLToPath } from 'node:url';
+import { fileURLToPath, pathToFileURL } from 'node:url';
 import { performance } from 'node:perf_hooks';
 
 const HERE = dirname(fileURLToPath(import.meta.url));
 const ROOT = resolve(HERE, '..', '..');
+/** Rapier's poses are written in UP's layout; UpWasm.load holds this to the module's stride. */
 const POSE_FLOATS = 7;
-const TREE_FLOATS = 6;
 
 /** Rapier, imported only where it runs (UP's memory probe never loads it). */
 let RAPIER = null;
@@ -92,76 +92,67 @@ function loadScene(opts) {
   return JSON.parse(text);
 }
 
-// ---- UP, through its extern "C" API ----
+// ---- UP, through its wasm-bindgen API (crates/up-wasm) ----
 
 class UpWasm {
+  /** Loads the module at `path` with its glue (the same name ending in .js) next to it. */
   static async load(path) {
-    const bytes = readFileSync(path);
-    const { instance } = await WebAssembly.instantiate(bytes, { env: { up_now_ms: () => performance.now() } });
-    return new UpWasm(instance.exports);
+    const glue = await import(pathToFileURL(path.replace(/\.wasm$/, '.js')).href);
+    const { memory } = glue.initSync({ module: readFileSync(path) });
+    return new UpWasm(glue, memory);
   }
 
-  constructor(x) {
-    this.x = x;
-  }
-
-  check(code, what) {
-    if (code === 0) return;
-    const bytes = new Uint8Array(this.x.memory.buffer, this.x.up_last_error_ptr(), this.x.up_last_error_len());
-    throw new Error(`${what}: status ${code}: ${new TextDecoder().decode(bytes)}`);
-  }
-
-  output() {
-    const bytes = new Uint8Array(this.x.memory.buffer, this.x.up_output_ptr(), this.x.up_output_len());
-    return new TextDecoder().decode(bytes);
+  constructor(glue, memory) {
+    this.memory = memory;
+    this.engine = new glue.Engine();
+    // Strides come from the module, not from copies here.
+    this.constants = glue.constants();
+    if (this.constants.pose_stride !== POSE_FLOATS) {
+      throw new Error(`UP's wasm writes ${this.constants.pose_stride} floats per pose, this bench compares ${POSE_FLOATS}`);
+    }
   }
 
   loadSceneJson(json) {
-    const bytes = new TextEncoder().encode(json);
-    const ptr = this.x.up_alloc(bytes.length);
-    if (ptr === 0) throw new Error(`up_alloc: cannot allocate ${bytes.length} bytes for the scene`);
-    new Uint8Array(this.x.memory.buffer, ptr, bytes.length).set(bytes);
-    const code = this.x.up_world_from_json(ptr, bytes.length);
-    this.x.up_free(ptr, bytes.length);
-    this.check(code, 'up_world_from_json');
+    this.engine.load_scene_json(json);
   }
 
   step() {
-    this.check(this.x.up_step(1), 'up_step');
+    this.engine.step(1);
   }
 
   bodyCount() {
-    return this.x.up_body_count();
+    return this.engine.body_count();
   }
 
   /** A copy of every pose (x, y, z, qx, qy, qz, qw), dense order = creation order. */
   poses() {
-    this.check(this.x.up_write_poses(), 'up_write_poses');
-    return new Float32Array(this.x.memory.buffer, this.x.up_poses_ptr(), this.bodyCount() * POSE_FLOATS).slice();
+    const n = this.engine.write_poses();
+    return new Float32Array(this.memory.buffer, this.engine.poses_ptr(), n).slice();
   }
 
   room() {
-    const m = this.x.memory.buffer;
+    const m = this.memory.buffer;
+    const e = this.engine;
     return {
-      vertices: new Float32Array(m, this.x.up_room_vertices_ptr(), this.x.up_room_vertex_count() * 3).slice(),
-      triangles: new Uint32Array(m, this.x.up_room_triangles_ptr(), this.x.up_room_triangle_count() * 3).slice(),
+      vertices: new Float32Array(m, e.room_vertices_ptr(), e.room_vertices_len()).slice(),
+      triangles: new Uint32Array(m, e.room_triangles_ptr(), e.room_triangles_len()).slice(),
     };
   }
 
   /** Leaf spheres of model 0's tree: [x, y, z, r] in the body frame. */
   leaves() {
-    this.check(this.x.up_model_tree(0), 'up_model_tree');
-    const nodes = new Float32Array(this.x.memory.buffer, this.x.up_tree_ptr(), this.x.up_tree_node_count() * TREE_FLOATS);
+    const stride = this.constants.tree_stride;
+    const count = this.engine.write_model_tree(0);
+    const nodes = new Float32Array(this.memory.buffer, this.engine.tree_ptr(), count * stride);
     const out = [];
-    for (let i = 0; i < nodes.length; i += TREE_FLOATS) {
+    for (let i = 0; i < nodes.length; i += stride) {
       if (nodes[i + 5] !== 0) out.push([nodes[i], nodes[i + 1], nodes[i + 2], nodes[i + 3]]);
     }
     return out;
   }
 
   awakeCount() {
-    this.check(this.x.up_stats_json(), 'up_stats_json');
-    return JSON.parse(this.output()).awake;
+    return this.engine.stats().awake;
   }
 }
 

@@ -1,7 +1,8 @@
 // Copies the repository's assets/ (balloon OBJ, per-colour MTL, example
 // scenes) into public/assets/ so Vite serves and bundles them, and writes
 // public/assets/manifest.json listing them (the app finds the model and
-// colours there). Checks that the engine (public/wasm/up_wasm.wasm) is built.
+// colours there). Checks that the engine (public/wasm/up_wasm.wasm and its
+// wasm-bindgen glue up_wasm.js) is built.
 
 import { cpSync, existsSync, mkdirSync, readdirSync, rmSync, statSync, writeFileSync } from "node:fs";
 import { dirname, join, relative, sep } from "node:path";
@@ -10,7 +11,7 @@ import { fileURLToPath } from "node:url";
 const web = join(dirname(fileURLToPath(import.meta.url)), "..");
 const source = join(web, "..", "assets");
 const target = join(web, "public", "assets");
-const wasm = join(web, "public", "wasm", "up_wasm.wasm");
+const engine = ["up_wasm.wasm", "up_wasm.js"].map((f) => join(web, "public", "wasm", f));
 
 if (!existsSync(source)) {
   console.error(`copy-assets: ${source} does not exist (expected the balloon model and scenes there)`);
@@ -34,11 +35,11 @@ if (!files.some((f) => f.endsWith(".obj"))) {
   console.error("copy-assets: no .obj balloon model in ../assets");
   process.exit(1);
 }
-if (!existsSync(wasm)) {
+const missing = engine.filter((f) => !existsSync(f));
+if (missing.length > 0) {
   console.error(
-    "copy-assets: public/wasm/up_wasm.wasm is missing. Build the engine first:\n" +
-      "  cargo build --release -p up-wasm --target wasm32-unknown-unknown\n" +
-      "  mkdir -p web/public/wasm && cp target/wasm32-unknown-unknown/release/up_wasm.wasm web/public/wasm/",
+    `copy-assets: ${missing.map((f) => relative(web, f)).join(" and ")} missing. Build the engine first ` +
+      "(cargo build of up-wasm, then wasm-bindgen):\n  make web/public/wasm/up_wasm.wasm",
   );
   process.exit(1);
 }

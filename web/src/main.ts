@@ -17,7 +17,6 @@ import { Panel } from "./ui/panel";
 import type { KeyAction } from "./ui/input";
 import { decodeSceneParam, encodeSceneHash, sceneParam } from "./scene/sceneLink";
 import { applyParams, paramsFromScene, type PanelParams } from "./scene/sceneParams";
-import { validateScene } from "./scene/sceneSchema";
 
 const $ = (id: string) => document.getElementById(id)!;
 const messages = new Messages($("message"), $("fatal"));
@@ -166,17 +165,18 @@ function start(): void {
 
   const panelActions = {
     change(params: PanelParams) {
-      const next = applyParams(currentScene, params);
-      const problems = validateScene(next);
-      if (problems.length > 0) {
-        messages.error(`This scene is not valid: ${problems[0].key}: ${problems[0].message}`);
-        panel?.set(paramsFromScene(currentScene));
-        return;
-      }
-      messages.clear();
-      const json = JSON.stringify(next);
-      bridge.load(json);
-      setHash(json);
+      const json = JSON.stringify(applyParams(currentScene, params));
+      // The engine is the scene's only validator.
+      void bridge.validate(json).then((error) => {
+        if (error) {
+          messages.error(`This scene is not valid: ${error}`);
+          panel?.set(paramsFromScene(currentScene));
+          return;
+        }
+        messages.clear();
+        bridge.load(json);
+        setHash(json);
+      });
     },
     reset() {
       messages.clear();

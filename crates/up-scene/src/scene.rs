@@ -53,6 +53,7 @@ pub const MAX_SCENE_BYTES: u64 = 1 << 20;
 pub const DEFAULT_SOURCE_NAME: &str = "<default scene>";
 
 /// A whole scene. `Scene::default()` is the original.
+#[cfg_attr(feature = "tsify", derive(tsify_next::Tsify))]
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Scene {
@@ -89,6 +90,7 @@ impl Default for SceneSource {
 
 /// The room: a box with a pyramidal or flat ceiling, or any closed OBJ mesh.
 /// Origin at the centre of the floor, Y up.
+#[cfg_attr(feature = "tsify", derive(tsify_next::Tsify))]
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct RoomSpec {
@@ -131,6 +133,7 @@ impl RoomSpec {
     }
 }
 
+#[cfg_attr(feature = "tsify", derive(tsify_next::Tsify))]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum CeilingKind {
@@ -138,6 +141,7 @@ pub enum CeilingKind {
     Flat,
 }
 
+#[cfg_attr(feature = "tsify", derive(tsify_next::Tsify))]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum GasKind {
@@ -146,6 +150,7 @@ pub enum GasKind {
 }
 
 /// A group of identical balloons.
+#[cfg_attr(feature = "tsify", derive(tsify_next::Tsify))]
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct BalloonGroup {
@@ -235,6 +240,7 @@ impl BalloonGroup {
 /// Balloons (their bounding spheres) are laid out inside it layer by layer
 /// from `min.y` upward, spread out over its x–z extent; a group too large for
 /// the box stacks further layers above `max.y`, up to the ceiling.
+#[cfg_attr(feature = "tsify", derive(tsify_next::Tsify))]
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SpawnBox {
@@ -243,6 +249,7 @@ pub struct SpawnBox {
 }
 
 /// The room's air: densities for buoyancy, drag and added mass follow (ideal gas).
+#[cfg_attr(feature = "tsify", derive(tsify_next::Tsify))]
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct AirSpec {
@@ -271,6 +278,7 @@ impl AirSpec {
 }
 
 /// Simulation settings. Defaults match `up_physics::WorldDef::default()`.
+#[cfg_attr(feature = "tsify", derive(tsify_next::Tsify))]
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SimSpec {

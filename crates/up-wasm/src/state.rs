@@ -9,8 +9,11 @@ use up_scene::build::{build_world, color_index, group_index, user_data_for, Buil
 use up_scene::scene::Scene;
 
 use crate::contacts::write_contacts;
-use crate::status::{finite, WasmError};
+use crate::error::{finite, WasmError};
+use crate::info::{EngineStats, WorldSummary};
 
+/// Most steps one `step` call takes: a host asking for more has lost track of time.
+pub const MAX_STEPS_PER_CALL: u32 = 10_000;
 /// Most balloons a page may hold: what a browser can draw and step (the
 /// engine itself takes millions). Adding past this is `Full`.
 pub const CAPACITY: usize = 50_000;
@@ -53,27 +56,10 @@ pub struct State {
     pub contacts: Vec<f32>,
     /// How many contacts the last step had, written or not.
     pub contact_total: usize,
-    /// Text handed to the page (scene JSON, stats JSON).
-    pub output: String,
     /// Stage milliseconds summed over the steps since the last `stats_json`:
     /// browsers coarsen `performance.now()`, so one step's timings are noisy.
     stage_sums: Vec<(&'static str, f64)>,
     steps_summed: u32,
-}
-
-fn json_string(s: &str) -> String {
-    let mut out = String::with_capacity(s.len() + 2);
-    out.push('"');
-    for c in s.chars() {
-        match c {
-            '"' => out.push_str("\\\""),
-            '\\' => out.push_str("\\\\"),
-            c if (c as u32) < 0x20 => out.push_str(&format!("\\u{:04x}", c as u32)),
-            c => out.push(c),
-        }
-    }
-    out.push('"');
-    out
 }
 
 /// `Ok` when a velocity stays within `MAX_SPEED` and `MAX_SPIN`, else why not.
@@ -91,15 +77,6 @@ fn speed_limits(linear: Vec3, angular: Vec3) -> Result<(), String> {
         ));
     }
     Ok(())
-}
-
-/// A number as JSON (non-finite values become `null`, which JSON lacks otherwise).
-fn json_number(x: f64) -> String {
-    if x.is_finite() {
-        format!("{x}")
-    } else {
-        "null".to_string()
-    }
 }
 
 impl State {
@@ -121,19 +98,7 @@ impl State {
 
     /// Builds `scene` and makes it the world. On error the old world stays.
     pub fn load(&mut self, scene: Scene) -> Result<(), WasmError> {
-        let total = scene.total_balloons();
-        if total > CAPACITY as u64 {
-            return Err(WasmError::Full(format!(
-                "{}: {total} balloons: the browser holds at most {CAPACITY} (the CLI takes more)",
-                scene.source.name
-            )));
-        }
-        if scene.room.mesh.is_some() {
-            return Err(WasmError::Scene(format!(
-                "{}: room.mesh: a mesh room cannot be read in the browser; expected a box room",
-                scene.source.name
-            )));
-        }
+        check_for_browser(&scene)?;
         let built = build_world(&scene)?;
         // Models were added as shapes in group order, one each, before any other.
         let shapes = (0..built.balloon_models.len() as u32)
@@ -166,20 +131,15 @@ impl State {
         self.load(Scene::default())
     }
 
-    pub fn scene_json(&mut self) -> Result<(), WasmError> {
-        self.output = self.loaded()?.scene.to_json_string()?;
-        Ok(())
-    }
-
-    pub fn default_scene_json(&mut self) -> Result<(), WasmError> {
-        self.output = Scene::default().to_json_string()?;
-        Ok(())
+    /// The loaded scene as JSON, every default written out.
+    pub fn scene_json(&self) -> Result<String, WasmError> {
+        Ok(self.loaded()?.scene.to_json_string()?)
     }
 
     pub fn step(&mut self, n: u32) -> Result<(), WasmError> {
-        if n > 10_000 {
+        if n > MAX_STEPS_PER_CALL {
             return Err(WasmError::BadArgument(format!(
-                "{n} steps at once: expected at most 10000"
+                "{n} steps at once: expected at most {MAX_STEPS_PER_CALL}"
             )));
         }
         let loaded = self.loaded.as_mut().ok_or(WasmError::NoWorld)?;
@@ -432,70 +392,73 @@ impl State {
             .map_or(0, |l| l.built.balloon_models.len())
     }
 
-    /// Palette, colour names, model diameters and the time step, as JSON.
-    pub fn world_info_json(&mut self) -> Result<(), WasmError> {
+    /// Palette, colour names, model diameters and the time step.
+    pub fn world_info(&self) -> Result<WorldSummary, WasmError> {
         let loaded = self.loaded()?;
-        let colors: Vec<String> = loaded
-            .built
-            .colors
-            .iter()
-            .map(|c| format!("[{},{},{}]", c[0], c[1], c[2]))
-            .collect();
-        let names: Vec<String> = loaded
-            .built
-            .color_names
-            .iter()
-            .map(|n| json_string(n))
-            .collect();
-        let diameters: Vec<String> = loaded
-            .scene
-            .balloons
-            .iter()
-            .map(|g| json_number(f64::from(g.diameter())))
-            .collect();
-        self.output = format!(
-            "{{\"colors\":[{}],\"color_names\":[{}],\"diameters\":[{}],\"dt\":{}}}",
-            colors.join(","),
-            names.join(","),
-            diameters.join(","),
-            json_number(f64::from(loaded.built.world.def().dt)),
-        );
-        Ok(())
+        Ok(WorldSummary {
+            colors: loaded.built.colors.clone(),
+            color_names: loaded.built.color_names.clone(),
+            diameters: loaded.scene.balloons.iter().map(|g| g.diameter()).collect(),
+            dt: loaded.built.world.def().dt,
+        })
     }
 
     /// Per-stage milliseconds per step, averaged over the steps since the last
-    /// call (the last step's when none), and the last step's counts, as JSON.
-    pub fn stats_json(&mut self) -> Result<(), WasmError> {
+    /// call (the last step's when none), and the last step's counts.
+    pub fn stats(&mut self) -> Result<EngineStats, WasmError> {
         let last = *self.world()?.counters();
-        let stages: Vec<String> = if self.steps_summed > 0 {
+        let stages = if self.steps_summed > 0 {
             let n = f64::from(self.steps_summed);
             self.stage_sums
                 .iter()
-                .map(|&(name, sum)| (name, sum / n))
-                .collect::<Vec<_>>()
+                .map(|&(name, sum)| (name.to_string(), sum / n))
+                .collect()
         } else {
             last.stages()
-        }
-        .iter()
-        .map(|(name, ms)| format!("[{},{}]", json_string(name), json_number(*ms)))
-        .collect();
+                .iter()
+                .map(|&(name, ms)| (name.to_string(), ms))
+                .collect()
+        };
         for sum in &mut self.stage_sums {
             sum.1 = 0.0;
         }
         self.steps_summed = 0;
         let world = self.world()?;
         let s = world.stats();
-        self.output = format!(
-            "{{\"stages\":[{}],\"bodies\":{},\"awake\":{},\"pairs\":{},\"contacts\":{},\"max_penetration\":{}}}",
-            stages.join(","),
-            world.body_count(),
-            s.awake_count,
-            s.pair_count,
-            s.contact_count,
-            json_number(f64::from(s.max_penetration)),
-        );
-        Ok(())
+        Ok(EngineStats {
+            stages,
+            bodies: world.body_count() as u32,
+            awake: s.awake_count,
+            pairs: s.pair_count,
+            contacts: s.contact_count,
+            max_penetration: s.max_penetration,
+        })
     }
+}
+
+/// `Ok` when the page can hold `scene` (what `Scene`'s own validation does
+/// not know): at most `CAPACITY` balloons, and a box room (a mesh room names
+/// a file the browser cannot read).
+pub fn check_for_browser(scene: &Scene) -> Result<(), WasmError> {
+    let total = scene.total_balloons();
+    if total > CAPACITY as u64 {
+        return Err(WasmError::Full(format!(
+            "{}: {total} balloons: the browser holds at most {CAPACITY} (the CLI takes more)",
+            scene.source.name
+        )));
+    }
+    if scene.room.mesh.is_some() {
+        return Err(WasmError::Scene(format!(
+            "{}: room.mesh: a mesh room cannot be read in the browser; expected a box room",
+            scene.source.name
+        )));
+    }
+    Ok(())
+}
+
+/// Reads and checks a scene in JSON as `load_json` would, without building it.
+pub fn validate_json(text: &str) -> Result<(), WasmError> {
+    check_for_browser(&Scene::from_json_str(text, WEB_SOURCE)?)
 }
 
 #[cfg(test)]

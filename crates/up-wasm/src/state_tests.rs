@@ -12,7 +12,7 @@ fn nothing_works_before_a_world_is_loaded() {
     assert_eq!(s.step(1), Err(WasmError::NoWorld));
     assert_eq!(s.write_poses(), Err(WasmError::NoWorld));
     assert_eq!(s.add_balloon_on_floor(0.0, 0.0, 0), Err(WasmError::NoWorld));
-    assert_eq!(s.remove(0).unwrap_err().code(), WasmError::NoWorld.code());
+    assert_eq!(s.remove(0).unwrap_err().kind(), WasmError::NoWorld.kind());
     assert_eq!(s.body_count(), 0);
 }
 
@@ -42,9 +42,10 @@ fn colours_and_models_follow_the_scene() {
     assert_eq!(s.colors.len(), s.body_count());
     assert!(s.colors.iter().all(|&c| c < palette));
     assert!(s.models.iter().all(|&m| m == 0));
-    s.world_info_json().unwrap();
-    assert!(s.output.starts_with("{\"colors\":[["));
-    assert!(s.output.contains("\"color_names\":[\"red\""));
+    let info = s.world_info().unwrap();
+    assert_eq!(info.colors.len(), palette as usize);
+    assert_eq!(info.color_names[0], "red");
+    assert_eq!(info.diameters, vec![up_scene::scene::DEFAULT_DIAMETER_M]);
 }
 
 #[test]
@@ -70,46 +71,49 @@ fn bad_arguments_are_errors_not_panics() {
     let mut s = default_state();
     let n = s.body_count() as u32;
     assert_eq!(
-        s.add_balloon_on_floor(f32::NAN, 0.0, 0).unwrap_err().code(),
-        2
+        s.add_balloon_on_floor(f32::NAN, 0.0, 0).unwrap_err().kind(),
+        "BadArgument"
     );
-    assert_eq!(s.add_balloon_on_floor(100.0, 0.0, 0).unwrap_err().code(), 3);
+    assert_eq!(
+        s.add_balloon_on_floor(100.0, 0.0, 0).unwrap_err().kind(),
+        "OutOfRange"
+    );
     assert_eq!(
         s.add_balloon(Vec3::new(0.0, 1.0, 0.0), 999, 0)
             .unwrap_err()
-            .code(),
-        3
+            .kind(),
+        "OutOfRange"
     );
     assert_eq!(
         s.add_balloon(Vec3::new(0.0, 1.0, 0.0), 0, 7)
             .unwrap_err()
-            .code(),
-        3
+            .kind(),
+        "OutOfRange"
     );
-    assert_eq!(s.remove(n).unwrap_err().code(), 3);
-    assert_eq!(s.grab(n + 5, Vec3::ZERO).unwrap_err().code(), 3);
+    assert_eq!(s.remove(n).unwrap_err().kind(), "OutOfRange");
+    assert_eq!(s.grab(n + 5, Vec3::ZERO).unwrap_err().kind(), "OutOfRange");
     assert_eq!(
         s.grab(0, Vec3::new(f32::INFINITY, 0.0, 0.0))
             .unwrap_err()
-            .code(),
-        2
+            .kind(),
+        "BadArgument"
     );
     assert_eq!(
-        s.drag_to(Vec3::new(0.0, f32::NAN, 0.0)).unwrap_err().code(),
-        2
+        s.drag_to(Vec3::new(0.0, f32::NAN, 0.0)).unwrap_err().kind(),
+        "BadArgument"
     );
     assert_eq!(
-        s.set_velocity(0, Vec3::NAN, Vec3::ZERO).unwrap_err().code(),
-        2
+        s.set_velocity(0, Vec3::NAN, Vec3::ZERO).unwrap_err().kind(),
+        "BadArgument"
     );
     assert_eq!(
         s.apply_impulse(0, Vec3::ZERO, Vec3::NAN)
             .unwrap_err()
-            .code(),
-        2
+            .kind(),
+        "BadArgument"
     );
-    assert_eq!(s.step(1_000_000).unwrap_err().code(), 2);
-    assert_eq!(s.write_tree(3).unwrap_err().code(), 3);
+    assert_eq!(s.step(1_000_000).unwrap_err().kind(), "BadArgument");
+    assert_eq!(s.write_tree(3).unwrap_err().kind(), "OutOfRange");
     assert_eq!(s.body_count() as u32, n, "no error changed the world");
 }
 
@@ -152,27 +156,26 @@ fn scenes_load_from_json_and_toml_and_bad_ones_keep_the_old_world() {
     s.load_toml("[[balloons]]\ncount = 3\n").unwrap();
     assert_eq!(s.body_count(), 3);
     let err = s.load_json(r#"{"room":{"width":-2}}"#).unwrap_err();
-    assert_eq!(err.code(), 5);
+    assert_eq!(err.kind(), "Scene");
     assert!(err.to_string().contains("room.width"), "{err}");
-    assert_eq!(s.load_json("{not json").unwrap_err().code(), 5);
+    assert_eq!(s.load_json("{not json").unwrap_err().kind(), "Scene");
     assert_eq!(
         s.load_json(r#"{"room":{"mesh":"room.obj"}}"#)
             .unwrap_err()
-            .code(),
-        5
+            .kind(),
+        "Scene"
     );
     let too_many = format!(
         r#"{{"room":{{"width":100,"depth":100}},"balloons":[{{"count":{}}}]}}"#,
         CAPACITY + 1
     );
-    assert_eq!(s.load_json(&too_many).unwrap_err().code(), 4);
+    assert_eq!(s.load_json(&too_many).unwrap_err().kind(), "Full");
     assert_eq!(
         s.body_count(),
         3,
         "a refused scene leaves the world as it was"
     );
-    s.scene_json().unwrap();
-    assert!(s.output.contains("\"count\": 3"));
+    assert!(s.scene_json().unwrap().contains("\"count\": 3"));
 }
 
 #[test]
@@ -191,19 +194,19 @@ fn trees_room_and_stats_are_readable() {
     let nv = (s.room_vertices.len() / 3) as u32;
     assert!(s.room_triangles.iter().all(|&i| i < nv));
     s.step(1).unwrap();
-    s.stats_json().unwrap();
-    assert!(s.output.contains("[\"total\","), "{}", s.output);
+    let stats = s.stats().unwrap();
+    assert_eq!(stats.stages.last().map(|st| st.0.as_str()), Some("total"));
 }
 
 #[test]
 fn stage_times_are_averaged_over_the_steps_since_the_last_read() {
     let mut s = default_state();
     s.step(5).unwrap();
-    s.stats_json().unwrap();
-    let first = s.output.clone();
-    assert!(first.contains("[\"solve\","), "{first}");
+    let first = s.stats().unwrap();
+    assert!(first.stages.iter().any(|st| st.0 == "solve"), "{first:?}");
     assert_eq!(s.steps_summed, 0, "reading resets the sums");
     // No step since: the last step's own times are reported.
-    s.stats_json().unwrap();
-    assert!(s.output.contains("\"bodies\":50"), "{}", s.output);
+    let again = s.stats().unwrap();
+    assert_eq!(again.bodies, 50);
+    assert_eq!(again.stages.len(), first.stages.len());
 }

@@ -1,276 +1,234 @@
-//! Every class of bad call through the `extern "C"` exports themselves: no
-//! world yet, NaN and infinite numbers, out-of-range indices and points,
-//! too fast, past the capacity, bad buffers. Each must answer a status code
-//! and a message that names the export, and leave the world as it was.
-//! (Each test runs on its own thread, so each starts with no world.)
+//! Every class of bad call through the exported `Engine` itself: no world
+//! yet, NaN and infinite numbers, out-of-range indices and points, too fast,
+//! past the capacity, bad scenes. Each must answer an error of the right
+//! kind whose message names the method, and leave the world as it was. The
+//! same calls in the browser throw these errors as JS `Error`s.
 
 use up_wasm::*;
 
-const NO_WORLD: i32 = 1;
-const BAD_ARGUMENT: i32 = 2;
-const OUT_OF_RANGE: i32 = 3;
-const FULL: i32 = 4;
-const SCENE: i32 = 5;
-const ENCODING: i32 = 7;
-
-fn last_error() -> String {
-    let ptr = up_last_error_ptr();
-    let len = up_last_error_len();
-    // SAFETY: the module keeps `len` bytes of UTF-8 at `ptr` until the next error.
-    let bytes = unsafe { std::slice::from_raw_parts(ptr, len) };
-    String::from_utf8(bytes.to_vec()).expect("the message is UTF-8")
-}
-
-fn output() -> String {
-    // SAFETY: as for `last_error`, until the next call.
-    let bytes = unsafe { std::slice::from_raw_parts(up_output_ptr(), up_output_len()) };
-    String::from_utf8(bytes.to_vec()).expect("the output is UTF-8")
-}
-
-/// Asserts `code` is `expected` and the message starts with `export`.
+/// Asserts `result` is refused with `kind` and a message naming `method`; returns the message.
 #[track_caller]
-fn refused(code: i32, expected: i32, export: &str) {
-    assert_eq!(code, expected, "{export}: {}", last_error());
-    let message = last_error();
+fn refused<T: std::fmt::Debug>(result: Result<T, CallError>, kind: &str, method: &str) -> String {
+    let e = result.expect_err(method);
+    assert_eq!(e.kind, kind, "{method}: {}", e.message);
     assert!(
-        message.starts_with(&format!("{export}: ")),
-        "the message names {export}: {message}"
+        e.message.starts_with(&format!("{method}: ")),
+        "the message names {method}: {}",
+        e.message
     );
+    e.message
 }
 
-/// Loads `json` through the same path as the page (up_alloc, copy, load, up_free).
-fn load_json(json: &str) -> i32 {
-    let ptr = up_alloc(json.len());
-    assert!(!ptr.is_null());
-    // SAFETY: `ptr` holds `json.len()` bytes from up_alloc.
-    unsafe { ptr.copy_from(json.as_ptr(), json.len()) };
-    let code = up_world_from_json(ptr, json.len());
-    assert_eq!(up_free(ptr, json.len()), 0);
-    code
+fn default_engine() -> Engine {
+    let mut e = Engine::new();
+    e.load_default_scene().unwrap();
+    e
 }
 
-fn poses() -> Vec<f32> {
-    assert_eq!(up_write_poses(), 0);
-    let n = up_body_count() as usize * POSE_FLOATS;
-    // SAFETY: up_write_poses wrote n floats at up_poses_ptr.
-    unsafe { std::slice::from_raw_parts(up_poses_ptr(), n) }.to_vec()
-}
-
-fn contacts() -> Vec<f32> {
-    let n = up_contact_count() as usize * CONTACT_FLOATS;
-    // SAFETY: up_write_contacts wrote n floats at up_contacts_ptr.
-    unsafe { std::slice::from_raw_parts(up_contacts_ptr(), n) }.to_vec()
+fn poses(e: &mut Engine) -> Vec<f32> {
+    let n = e.write_poses().unwrap() as usize;
+    assert_eq!(n, e.body_count() as usize * POSE_FLOATS);
+    // SAFETY: write_poses wrote n floats at poses_ptr, valid until the next call.
+    unsafe { std::slice::from_raw_parts(e.poses_ptr(), n) }.to_vec()
 }
 
 #[test]
-fn before_a_world_every_export_answers_no_world_or_nothing() {
-    refused(up_step(1), NO_WORLD, "up_step");
-    refused(up_write_poses(), NO_WORLD, "up_write_poses");
-    refused(up_write_colors(), NO_WORLD, "up_write_colors");
-    refused(up_write_models(), NO_WORLD, "up_write_models");
-    refused(up_write_contacts(100), NO_WORLD, "up_write_contacts");
-    refused(up_scene_json(), NO_WORLD, "up_scene_json");
-    refused(up_world_info_json(), NO_WORLD, "up_world_info_json");
-    refused(up_stats_json(), NO_WORLD, "up_stats_json");
+fn before_a_world_every_method_answers_no_world_or_nothing() {
+    let mut e = Engine::new();
+    let m = refused(e.step(1), "NoWorld", "step");
+    assert!(m.contains("load a scene first"), "{m}");
+    refused(e.write_poses(), "NoWorld", "write_poses");
     refused(
-        up_add_balloon(0.0, 1.0, 0.0, 0, 0),
-        NO_WORLD,
-        "up_add_balloon",
+        e.write_colors_and_models(),
+        "NoWorld",
+        "write_colors_and_models",
+    );
+    refused(e.write_contacts(100), "NoWorld", "write_contacts");
+    refused(e.scene_json(), "NoWorld", "scene_json");
+    refused(e.world_info(), "NoWorld", "world_info");
+    refused(e.stats(), "NoWorld", "stats");
+    refused(e.add_balloon(0.0, 1.0, 0.0, 0, 0), "NoWorld", "add_balloon");
+    refused(
+        e.add_balloon_on_floor(0.0, 0.0, 0),
+        "NoWorld",
+        "add_balloon_on_floor",
+    );
+    refused(e.remove(0), "NoWorld", "remove");
+    refused(
+        e.apply_impulse(0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
+        "NoWorld",
+        "apply_impulse",
     );
     refused(
-        up_add_balloon_on_floor(0.0, 0.0, 0),
-        NO_WORLD,
-        "up_add_balloon_on_floor",
+        e.set_velocity(0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
+        "NoWorld",
+        "set_velocity",
     );
-    refused(up_remove(0), NO_WORLD, "up_remove");
-    refused(
-        up_apply_impulse(0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
-        NO_WORLD,
-        "up_apply_impulse",
-    );
-    refused(
-        up_set_velocity(0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
-        NO_WORLD,
-        "up_set_velocity",
-    );
-    refused(up_grab(0, 0.0, 0.0, 0.0), NO_WORLD, "up_grab");
-    refused(up_drag_to(0.0, 1.0, 0.0), NO_WORLD, "up_drag_to");
-    refused(up_release(), NO_WORLD, "up_release");
-    refused(up_model_tree(0), NO_WORLD, "up_model_tree");
-    assert!(last_error().contains("load a scene first"));
-    assert_eq!(up_body_count(), 0);
-    assert_eq!(up_model_count(), 0);
-    assert_eq!(up_room_vertex_count(), 0);
-    assert_eq!(up_room_triangle_count(), 0);
-    assert_eq!(up_tree_node_count(), 0);
-    assert_eq!(up_contact_count(), 0);
-    assert_eq!(up_contact_total(), 0);
-    assert_eq!(up_state_hash(), 0);
-    assert_eq!(up_output_len(), 0);
+    refused(e.grab(0, 0.0, 0.0, 0.0), "NoWorld", "grab");
+    refused(e.drag_to(0.0, 1.0, 0.0), "NoWorld", "drag_to");
+    refused(e.release(), "NoWorld", "release");
+    refused(e.write_model_tree(0), "NoWorld", "write_model_tree");
+    assert_eq!(e.body_count(), 0);
+    assert_eq!(e.model_count(), 0);
+    assert_eq!(e.room_vertices_len(), 0);
+    assert_eq!(e.room_triangles_len(), 0);
+    assert_eq!(e.contact_total(), 0);
+    assert_eq!(e.state_hash(), 0);
     for ptr in [
-        up_poses_ptr(),
-        up_contacts_ptr(),
-        up_room_vertices_ptr(),
-        up_tree_ptr(),
+        e.poses_ptr(),
+        e.contacts_ptr(),
+        e.room_vertices_ptr(),
+        e.tree_ptr(),
     ] {
         assert!(!ptr.is_null(), "an empty view, not a null pointer");
     }
     // What needs no world works.
-    assert_eq!(up_default_scene_json(), 0);
-    assert!(output().contains("balloons"));
-    assert_eq!(up_capacity() as usize, CAPACITY);
-    assert_eq!(up_max_contacts() as usize, MAX_CONTACTS);
+    assert!(default_scene_json().unwrap().contains("balloons"));
 }
 
 #[test]
 fn nan_and_infinite_arguments_are_bad_arguments_and_change_nothing() {
-    assert_eq!(up_world_default(), 0);
-    let hash = up_state_hash();
-    let n = up_body_count();
+    let mut e = default_engine();
+    let hash = e.state_hash();
+    let n = e.body_count();
     for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
         refused(
-            up_add_balloon(bad, 1.0, 0.0, 0, 0),
-            BAD_ARGUMENT,
-            "up_add_balloon",
+            e.add_balloon(bad, 1.0, 0.0, 0, 0),
+            "BadArgument",
+            "add_balloon",
         );
         refused(
-            up_add_balloon(0.0, 1.0, bad, 0, 0),
-            BAD_ARGUMENT,
-            "up_add_balloon",
+            e.add_balloon(0.0, 1.0, bad, 0, 0),
+            "BadArgument",
+            "add_balloon",
         );
         refused(
-            up_add_balloon_on_floor(0.0, bad, 0),
-            BAD_ARGUMENT,
-            "up_add_balloon_on_floor",
+            e.add_balloon_on_floor(0.0, bad, 0),
+            "BadArgument",
+            "add_balloon_on_floor",
         );
         refused(
-            up_apply_impulse(0, bad, 0.0, 0.0, 0.0, 1.0, 0.0),
-            BAD_ARGUMENT,
-            "up_apply_impulse",
+            e.apply_impulse(0, bad, 0.0, 0.0, 0.0, 1.0, 0.0),
+            "BadArgument",
+            "apply_impulse",
         );
         refused(
-            up_apply_impulse(0, 0.0, 0.0, 0.0, 0.0, bad, 0.0),
-            BAD_ARGUMENT,
-            "up_apply_impulse",
+            e.apply_impulse(0, 0.0, 0.0, 0.0, 0.0, bad, 0.0),
+            "BadArgument",
+            "apply_impulse",
         );
         refused(
-            up_set_velocity(0, 0.0, bad, 0.0, 0.0, 0.0, 0.0),
-            BAD_ARGUMENT,
-            "up_set_velocity",
+            e.set_velocity(0, 0.0, bad, 0.0, 0.0, 0.0, 0.0),
+            "BadArgument",
+            "set_velocity",
         );
         refused(
-            up_set_velocity(0, 0.0, 0.0, 0.0, 0.0, 0.0, bad),
-            BAD_ARGUMENT,
-            "up_set_velocity",
+            e.set_velocity(0, 0.0, 0.0, 0.0, 0.0, 0.0, bad),
+            "BadArgument",
+            "set_velocity",
         );
-        refused(up_grab(0, 0.0, bad, 0.0), BAD_ARGUMENT, "up_grab");
-        refused(up_drag_to(bad, 0.0, 0.0), BAD_ARGUMENT, "up_drag_to");
+        refused(e.grab(0, 0.0, bad, 0.0), "BadArgument", "grab");
+        let m = refused(e.drag_to(bad, 0.0, 0.0), "BadArgument", "drag_to");
+        assert!(m.contains("finite"), "{m}");
     }
-    assert!(last_error().contains("finite"), "{}", last_error());
-    refused(up_step(10_001), BAD_ARGUMENT, "up_step");
-    assert_eq!(up_body_count(), n);
-    assert_eq!(up_state_hash(), hash, "no refused call changed the world");
-    assert_eq!(up_step(1), 0, "the world still steps");
+    refused(e.step(MAX_STEPS_PER_CALL + 1), "BadArgument", "step");
+    assert_eq!(e.body_count(), n);
+    assert_eq!(e.state_hash(), hash, "no refused call changed the world");
+    e.step(1).expect("the world still steps");
 }
 
 #[test]
 fn too_fast_is_refused_and_the_old_velocity_kept() {
-    assert_eq!(up_world_default(), 0);
+    let mut e = default_engine();
     refused(
-        up_set_velocity(0, MAX_SPEED * 1.01, 0.0, 0.0, 0.0, 0.0, 0.0),
-        BAD_ARGUMENT,
-        "up_set_velocity",
+        e.set_velocity(0, MAX_SPEED * 1.01, 0.0, 0.0, 0.0, 0.0, 0.0),
+        "BadArgument",
+        "set_velocity",
     );
     refused(
-        up_set_velocity(0, 0.0, 0.0, 0.0, 0.0, MAX_SPIN * 2.0, 0.0),
-        BAD_ARGUMENT,
-        "up_set_velocity",
+        e.set_velocity(0, 0.0, 0.0, 0.0, 0.0, MAX_SPIN * 2.0, 0.0),
+        "BadArgument",
+        "set_velocity",
     );
-    assert_eq!(up_set_velocity(0, 3.0, 0.0, 0.0, 0.0, 0.0, 0.0), 0);
-    let hash = up_state_hash();
-    let p = poses();
+    e.set_velocity(0, 3.0, 0.0, 0.0, 0.0, 0.0, 0.0).unwrap();
+    let hash = e.state_hash();
+    let p = poses(&mut e);
     // A balloon weighs a few grams: 1 N·s would send it at hundreds of m/s.
-    refused(
-        up_apply_impulse(0, 1.0, 0.0, 0.0, p[0], p[1], p[2]),
-        BAD_ARGUMENT,
-        "up_apply_impulse",
+    let m = refused(
+        e.apply_impulse(0, 1.0, 0.0, 0.0, p[0], p[1], p[2]),
+        "BadArgument",
+        "apply_impulse",
     );
-    assert!(
-        last_error().contains("expected at most"),
-        "{}",
-        last_error()
-    );
-    assert_eq!(up_state_hash(), hash, "the refused impulse was undone");
-    assert_eq!(
-        up_apply_impulse(0, 1e-4, 0.0, 0.0, p[0], p[1] + 0.2, p[2]),
-        0
-    );
-    assert_ne!(up_state_hash(), hash, "a gentle impulse is applied");
+    assert!(m.contains("expected at most"), "{m}");
+    assert_eq!(e.state_hash(), hash, "the refused impulse was undone");
+    e.apply_impulse(0, 1e-4, 0.0, 0.0, p[0], p[1] + 0.2, p[2])
+        .unwrap();
+    assert_ne!(e.state_hash(), hash, "a gentle impulse is applied");
 }
 
 #[test]
 fn out_of_range_indices_points_and_models_are_refused() {
-    assert_eq!(up_world_default(), 0);
-    let n = up_body_count();
-    let hash = up_state_hash();
+    let mut e = default_engine();
+    let n = e.body_count();
+    let hash = e.state_hash();
     for index in [n, n + 1, u32::MAX] {
-        refused(up_remove(index), OUT_OF_RANGE, "up_remove");
-        refused(up_grab(index, 0.0, 1.0, 0.0), OUT_OF_RANGE, "up_grab");
+        refused(e.remove(index), "OutOfRange", "remove");
+        refused(e.grab(index, 0.0, 1.0, 0.0), "OutOfRange", "grab");
         refused(
-            up_set_velocity(index, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
-            OUT_OF_RANGE,
-            "up_set_velocity",
+            e.set_velocity(index, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
+            "OutOfRange",
+            "set_velocity",
         );
-        refused(
-            up_apply_impulse(index, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0),
-            OUT_OF_RANGE,
-            "up_apply_impulse",
+        let m = refused(
+            e.apply_impulse(index, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0),
+            "OutOfRange",
+            "apply_impulse",
         );
+        assert!(m.contains(&format!("there are {n} bodies")), "{m}");
     }
-    assert!(
-        last_error().contains(&format!("there are {n} bodies")),
-        "{}",
-        last_error()
-    );
-    refused(up_model_tree(1), OUT_OF_RANGE, "up_model_tree");
-    refused(up_model_tree(u32::MAX), OUT_OF_RANGE, "up_model_tree");
+    refused(e.write_model_tree(1), "OutOfRange", "write_model_tree");
     refused(
-        up_add_balloon(0.0, 1.0, 0.0, 0, 1),
-        OUT_OF_RANGE,
-        "up_add_balloon",
+        e.write_model_tree(u32::MAX),
+        "OutOfRange",
+        "write_model_tree",
     );
     refused(
-        up_add_balloon(0.0, 1.0, 0.0, 10_000, 0),
-        OUT_OF_RANGE,
-        "up_add_balloon",
+        e.add_balloon(0.0, 1.0, 0.0, 0, 1),
+        "OutOfRange",
+        "add_balloon",
+    );
+    refused(
+        e.add_balloon(0.0, 1.0, 0.0, 10_000, 0),
+        "OutOfRange",
+        "add_balloon",
     );
     // Finite but outside the room.
     refused(
-        up_add_balloon(1e30, 1.0, 0.0, 0, 0),
-        OUT_OF_RANGE,
-        "up_add_balloon",
+        e.add_balloon(1e30, 1.0, 0.0, 0, 0),
+        "OutOfRange",
+        "add_balloon",
     );
     refused(
-        up_add_balloon(0.0, -1.0, 0.0, 0, 0),
-        OUT_OF_RANGE,
-        "up_add_balloon",
+        e.add_balloon(0.0, -1.0, 0.0, 0, 0),
+        "OutOfRange",
+        "add_balloon",
     );
     refused(
-        up_add_balloon_on_floor(50.0, 0.0, 0),
-        OUT_OF_RANGE,
-        "up_add_balloon_on_floor",
+        e.add_balloon_on_floor(50.0, 0.0, 0),
+        "OutOfRange",
+        "add_balloon_on_floor",
     );
     // A grab point far from the balloon would make a huge lever arm.
-    let p = poses();
-    refused(up_grab(0, p[0] + 5.0, p[1], p[2]), OUT_OF_RANGE, "up_grab");
-    assert_eq!(up_body_count(), n);
-    assert_eq!(up_state_hash(), hash, "no refused call changed the world");
+    let p = poses(&mut e);
+    refused(e.grab(0, p[0] + 5.0, p[1], p[2]), "OutOfRange", "grab");
+    assert_eq!(e.body_count(), n);
+    assert_eq!(e.state_hash(), hash, "no refused call changed the world");
     // A drag target outside the room is clamped into it, not refused.
-    assert_eq!(up_grab(0, p[0], p[1] + 0.1, p[2]), 0);
-    assert_eq!(up_drag_to(1e30, -1e30, 0.0), 0);
-    assert_eq!(up_step(5), 0);
-    assert!(poses().iter().all(|x| x.is_finite()));
-    assert_eq!(up_release(), 0);
+    e.grab(0, p[0], p[1] + 0.1, p[2]).unwrap();
+    e.drag_to(1e30, -1e30, 0.0).unwrap();
+    e.step(5).unwrap();
+    assert!(poses(&mut e).iter().all(|x| x.is_finite()));
+    e.release().unwrap();
 }
 
 #[test]
@@ -279,91 +237,115 @@ fn adding_past_the_capacity_is_full() {
     let scene = format!(
         r#"{{"room":{{"width":40,"depth":40,"wall_height":8,"ceiling":"flat"}},"balloons":[{{"count":{count}}}]}}"#
     );
-    assert_eq!(load_json(&scene), 0, "{}", last_error());
-    assert_eq!(up_body_count() as usize, count);
-    assert_eq!(up_add_balloon(0.0, 1.0, 0.0, 0, 0), 0);
-    refused(up_add_balloon(1.0, 1.0, 0.0, 0, 0), FULL, "up_add_balloon");
-    refused(
-        up_add_balloon_on_floor(1.0, 1.0, 0),
-        FULL,
-        "up_add_balloon_on_floor",
+    let mut e = Engine::new();
+    e.load_scene_json(&scene).unwrap();
+    assert_eq!(e.body_count() as usize, count);
+    e.add_balloon(0.0, 1.0, 0.0, 0, 0).unwrap();
+    refused(e.add_balloon(1.0, 1.0, 0.0, 0, 0), "Full", "add_balloon");
+    let m = refused(
+        e.add_balloon_on_floor(1.0, 1.0, 0),
+        "Full",
+        "add_balloon_on_floor",
     );
-    assert!(
-        last_error().contains(&CAPACITY.to_string()),
-        "{}",
-        last_error()
-    );
-    assert_eq!(up_body_count() as usize, CAPACITY);
+    assert!(m.contains(&CAPACITY.to_string()), "{m}");
+    assert_eq!(e.body_count() as usize, CAPACITY);
     let too_many = scene.replace(&count.to_string(), &(CAPACITY + 1).to_string());
-    assert_eq!(load_json(&too_many), FULL);
+    assert_eq!(e.load_scene_json(&too_many).unwrap_err().kind, "Full");
+    assert_eq!(validate_scene(&too_many).unwrap_err().kind, "Full");
     assert_eq!(
-        up_body_count() as usize,
+        e.body_count() as usize,
         CAPACITY,
         "a refused scene keeps the world"
     );
 }
 
 #[test]
-fn bad_buffers_and_texts_are_refused() {
-    assert!(up_alloc(MAX_ALLOC + 1).is_null());
-    assert_eq!(last_error().split(':').next(), Some("up_alloc"));
-    refused(up_free(std::ptr::null_mut(), 0), OUT_OF_RANGE, "up_free");
-    let ptr = up_alloc(4);
-    assert_eq!(up_free(ptr, 4), 0);
-    refused(up_free(ptr, 4), OUT_OF_RANGE, "up_free");
-    // A pointer that up_alloc did not hand out, or a length past the buffer.
-    let text = b"{}";
-    refused(
-        up_world_from_json(text.as_ptr(), 2),
-        OUT_OF_RANGE,
-        "up_world_from_json",
-    );
-    let ptr = up_alloc(2);
-    refused(
-        up_world_from_json(ptr, 3),
-        OUT_OF_RANGE,
-        "up_world_from_json",
-    );
-    // SAFETY: `ptr` holds 2 bytes from up_alloc.
-    unsafe { ptr.copy_from([0xff, 0xfe].as_ptr(), 2) };
-    refused(up_world_from_toml(ptr, 2), ENCODING, "up_world_from_toml");
-    assert_eq!(up_free(ptr, 2), 0);
-    // Malformed and invalid scenes name the scene and the key instead.
-    assert_eq!(load_json(r#"{"room":{"width":-2}}"#), SCENE);
-    assert!(last_error().contains("room.width"), "{}", last_error());
-    assert_eq!(load_json("{not json"), SCENE);
-    assert_eq!(up_body_count(), 0, "still no world");
-    // Holding too much at once is an error, not an out-of-memory trap.
-    let held: Vec<_> = (0..MAX_LIVE / MAX_ALLOC)
-        .map(|_| up_alloc(MAX_ALLOC))
-        .collect();
-    assert!(held.iter().all(|p| !p.is_null()));
-    assert!(up_alloc(1).is_null());
-    let message = last_error();
-    assert!(
-        message.starts_with("up_alloc: ") && message.contains("up_free"),
-        "{message}"
-    );
-    for p in held {
-        assert_eq!(up_free(p, MAX_ALLOC), 0);
+fn bad_scenes_are_refused_alike_by_validate_and_load() {
+    let mut e = Engine::new();
+    for (scene, key) in [
+        (r#"{"room":{"width":-2}}"#, "room.width"),
+        (
+            r#"{"balloons":[{"colors":["gold"]}]}"#,
+            "balloons[0].colors[0]",
+        ),
+        (r#"{"room":{"mesh":"room.obj"}}"#, "room.mesh"),
+        (r#"{"sim":{"substeps":0}}"#, "sim.substeps"),
+        ("{not json", ""),
+        ("", ""),
+    ] {
+        let checked = validate_scene(scene).expect_err(scene);
+        let loaded = e.load_scene_json(scene).expect_err(scene);
+        assert_eq!(
+            checked, loaded,
+            "validate_scene answers what loading answers"
+        );
+        assert_eq!(checked.kind, "Scene");
+        assert!(
+            checked.message.starts_with("scene"),
+            "names the scene: {}",
+            checked.message
+        );
+        assert!(
+            checked.message.contains(key),
+            "names {key}: {}",
+            checked.message
+        );
+        assert_eq!(e.body_count(), 0, "still no world");
     }
+    validate_scene(r##"{"balloons":[{"count":3,"colors":["white","#10a0ff"]}]}"##).unwrap();
+    validate_scene(&default_scene_json().unwrap()).unwrap();
+    let toml = e.load_scene_toml("[room]\nwidth = \"wide\"\n").unwrap_err();
+    assert_eq!(toml.kind, "Scene");
+    assert!(toml.message.contains("room.width"), "{}", toml.message);
+}
+
+#[test]
+fn every_named_colour_is_accepted_and_the_constants_are_the_crate_s() {
+    let c = constants();
+    assert_eq!(c.pose_stride as usize, POSE_FLOATS);
+    assert_eq!(c.contact_stride as usize, CONTACT_FLOATS);
+    assert_eq!(c.tree_stride as usize, TREE_FLOATS);
+    assert_eq!(c.capacity as usize, CAPACITY);
+    assert_eq!(c.max_contacts as usize, MAX_CONTACTS);
+    assert_eq!(c.error_kinds, ERROR_KINDS.map(String::from).to_vec());
+    assert!(c.colors.len() >= 6);
+    let names: Vec<&str> = c.colors.iter().map(|n| n.name.as_str()).collect();
+    let scene = format!(
+        r#"{{"balloons":[{{"count":{},"colors":{}}}]}}"#,
+        names.len(),
+        serde_json_list(&names)
+    );
+    let mut e = Engine::new();
+    e.load_scene_json(&scene).unwrap();
+    let info = e.world_info().unwrap();
+    assert_eq!(info.color_names, names);
+    let rgb: Vec<[f32; 3]> = c.colors.iter().map(|n| n.rgb).collect();
+    assert_eq!(
+        info.colors, rgb,
+        "the palette the world draws is the one constants() lists"
+    );
+    for d in c.scene.default_colors {
+        assert!(
+            names.contains(&d.as_str()),
+            "the default colour {d} is a named one"
+        );
+    }
+}
+
+fn serde_json_list(names: &[&str]) -> String {
+    let quoted: Vec<String> = names.iter().map(|n| format!("\"{n}\"")).collect();
+    format!("[{}]", quoted.join(","))
 }
 
 #[test]
 fn two_touching_balloons_give_contacts_with_unit_normals() {
-    // No gravity or buoyancy to speak of: the two stay together for a step.
-    assert_eq!(
-        load_json(r#"{"balloons":[{"count":1}]}"#),
-        0,
-        "{}",
-        last_error()
-    );
-    assert_eq!(up_remove(0), 0);
-    assert_eq!(up_add_balloon(0.0, 1.5, 0.0, 0, 0), 0);
-    assert_eq!(up_model_tree(0), 0);
-    let nodes = up_tree_node_count() as usize;
-    // SAFETY: up_model_tree wrote `nodes` nodes at up_tree_ptr.
-    let tree = unsafe { std::slice::from_raw_parts(up_tree_ptr(), nodes * TREE_FLOATS) };
+    let mut e = Engine::new();
+    e.load_scene_json(r#"{"balloons":[{"count":1}]}"#).unwrap();
+    e.remove(0).unwrap();
+    e.add_balloon(0.0, 1.5, 0.0, 0, 0).unwrap();
+    let nodes = e.write_model_tree(0).unwrap() as usize;
+    // SAFETY: write_model_tree wrote `nodes` nodes at tree_ptr.
+    let tree = unsafe { std::slice::from_raw_parts(e.tree_ptr(), nodes * TREE_FLOATS) }.to_vec();
     let root_radius = tree[3];
     // Half the balloon's width along x: the widest leaf sphere.
     let half_width = tree
@@ -372,18 +354,15 @@ fn two_touching_balloons_give_contacts_with_unit_normals() {
         .map(|n| n[0].abs() + n[3])
         .fold(0.0, f32::max);
     // Side by side, overlapping by a few per cent of their width.
-    let gap = 1.94 * half_width;
-    assert_eq!(up_add_balloon(gap, 1.5, 0.0, 1, 0), 0);
-    assert_eq!(up_step(1), 0);
-    assert_eq!(up_write_contacts(u32::MAX), 0);
-    let c = contacts();
-    let count = up_contact_count() as usize;
+    e.add_balloon(1.94 * half_width, 1.5, 0.0, 1, 0).unwrap();
+    e.step(1).unwrap();
+    let count = e.write_contacts(u32::MAX).unwrap() as usize;
+    // SAFETY: write_contacts wrote `count` contacts at contacts_ptr.
+    let c =
+        unsafe { std::slice::from_raw_parts(e.contacts_ptr(), count * CONTACT_FLOATS) }.to_vec();
     assert!(count >= 1, "touching balloons touch");
-    assert_eq!(up_contact_total() as usize, count);
-    let between = c
-        .chunks(CONTACT_FLOATS)
-        .filter(|k| k[7] == 1.0)
-        .collect::<Vec<_>>();
+    assert_eq!(e.contact_total() as usize, count);
+    let between: Vec<_> = c.chunks(CONTACT_FLOATS).filter(|k| k[7] == 1.0).collect();
     assert!(!between.is_empty(), "a balloon-balloon contact");
     for k in c.chunks(CONTACT_FLOATS) {
         let normal = (k[3] * k[3] + k[4] * k[4] + k[5] * k[5]).sqrt();
@@ -406,7 +385,6 @@ fn two_touching_balloons_give_contacts_with_unit_normals() {
         );
     }
     // The cap bounds what is written, not what is counted.
-    assert_eq!(up_write_contacts(0), 0);
-    assert_eq!(up_contact_count(), 0);
-    assert_eq!(up_contact_total() as usize, count);
+    assert_eq!(e.write_contacts(0).unwrap(), 0);
+    assert_eq!(e.contact_total() as usize, count);
 }

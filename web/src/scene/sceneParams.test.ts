@@ -1,6 +1,15 @@
-import { describe, expect, it } from "vitest";
+import { beforeAll, describe, expect, it } from "vitest";
+import { loadBuiltEngine } from "../sim/builtEngine";
+import type { Engine } from "../sim/engine";
 import { applyParams, paramsFromScene, splitCount } from "./sceneParams";
-import { validateScene } from "./sceneSchema";
+import { setEngineConstants } from "./sceneSchema";
+
+let engine: Engine;
+
+beforeAll(async () => {
+  engine = await loadBuiltEngine();
+  setEngineConstants(engine.constants);
+});
 
 const scene = {
   room: { width: 6, depth: 5, wall_height: 3, ceiling: "pyramid", apex_height: 1.5 },
@@ -32,7 +41,7 @@ describe("panel parameters", () => {
     expect((out.sim as Record<string, unknown>).seed).toBe(3);
     expect((out.sim as Record<string, unknown>).friction).toBe(0.2);
     expect((out.room as Record<string, unknown>).ceiling).toBe("flat");
-    expect(validateScene(out)).toEqual([]);
+    expect(engine.validateScene(JSON.stringify(out))).toBeNull();
     // The input is untouched.
     expect(scene.balloons[0].count).toBe(30);
   });

@@ -1,7 +1,7 @@
 // The panel's view of a scene: the handful of parameters a user tunes, read
 // from and written back into the scene (JSON object of crates/up-scene).
 
-import { DEFAULT_DIAMETER_M, METRES_PER_INCH } from "./sceneSchema";
+import { engineConstants } from "./sceneSchema";
 
 export interface PanelParams {
   /** Balloons over all groups. */
@@ -35,10 +35,16 @@ function groupsOf(scene: Json): Json[] {
   return Array.isArray(scene.balloons) ? (scene.balloons as unknown[]).map(obj) : [];
 }
 
+/** The engine's defaults for a scene (up-scene's, read from the module). */
+function sceneDefaults(): { metresPerInch: number; diameter: number } {
+  const c = engineConstants().scene;
+  return { metresPerInch: c.metres_per_inch, diameter: c.default_diameter_m };
+}
+
 function diameterOf(group: Json): number {
   if (typeof group.diameter_m === "number") return group.diameter_m;
-  if (typeof group.size_in === "number") return group.size_in * METRES_PER_INCH;
-  return DEFAULT_DIAMETER_M;
+  if (typeof group.size_in === "number") return group.size_in * sceneDefaults().metresPerInch;
+  return sceneDefaults().diameter;
 }
 
 export function paramsFromScene(scene: Json): PanelParams {
@@ -48,7 +54,7 @@ export function paramsFromScene(scene: Json): PanelParams {
   const first = groups[0] ?? {};
   return {
     count: groups.reduce((sum, g) => sum + num(g.count, 1), 0),
-    sizeIn: Math.round((diameterOf(first) / METRES_PER_INCH) * 10) / 10,
+    sizeIn: Math.round((diameterOf(first) / sceneDefaults().metresPerInch) * 10) / 10,
     helium: first.gas !== "air",
     drag: num(sim.drag_coefficient, 0.95),
     restitution: num(sim.restitution, 0.4),
@@ -74,7 +80,7 @@ export function applyParams(scene: Json, p: PanelParams): Json {
   const groups = groupsOf(out);
   if (groups.length === 0) groups.push({});
   const counts = splitCount(Math.max(0, Math.round(p.count)), groups.length);
-  const diameter = Math.round(p.sizeIn * METRES_PER_INCH * 10000) / 10000;
+  const diameter = Math.round(p.sizeIn * sceneDefaults().metresPerInch * 10000) / 10000;
   groups.forEach((g, i) => {
     g.count = counts[i];
     delete g.size_in;

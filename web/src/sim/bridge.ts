@@ -5,6 +5,7 @@
 import type { EngineStats } from "./engine";
 import type { Frame, FromWorker, ToWorker, Vec3Tuple, WorldInfo } from "./protocol";
 import { frameViews } from "./frameLayout";
+import { setEngineConstants } from "../scene/sceneSchema";
 
 export interface BridgeEvents {
   ready(info: WorldInfo): void;
@@ -25,6 +26,9 @@ export class SimBridge {
   models: Uint32Array = new Uint32Array(0);
   info: WorldInfo | null = null;
   paused = false;
+  /** Validation requests waiting for the worker's answer, by id. */
+  private readonly validations = new Map<number, (error: string | null) => void>();
+  private nextValidation = 1;
 
   constructor(private readonly events: BridgeEvents) {
     this.worker = new Worker(new URL("./worker.ts", import.meta.url), { type: "module" });
@@ -39,6 +43,7 @@ export class SimBridge {
   private receive(msg: FromWorker): void {
     switch (msg.type) {
       case "ready":
+        setEngineConstants(msg.info.constants);
         this.info = msg.info;
         this.events.ready(msg.info);
         break;
@@ -63,6 +68,10 @@ export class SimBridge {
       case "error":
         this.events.error(msg.message, msg.fatal);
         break;
+      case "validated":
+        this.validations.get(msg.id)?.(msg.error);
+        this.validations.delete(msg.id);
+        break;
     }
   }
 
@@ -75,6 +84,19 @@ export class SimBridge {
 
   init(wasmUrl: string, sceneJson: string | null): void {
     this.send({ type: "init", wasmUrl, sceneJson });
+  }
+
+  /**
+   * Asks the engine whether it would load `sceneJson` (the page keeps no
+   * scene schema of its own): resolves to the engine's message when it
+   * refuses the scene, or null when it accepts it.
+   */
+  validate(sceneJson: string): Promise<string | null> {
+    const id = this.nextValidation++;
+    return new Promise((resolve) => {
+      this.validations.set(id, resolve);
+      this.send({ type: "validate", id, sceneJson });
+    });
   }
 
   load(sceneJson: string | null): void {

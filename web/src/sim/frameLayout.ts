@@ -5,13 +5,36 @@
 //     count × 7        count × 7       contactCount × 8   floats
 
 import { POSE_STRIDE } from "../render/poseMath";
+import type { ContactStride, PoseStride } from "../../public/wasm/up_wasm";
+import type { Constants } from "./engine";
 
 /**
- * Floats per contact, as up-wasm writes them (crates/up-wasm/src/contacts.rs):
+ * Floats per contact, as up-wasm writes them (its `constants().contact_stride`):
  * x, y, z (m), nx, ny, nz (unit, from the balloon toward what it touches),
  * separation (m, negative when overlapping), kind (1 balloon, 0 room).
+ * The renderer's loops need the stride as a constant: its type is the module's
+ * (`ContactStride`), and `checkLayout` holds it to the module's when the engine starts.
  */
-export const CONTACT_STRIDE = 8;
+export const CONTACT_STRIDE: ContactStride = 8;
+
+/** The strides the page reads with, typed by the module's .d.ts: a page built against other strides does not compile. */
+const PAGE_STRIDES: { pose: PoseStride; contact: ContactStride } = { pose: POSE_STRIDE, contact: CONTACT_STRIDE };
+
+/**
+ * Throws unless the strides the page reads frames with are the module's own
+ * (`constants()` of up-wasm): a page built against another engine stops at
+ * start with a message instead of drawing garbage.
+ */
+export function checkLayout(constants: Pick<Constants, "pose_stride" | "contact_stride">): void {
+  const wrong = [
+    ["pose", constants.pose_stride, PAGE_STRIDES.pose],
+    ["contact", constants.contact_stride, PAGE_STRIDES.contact],
+  ].filter(([, engine, page]) => engine !== page);
+  if (wrong.length > 0) {
+    const say = wrong.map(([what, engine, page]) => `${engine} floats per ${what}, the page reads ${page}`).join("; ");
+    throw new Error(`the physics engine does not match the page: the engine writes ${say}; rebuild both`);
+  }
+}
 
 export interface FrameViews {
   prev: Float32Array<ArrayBuffer>;

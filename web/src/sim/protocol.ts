@@ -4,7 +4,7 @@
 // transfers it; the main thread keeps the newest frame and hands the previous
 // buffer back. No typed array is allocated per frame on either side.
 
-import type { EngineStats, RoomMesh, TreeNode } from "./engine";
+import type { Constants, EngineStats, RoomMesh, TreeNode } from "./engine";
 
 export type Vec3Tuple = [number, number, number];
 
@@ -20,7 +20,9 @@ export type ToWorker =
   | { type: "grab"; index: number; version: number; point: Vec3Tuple }
   | { type: "dragTo"; point: Vec3Tuple }
   | { type: "release" }
-  | { type: "return"; buffer: ArrayBuffer };
+  | { type: "return"; buffer: ArrayBuffer }
+  /** Asks the engine whether it would load `sceneJson`; answered by `validated` with the same `id`. */
+  | { type: "validate"; id: number; sceneJson: string };
 
 /** What the main thread needs to draw a freshly built world. */
 export interface WorldInfo {
@@ -39,6 +41,8 @@ export interface WorldInfo {
   /** s per step. */
   dt: number;
   capacity: number;
+  /** The engine's constants (strides, limits, colours, error kinds). */
+  constants: Constants;
 }
 
 export interface Frame {
@@ -67,4 +71,6 @@ export type FromWorker =
   | { type: "ready"; info: WorldInfo }
   | Frame
   | { type: "stats"; stats: EngineStats; stepsPerSecond: number }
-  | { type: "error"; message: string; fatal: boolean };
+  | { type: "error"; message: string; fatal: boolean }
+  /** The engine's message when it refuses the scene of `validate` request `id`, else null. */
+  | { type: "validated"; id: number; error: string | null };

@@ -3,8 +3,8 @@
 // for physics: with thousands of balloons a step may take longer than a frame,
 // and the page still draws and answers input.
 
-import { Engine } from "./engine";
-import { frameFloats, frameViews } from "./frameLayout";
+import { Engine, glueUrl, type GlueModule } from "./engine";
+import { checkLayout, frameFloats, frameViews } from "./frameLayout";
 import type { FromWorker, ToWorker, WorldInfo } from "./protocol";
 
 /** Most steps taken in one tick; beyond that the simulation runs slow rather than spiral. */
@@ -19,8 +19,11 @@ const MAX_RESTARTS = 3;
 const scope = self as unknown as DedicatedWorkerGlobalScope;
 
 let engine: Engine | null = null;
-/** The module's bytes, to instantiate it afresh if it ever traps. */
+/** The module's bytes and its glue's URL, to instantiate it afresh if it ever traps. */
 let wasmBytes: ArrayBuffer | null = null;
+let glueHref = "";
+/** The engine once the module is instantiated (validation requests wait for it). */
+let started: Promise<Engine> | null = null;
 /** The scene of the current world, to rebuild it after a trap. */
 let currentSceneJson: string | null = null;
 let restarts = 0;
@@ -67,6 +70,7 @@ function worldInfo(e: Engine): WorldInfo {
     diameters: info.diameters,
     dt: info.dt,
     capacity: e.capacity(),
+    constants: e.constants,
   };
 }
 
@@ -146,7 +150,10 @@ function restartAfterTrap(error: unknown): boolean {
   }
   fail(new Error(`the physics engine stopped (${error.message}) and was restarted: the scene starts again`), false);
   const scene = currentSceneJson;
-  Engine.load(wasmBytes)
+  const bytes = wasmBytes;
+  // A glue module holds one instance: a fresh import gives a fresh one.
+  started = Engine.importGlue(glueHref, restarts).then((glue) => Engine.load(glue, bytes));
+  started
     .then((e) => {
       engine = e;
       try {
@@ -227,10 +234,15 @@ function schedule(): void {
 function handle(msg: ToWorker): void {
   switch (msg.type) {
     case "init":
-      Engine.fetchBytes(msg.wasmUrl)
-        .then(async (bytes) => {
-          wasmBytes = bytes;
-          const e = await Engine.load(bytes);
+      glueHref = glueUrl(msg.wasmUrl);
+      started = Promise.all([Engine.fetchBytes(msg.wasmUrl), Engine.importGlue(glueHref)]).then(([bytes, glue]: [ArrayBuffer, GlueModule]) => {
+        wasmBytes = bytes;
+        const e = Engine.load(glue, bytes);
+        checkLayout(e.constants);
+        return e;
+      });
+      started
+        .then((e) => {
           engine = e;
           for (let i = 0; i < 3; i++) freeBuffers.push(new ArrayBuffer(4096));
           try {
@@ -245,6 +257,14 @@ function handle(msg: ToWorker): void {
         })
         .catch((err) => fail(err, true));
       return;
+    case "validate": {
+      // The engine is the page's only scene validator; asked before it has started, the answer waits.
+      const { id, sceneJson } = msg;
+      const answer = (error: string | null) => post({ type: "validated", id, error });
+      if (!started) answer("the physics engine has not been started");
+      else started.then((e) => answer(e.validateScene(sceneJson))).catch((err) => answer(err instanceof Error ? err.message : String(err)));
+      return;
+    }
     case "debug":
       sendContacts = msg.on;
       dirty = true;

@@ -1,0 +1,142 @@
+//! What the page reads as plain objects rather than as views of memory: the
+//! contract's constants, a built world's summary, the step's stats. Each is
+//! a Rust struct whose TypeScript type tsify writes into the module's
+//! `.d.ts`, so the page's types come from here.
+
+use serde::Serialize;
+use tsify_next::Tsify;
+use up_scene::scene::{
+    self as limits, DEFAULT_COLORS, DEFAULT_DIAMETER_M, MAX_SCENE_BYTES, METRES_PER_INCH,
+};
+
+use crate::contacts::{CONTACT_FLOATS, MAX_CONTACTS};
+use crate::error::ERROR_KINDS;
+use crate::state::{CAPACITY, MAX_SPEED, MAX_SPIN, MAX_STEPS_PER_CALL, POSE_FLOATS, TREE_FLOATS};
+
+/// A colour a scene may name, with its RGB in 0–1.
+#[derive(Clone, Debug, PartialEq, Serialize, Tsify)]
+pub struct NamedColor {
+    pub name: String,
+    pub rgb: [f32; 3],
+}
+
+/// Limits of a scene, from up-scene's validation (the page offers no more).
+#[derive(Clone, Debug, PartialEq, Serialize, Tsify)]
+pub struct SceneLimits {
+    pub max_total_balloons: f64,
+    pub max_balloon_groups: u32,
+    pub max_group_colors: u32,
+    pub max_leaves: u32,
+    /// Room width, depth and wall height, m.
+    pub min_room_size_m: f32,
+    pub max_room_size_m: f32,
+    /// Balloon diameter, m.
+    pub min_balloon_diameter_m: f32,
+    pub max_balloon_diameter_m: f32,
+    /// 2⁵³ − 1: exact as a JavaScript number.
+    pub max_seed: f64,
+    /// Largest scene text, bytes.
+    pub max_scene_bytes: f64,
+    /// A group's diameter when it names none, m.
+    pub default_diameter_m: f32,
+    pub metres_per_inch: f32,
+    /// A group's colours when it names none.
+    pub default_colors: Vec<String>,
+}
+
+/// Every number and name the page and the engine must agree on, defined
+/// once here (or in up-scene) and read by the page when the module starts.
+#[derive(Clone, Debug, PartialEq, Serialize, Tsify)]
+#[tsify(into_wasm_abi)]
+pub struct Constants {
+    /// Floats per pose: x, y, z, qx, qy, qz, qw of the balloon's mesh frame.
+    pub pose_stride: u32,
+    /// Floats per contact: x, y, z, nx, ny, nz, separation, kind (1 balloon, 0 room).
+    pub contact_stride: u32,
+    /// Floats per sphere-tree node: cx, cy, cz, radius, depth, leaf (0/1).
+    pub tree_stride: u32,
+    /// Most balloons the page's world holds.
+    pub capacity: u32,
+    /// Most contacts one `write_contacts` writes.
+    pub max_contacts: u32,
+    /// Most steps one `step` call takes.
+    pub max_steps_per_call: u32,
+    /// Fastest a balloon may be set moving, m/s, and spinning, rad/s.
+    pub max_speed: f32,
+    pub max_spin: f32,
+    /// The colours a scene may name (besides `#rrggbb`), in palette order.
+    pub colors: Vec<NamedColor>,
+    /// The `name` of every error a refused call throws.
+    pub error_kinds: Vec<String>,
+    pub scene: SceneLimits,
+}
+
+impl Constants {
+    pub fn get() -> Constants {
+        let colors = up_scene::obj::COLOR_NAMES
+            .iter()
+            .filter_map(|&name| {
+                up_scene::obj::color_rgb(name).map(|rgb| NamedColor {
+                    name: name.to_string(),
+                    rgb,
+                })
+            })
+            .collect();
+        let strings = |v: &[&str]| v.iter().map(|s| s.to_string()).collect();
+        Constants {
+            pose_stride: POSE_FLOATS as u32,
+            contact_stride: CONTACT_FLOATS as u32,
+            tree_stride: TREE_FLOATS as u32,
+            capacity: CAPACITY as u32,
+            max_contacts: MAX_CONTACTS as u32,
+            max_steps_per_call: MAX_STEPS_PER_CALL,
+            max_speed: MAX_SPEED,
+            max_spin: MAX_SPIN,
+            colors,
+            error_kinds: strings(&ERROR_KINDS),
+            scene: SceneLimits {
+                max_total_balloons: limits::MAX_TOTAL_BALLOONS as f64,
+                max_balloon_groups: limits::MAX_BALLOON_GROUPS as u32,
+                max_group_colors: limits::MAX_GROUP_COLORS as u32,
+                max_leaves: limits::MAX_SCENE_LEAVES,
+                min_room_size_m: limits::MIN_ROOM_SIZE_M,
+                max_room_size_m: limits::MAX_ROOM_SIZE_M,
+                min_balloon_diameter_m: limits::MIN_BALLOON_DIAMETER_M,
+                max_balloon_diameter_m: limits::MAX_BALLOON_DIAMETER_M,
+                max_seed: limits::MAX_SEED as f64,
+                max_scene_bytes: MAX_SCENE_BYTES as f64,
+                default_diameter_m: DEFAULT_DIAMETER_M,
+                metres_per_inch: METRES_PER_INCH,
+                default_colors: strings(&DEFAULT_COLORS),
+            },
+        }
+    }
+}
+
+/// What a built world holds besides its bodies.
+#[derive(Clone, Debug, PartialEq, Serialize, Tsify)]
+#[tsify(into_wasm_abi)]
+pub struct WorldSummary {
+    /// Linear RGB 0–1 of each colour index.
+    pub colors: Vec<[f32; 3]>,
+    /// Names of the colours as written in the scene (`red`, `#10a0ff`).
+    pub color_names: Vec<String>,
+    /// Diameter of each balloon model, m.
+    pub diameters: Vec<f32>,
+    /// s per step.
+    pub dt: f32,
+}
+
+/// Stage times and counts of the world's last steps.
+#[derive(Clone, Debug, PartialEq, Serialize, Tsify)]
+#[tsify(into_wasm_abi)]
+pub struct EngineStats {
+    /// Stage name and milliseconds per step, in step order ("total" last).
+    pub stages: Vec<(String, f64)>,
+    pub bodies: u32,
+    pub awake: u32,
+    pub pairs: u32,
+    pub contacts: u32,
+    /// m
+    pub max_penetration: f32,
+}
