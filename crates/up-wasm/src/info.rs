@@ -73,13 +73,11 @@ pub struct Constants {
 
 impl Constants {
     pub fn get() -> Constants {
-        let colors = up_scene::obj::COLOR_NAMES
+        let colors = up_scene::palette::PALETTE
             .iter()
-            .filter_map(|&name| {
-                up_scene::obj::color_rgb(name).map(|rgb| NamedColor {
-                    name: name.to_string(),
-                    rgb,
-                })
+            .map(|c| NamedColor {
+                name: c.name.to_string(),
+                rgb: c.rgb,
             })
             .collect();
         let strings = |v: &[&str]| v.iter().map(|s| s.to_string()).collect();
