@@ -28,8 +28,10 @@ export default defineConfig({
   fullyParallel: false,
   forbidOnly: !!process.env.CI,
   retries: 0,
-  // Per test unless it sets its own: SwiftShader on two shared cores is slow.
-  timeout: 90_000,
+  // Per test unless it sets its own: a bound on a hang, not a speed claim. On a
+  // loaded two-core machine SwiftShader draws about a frame a second and each
+  // key press or screenshot takes seconds.
+  timeout: 180_000,
   // The page's state follows the worker's frames: give a retried assertion a few of them.
   expect: { timeout: 15_000 },
   reporter: [["list"], ["html", { outputFolder: "e2e/out/report", open: "never" }]],
@@ -42,7 +44,11 @@ export default defineConfig({
     launchOptions: { executablePath, args: CHROMIUM_ARGS },
     actionTimeout: 30_000,
     navigationTimeout: 60_000,
-    trace: "retain-on-failure",
+    // A trace of every test, kept when it fails: its actions with their timings,
+    // console, network and sources. No DOM snapshots or screencast: taking them
+    // around every action slowed the page enough to time tests out on a loaded
+    // machine (the failure screenshot is kept).
+    trace: { mode: "retain-on-failure", screenshots: false, snapshots: false, sources: true },
     screenshot: "only-on-failure",
   },
   webServer: {

@@ -54,7 +54,7 @@ test("balloons rise over time", async ({ page }) => {
 
 test("the page answers input and keeps drawing while a large scene runs in the worker", async ({ page }, testInfo) => {
   // SwiftShader on two shared cores draws such a frame in seconds.
-  test.setTimeout(180_000);
+  test.setTimeout(300_000);
   // 800 balloons: about 10 ms per step in the worker (the crowd geometry draws them).
   const scene = { room: { width: 10, depth: 10 }, balloons: [{ count: 800 }], sim: { sleep: false } };
   // A small canvas: the claim is about the main thread, not about pixels.
