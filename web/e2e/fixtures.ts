@@ -1,6 +1,6 @@
-// What the specs share: a `test` whose pages record their console errors
-// (attached to the report when a test fails), opening the app with the test
-// hook and a scene, and a few reads through the test hook, `window.__up`.
+// What the specs share: a `test` whose pages record their console errors and
+// a screenshot when it fails (both attached to the report), opening the app
+// with the test hook and a scene, and a few reads through the hook, `window.__up`.
 
 import { test as base, expect, type Page } from "@playwright/test";
 // The hook's type (window.__up), for the functions the specs evaluate in the page.
@@ -11,18 +11,37 @@ export { expect };
 
 export const DEFAULT_BALLOONS = 50;
 
-export const test = base.extend<{ consoleErrors: string[] }>({
-  consoleErrors: async ({ page }, use, testInfo) => {
-    const errors: string[] = [];
-    page.on("console", (m) => {
-      if (m.type() === "error") errors.push(m.text());
-    });
-    page.on("pageerror", (e) => errors.push(`uncaught: ${e.message}`));
-    await use(errors);
-    if (testInfo.status !== testInfo.expectedStatus && errors.length > 0) {
-      await testInfo.attach("console errors", { body: errors.join("\n"), contentType: "text/plain" });
-    }
-  },
+export const test = base.extend<{ consoleErrors: string[]; failureScreenshot: void }>({
+  // Every test records them (auto); a test that asks for them can assert on them.
+  consoleErrors: [
+    async ({ page }, use, testInfo) => {
+      const errors: string[] = [];
+      page.on("console", (m) => {
+        if (m.type() === "error") errors.push(m.text());
+      });
+      page.on("pageerror", (e) => errors.push(`uncaught: ${e.message}`));
+      await use(errors);
+      if (testInfo.status !== testInfo.expectedStatus && errors.length > 0) {
+        await testInfo.attach("console errors", { body: errors.join("\n"), contentType: "text/plain" });
+      }
+    },
+    { auto: true },
+  ],
+  // Playwright's own failure screenshot gives up after 5 s, which a loaded
+  // machine drawing through SwiftShader exceeds: this one waits longer.
+  failureScreenshot: [
+    async ({ page }, use, testInfo) => {
+      await use();
+      if (testInfo.status === testInfo.expectedStatus) return;
+      const path = testInfo.outputPath("screenshot-at-failure.png");
+      const taken = await page.screenshot({ path, timeout: 30_000 }).then(
+        () => true,
+        () => false,
+      );
+      if (taken) await testInfo.attach("screenshot at failure", { path, contentType: "image/png" });
+    },
+    { auto: true },
+  ],
 });
 
 /** The address hash of a scene link. */
