@@ -17,12 +17,9 @@
 // - physics: the worker's engine ms per step by stage, steps per second, and
 //   the real-time factor (simulated seconds per second; 1 is real time).
 
-import { dirname, join } from "node:path";
-import { fileURLToPath } from "node:url";
-import { base64url, launchChromium } from "./browser.mjs";
-import { serve } from "./server.mjs";
+import { base64url, launchChromium, TEST_PATH } from "./browser.mjs";
+import { serveDist } from "./serve.mjs";
 
-const here = dirname(fileURLToPath(import.meta.url));
 const balloons = Number(process.argv[2] ?? 5000);
 const seconds = Number(process.argv[3] ?? 10);
 const viewport = { width: 960, height: 600 };
@@ -119,14 +116,14 @@ async function phase(page, ms, withInput) {
   };
 }
 
-const server = await serve(join(here, "..", "dist"));
+const server = await serveDist();
 const browser = await launchChromium();
 try {
   const page = await browser.newPage({ viewport });
   const errors = [];
   page.on("pageerror", (e) => errors.push(e.message));
   const started = Date.now();
-  await page.goto(`${server.url}#scene=${base64url(JSON.stringify(scene))}`);
+  await page.goto(`${server.url}${TEST_PATH}#scene=${base64url(JSON.stringify(scene))}`);
   await page.waitForFunction(() => window.__up?.ready(), null, { timeout: 180_000, polling: 500 });
   const loadSeconds = (Date.now() - started) / 1000;
   const count = await page.evaluate(() => window.__up.balloonCount());

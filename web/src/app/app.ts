@@ -1,0 +1,181 @@
+// The app: the stage and the world drawn on it, the physics worker, the
+// controls, the HUD, the panel and the share link, and what each of them does
+// to the others. The parts live in render/, sim/, ui/ and scene/; this class
+// only holds them and routes their events.
+
+import { createStage, type Stage } from "../render/stage";
+import { WorldView } from "../render/worldView";
+import { saveScreenshot } from "../render/screenshot";
+import { SimBridge } from "../sim/bridge";
+import type { EngineStats } from "../sim/engine";
+import type { WorldInfo } from "../sim/protocol";
+import { Controls } from "../ui/controls";
+import { Hud } from "../ui/hud";
+import { Messages } from "../ui/messages";
+import { Panel, type PanelActions } from "../ui/panel";
+import type { KeyAction } from "../ui/input";
+import { applyParams, paramsFromScene, type PanelParams } from "../scene/sceneParams";
+import { ShareLink } from "./shareLink";
+import type { PageElements } from "./page";
+
+/** Most balloons the panel's slider offers (the engine's capacity may be higher). */
+const PANEL_MAX_BALLOONS = 5000;
+
+/** Height of the room's highest point, m: the walls, plus the apex under a pyramid ceiling. */
+function roomTop(p: PanelParams): number {
+  return p.wallHeight + (p.ceiling === "pyramid" ? p.apexHeight : 0);
+}
+
+export class App {
+  readonly stage: Stage;
+  readonly world: WorldView;
+  readonly hud: Hud;
+  readonly messages: Messages;
+  readonly link: ShareLink;
+  readonly bridge: SimBridge;
+  readonly controls: Controls;
+  panel: Panel | null = null;
+  /** The engine's description of the world shown (null until the first is ready). */
+  info: WorldInfo | null = null;
+  /** The scene shown, as the engine read it (every default written out). */
+  scene: Record<string, unknown> = {};
+  /** The worker's last stats and its steps per second. */
+  lastStats: { stats: EngineStats; stepsPerSecond: number } | null = null;
+  /** Frames drawn with balloons, and main-thread ms spent in renderer.render over them (measurements). */
+  readonly frames = { drawn: 0, renderMs: 0 };
+  private firstWorld = true;
+  private lastFrameTime = performance.now();
+
+  constructor(private readonly page: PageElements) {
+    this.stage = createStage(page.app);
+    this.world = new WorldView(this.stage.scene);
+    this.hud = new Hud(page.hud);
+    this.messages = new Messages(page.message, page.fatal);
+    this.link = new ShareLink(this.messages);
+    this.bridge = new SimBridge({
+      ready: (info) => this.worldReady(info),
+      frame: () => this.panel?.setPaused(this.bridge.paused),
+      stats: (stats, stepsPerSecond) => {
+        this.lastStats = { stats, stepsPerSecond };
+        this.hud.setStats(stats, stepsPerSecond);
+      },
+      error: (message, fatal) => this.engineError(message, fatal),
+    });
+    this.controls = new Controls(this.stage.camera, this.stage.renderer.domElement, this.bridge, {
+      action: (a) => this.keyAction(a),
+      placement: (on) => this.hud.setMode(on ? "Placement mode: click the floor to add a balloon · CTRL to go back" : ""),
+    });
+  }
+
+  /** Loads the balloon model and the engine (with the linked scene, if any) and starts drawing. */
+  start(): void {
+    const initialJson = this.link.takeInitial();
+    this.world
+      .loadAssets(new URL("assets/", document.baseURI).href)
+      .catch((e: Error) => this.messages.fatal("The balloon model failed to load", e.message));
+    this.bridge.init(new URL("wasm/up_wasm.wasm", document.baseURI).href, initialJson);
+    window.addEventListener("resize", () => this.stage.resize());
+    requestAnimationFrame((now) => this.frame(now));
+  }
+
+  /** Whether the engine and the balloon model are in and balloons have been drawn. */
+  get ready(): boolean {
+    return !!this.info && !!this.world.assets && this.frames.drawn > 2;
+  }
+
+  private worldReady(info: WorldInfo): void {
+    this.info = info;
+    this.link.pending = false;
+    this.scene = JSON.parse(info.sceneJson) as Record<string, unknown>;
+    const params = paramsFromScene(this.scene);
+    const box = { halfWidth: params.width / 2, halfDepth: params.depth / 2, top: roomTop(params) };
+    const roomChanged = this.world.setWorld(info);
+    if (roomChanged) this.stage.fitToRoom(box.halfWidth, box.halfDepth, box.top);
+    this.controls.setWorld(box, info.trees, this.firstWorld || roomChanged);
+    this.firstWorld = false;
+    if (!this.panel) this.panel = new Panel(params, this.panelActions, Math.min(PANEL_MAX_BALLOONS, info.capacity));
+    else this.panel.set(params);
+    this.page.loading.hidden = true;
+  }
+
+  private engineError(message: string, fatal: boolean): void {
+    this.page.loading.hidden = true;
+    if (fatal) this.messages.fatal("The physics engine failed to load", message);
+    else if (this.link.pending) this.messages.error(`The shared scene could not be loaded: ${message}. Showing the default scene instead.`);
+    else this.messages.error(message);
+    if (this.link.pending) {
+      this.link.pending = false;
+      this.link.set(null);
+    }
+  }
+
+  private togglePause(): void {
+    if (this.controls.placement) return;
+    const bridge = this.bridge;
+    bridge.setPaused(!bridge.paused);
+    this.panel?.setPaused(bridge.paused);
+    this.hud.setMode(bridge.paused ? "Paused · space to resume, N to step" : "");
+  }
+
+  /** Debug view on or off; contacts come from the worker only while it is on. */
+  private setDebug(on: boolean): void {
+    this.world.setDebug(on, this.bridge.contacts);
+    this.bridge.setDebug(on);
+  }
+
+  private screenshot(): void {
+    saveScreenshot(this.stage.renderer, this.stage.scene, this.stage.camera);
+  }
+
+  private keyAction(a: KeyAction): void {
+    if (a.kind === "togglePause") this.togglePause();
+    else if (a.kind === "singleStep") this.bridge.singleStep();
+    else if (a.kind === "toggleDebug") {
+      this.setDebug(!this.world.debug.visible);
+      this.panel?.setDebugTrees(this.world.debug.visible);
+    } else if (a.kind === "screenshot") this.screenshot();
+  }
+
+  private readonly panelActions: PanelActions = {
+    change: (params) => {
+      const json = JSON.stringify(applyParams(this.scene, params));
+      // The engine is the scene's only validator.
+      void this.bridge.validate(json).then((error) => {
+        if (error) {
+          this.messages.error(`This scene is not valid: ${error}`);
+          this.panel?.set(paramsFromScene(this.scene));
+          return;
+        }
+        this.messages.clear();
+        this.bridge.load(json);
+        this.link.set(json);
+      });
+    },
+    reset: () => {
+      this.messages.clear();
+      this.bridge.load(null);
+      this.link.set(null);
+    },
+    togglePause: () => this.togglePause(),
+    step: () => this.bridge.singleStep(),
+    debugTrees: (on) => this.setDebug(on),
+    screenshot: () => this.screenshot(),
+    share: () => this.link.share(JSON.stringify(this.scene), () => this.hud.setMode("Link copied to the clipboard")),
+  };
+
+  /** One animation frame: controls, the world from the newest physics frame, the HUD, the render. */
+  private frame(now: number): void {
+    const dt = Math.min(0.1, (now - this.lastFrameTime) / 1000);
+    this.lastFrameTime = now;
+    this.controls.update(dt);
+    const withBalloons = this.world.update(this.bridge, performance.timeOrigin + now);
+    if (withBalloons) this.hud.setCount(this.bridge.current!.count);
+    this.hud.frame(now);
+    const { renderer, scene, camera } = this.stage;
+    const renderStart = performance.now();
+    renderer.render(scene, camera);
+    this.frames.renderMs += performance.now() - renderStart;
+    if (withBalloons) this.frames.drawn++;
+    requestAnimationFrame((t) => this.frame(t));
+  }
+}

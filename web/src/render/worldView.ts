@@ -1,0 +1,80 @@
+// What the stage draws of the simulated world: the room, the balloons (once
+// their model has loaded) and the debug view, updated from the physics
+// worker's newest frame every animation frame.
+
+import * as THREE from "three";
+import { buildRoom } from "./room";
+import { Balloons, loadBalloonAssets, type BalloonAssets } from "./balloons";
+import { DebugView } from "./debugView";
+import type { SimBridge } from "../sim/bridge";
+import type { WorldInfo } from "../sim/protocol";
+
+export class WorldView {
+  readonly debug = new DebugView();
+  balloons: Balloons | null = null;
+  assets: BalloonAssets | null = null;
+  private room: THREE.Group | null = null;
+  private roomKey = "";
+  private info: WorldInfo | null = null;
+  /** Frame version whose colours and models the balloons show (-1: none yet). */
+  private drawnVersion = -1;
+  /** The frame whose contacts the debug view shows. */
+  private contactsFrame: unknown = null;
+
+  constructor(private readonly scene: THREE.Scene) {
+    scene.add(this.debug.group);
+  }
+
+  /** Loads the balloon model; the balloons are drawn from then on. */
+  async loadAssets(baseUrl: string): Promise<void> {
+    const assets = await loadBalloonAssets(baseUrl);
+    this.assets = assets;
+    this.balloons = new Balloons(assets);
+    this.scene.add(this.balloons.group);
+    if (this.info) this.balloons.setWorld(this.info.palette, this.info.colorNames, this.info.diameters);
+  }
+
+  /** A new world from the engine; returns whether its room differs from the one drawn. */
+  setWorld(info: WorldInfo): boolean {
+    this.info = info;
+    const roomKey = info.room.vertices.join(",");
+    const roomChanged = roomKey !== this.roomKey;
+    if (roomChanged) {
+      if (this.room) this.scene.remove(this.room);
+      this.room = buildRoom(info.room);
+      this.scene.add(this.room);
+      this.roomKey = roomKey;
+    }
+    this.debug.setTrees(info.trees);
+    this.balloons?.setWorld(info.palette, info.colorNames, info.diameters);
+    this.drawnVersion = -1;
+    return roomChanged;
+  }
+
+  /** Debug view on or off; `contacts` are the bridge's current ones (cleared when off). */
+  setDebug(on: boolean, contacts: Float32Array): void {
+    this.debug.visible = on;
+    this.contactsFrame = null;
+    if (!on) this.debug.setContacts(contacts, 0);
+  }
+
+  /** Poses of the newest frame, interpolated to `nowAbs` (ms since the epoch); false until balloons can be drawn. */
+  update(bridge: SimBridge, nowAbs: number): boolean {
+    const f = bridge.current;
+    const balloons = this.balloons;
+    if (!f || !balloons) return false;
+    if (f.version !== this.drawnVersion && bridge.colors.length === f.count) {
+      balloons.setBodies(bridge.colors, bridge.models);
+      this.drawnVersion = f.version;
+    }
+    balloons.update(bridge.prev, bridge.curr, f.count, bridge.alpha(nowAbs));
+    if (this.debug.visible) {
+      this.debug.update(bridge.curr, 0, f.count, bridge.models);
+      if (this.contactsFrame !== f) {
+        this.debug.setContacts(bridge.contacts, f.contactCount);
+        this.contactsFrame = f;
+      }
+    }
+    return true;
+  }
+}
