@@ -20,6 +20,19 @@ pub struct NamedColor {
     pub rgb: [f32; 3],
 }
 
+/// The accepted range of a `[sim]` key (`up_physics::limits`, which the
+/// engine and the scene's checks read too).
+#[derive(Clone, Debug, PartialEq, Serialize, Tsify)]
+pub struct SimLimit {
+    /// The key under `sim` in a scene.
+    pub key: String,
+    pub min: f32,
+    pub max: f32,
+    /// Whether `min` itself is refused.
+    pub min_exclusive: bool,
+    pub unit: String,
+}
+
 /// Limits of a scene, from up-scene's validation (the page offers no more).
 #[derive(Clone, Debug, PartialEq, Serialize, Tsify)]
 pub struct SceneLimits {
@@ -42,6 +55,8 @@ pub struct SceneLimits {
     pub metres_per_inch: f32,
     /// A group's colours when it names none.
     pub default_colors: Vec<String>,
+    /// The ranges of the `[sim]` keys.
+    pub sim: Vec<SimLimit>,
 }
 
 /// Every number and name the page and the engine must agree on, defined
@@ -106,6 +121,16 @@ impl Constants {
                 default_diameter_m: DEFAULT_DIAMETER_M,
                 metres_per_inch: METRES_PER_INCH,
                 default_colors: strings(&DEFAULT_COLORS),
+                sim: up_physics::limits::SIM_LIMITS
+                    .iter()
+                    .map(|(key, l)| SimLimit {
+                        key: key.to_string(),
+                        min: l.min,
+                        max: l.max,
+                        min_exclusive: l.min_exclusive,
+                        unit: l.unit.to_string(),
+                    })
+                    .collect(),
             },
         }
     }

@@ -20,6 +20,7 @@ mod wake;
 use glam::Vec3;
 
 use crate::body::{HandleMap, ShapeData};
+use crate::contact::ContactPoint;
 use crate::narrow_phase::StepMotion;
 
 pub(crate) use islands::{SleepingIslands, UnionFind};
@@ -55,6 +56,8 @@ pub(crate) struct SleepInput<'a> {
     pub motion: &'a [StepMotion],
     /// Pairs of bodies held by a joint, dense indices.
     pub joined: &'a [(u32, u32)],
+    /// The step's contact points (they hold groups falling asleep together).
+    pub contacts: &'a [ContactPoint],
 }
 
 /// The sleep passes' buffers.

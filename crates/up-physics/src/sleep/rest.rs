@@ -6,7 +6,7 @@ use up_geom::norm::Norm;
 
 use super::{SleepBuffers, SleepInput, SleepingIslands};
 use crate::body::Bodies;
-use crate::contact::{ContactPoint, WarmStartCache, STATIC_BODY};
+use crate::contact::{WarmStartCache, STATIC_BODY};
 use crate::tasks::fill_chunks;
 use crate::world::{roots_within, PLACE_CHUNK};
 
@@ -19,11 +19,10 @@ use crate::world::{roots_within, PLACE_CHUNK};
 /// pushes, and would be woken at once by the next step's wake pass anyway.
 /// So a big pile in which a few balloons still shuffle sleeps everywhere
 /// else, where whole-island sleep would keep all of it awake. `grabbed`
-/// never rests; `contacts` are the step's, `warm` the impulses it stored.
+/// never rests; `warm` holds the impulses the step stored.
 pub(crate) fn update_sleep(
     input: &SleepInput,
     grabbed: Option<usize>,
-    contacts: &[ContactPoint],
     warm: &WarmStartCache,
     bodies: &mut Bodies,
     sleeping: &mut SleepingIslands,
@@ -87,7 +86,7 @@ pub(crate) fn update_sleep(
     }
     let falls_asleep = stays;
     buffers.islands.reset(n);
-    for c in contacts {
+    for c in input.contacts {
         let (a, b) = (c.body_a as usize, c.body_b as usize);
         if c.body_b != STATIC_BODY
             && c.separation < rules.speculative_distance

@@ -33,7 +33,7 @@ use crate::grab::Grab;
 use crate::joint::Joints;
 use crate::narrow_phase::NarrowPhase;
 use crate::quarantine::{FaultBuffers, QuarantinedBody};
-use crate::sleep::{SleepBuffers, SleepingIslands};
+use crate::sleep::{SleepBuffers, SleepInput, SleepRules, SleepingIslands};
 
 pub use contacts::ContactInfo;
 pub use def::WorldDef;
@@ -63,6 +63,28 @@ struct Stages {
     faults: FaultBuffers,
     /// Pairs of bodies held by a joint, dense indices (`joints`).
     joined: Vec<(u32, u32)>,
+}
+
+impl Stages {
+    /// What the sleep passes read of this step, and their buffers.
+    fn for_sleep<'a>(
+        &'a mut self,
+        rules: SleepRules,
+        shapes: &'a [ShapeData],
+        handles: &'a HandleMap,
+    ) -> (SleepInput<'a>, &'a mut SleepBuffers) {
+        let input = SleepInput {
+            rules,
+            shapes,
+            handles,
+            pairs: &self.broad.pairs,
+            bound_center: &self.place.bound_center,
+            motion: &self.place.motion,
+            joined: &self.joined,
+            contacts: &self.narrow.found.contacts,
+        };
+        (input, &mut self.sleep)
+    }
 }
 
 /// A world of balloons in a room. See the crate docs for conventions.

@@ -20,7 +20,7 @@ use serde::{Deserialize, Serialize};
 use super::World;
 use crate::continuous::{sweep_fast_bodies, SweepInput};
 use crate::counters::{Counters, Stopwatch};
-use crate::sleep::{self, SleepInput, SleepRules};
+use crate::sleep::{self, SleepRules};
 use crate::solver::{SolveParams, Stabilization};
 
 /// What the last step measured.
@@ -188,42 +188,16 @@ impl World {
 
     fn wake_touched_bodies(&mut self) -> bool {
         let rules = self.sleep_rules();
-        let s = &mut self.stages;
-        let input = SleepInput {
-            rules,
-            shapes: &self.shapes,
-            handles: &self.handles,
-            pairs: &s.broad.pairs,
-            bound_center: &s.place.bound_center,
-            motion: &s.place.motion,
-            joined: &s.joined,
-        };
-        sleep::wake_touched_bodies(&input, &mut self.bodies, &mut self.sleeping, &mut s.sleep)
+        let (input, buffers) = self.stages.for_sleep(rules, &self.shapes, &self.handles);
+        sleep::wake_touched_bodies(&input, &mut self.bodies, &mut self.sleeping, buffers)
     }
 
     fn update_sleep(&mut self) {
         let grabbed = self.grab.and_then(|g| self.handles.dense(g.body));
         let rules = self.sleep_rules();
-        let s = &mut self.stages;
-        let input = SleepInput {
-            rules,
-            shapes: &self.shapes,
-            handles: &self.handles,
-            pairs: &s.broad.pairs,
-            bound_center: &s.place.bound_center,
-            motion: &s.place.motion,
-            joined: &s.joined,
-        };
-        let contacts = &s.narrow.found.contacts;
-        sleep::update_sleep(
-            &input,
-            grabbed,
-            contacts,
-            &self.warm,
-            &mut self.bodies,
-            &mut self.sleeping,
-            &mut s.sleep,
-        );
+        let (input, buffers) = self.stages.for_sleep(rules, &self.shapes, &self.handles);
+        let (bodies, sleeping) = (&mut self.bodies, &mut self.sleeping);
+        sleep::update_sleep(&input, grabbed, &self.warm, bodies, sleeping, buffers);
     }
 
     /// Gives back the capacity that the buffers sized by the contacts did
