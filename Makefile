@@ -123,4 +123,4 @@ soak: setup-rust
 
 clean:
 	$(CARGO) clean
-	rm -rf web/dist web/node_modules $(WASM_OUT)
+	rm -rf web/dist web/node_modules $(dir $(WASM_OUT))

@@ -18,35 +18,45 @@ const MAX_RESTARTS = 3;
 
 const scope = self as unknown as DedicatedWorkerGlobalScope;
 
-let engine: Engine | null = null;
-/** The module's bytes and its glue's URL, to instantiate it afresh if it ever traps. */
-let wasmBytes: ArrayBuffer | null = null;
-let glueHref = "";
-/** The engine once the module is instantiated (validation requests wait for it). */
-let started: Promise<Engine> | null = null;
-/** The scene of the current world, to rebuild it after a trap. */
-let currentSceneJson: string | null = null;
-let restarts = 0;
-/** Whether frames carry the step's contacts (the debug view is on). */
-let sendContacts = false;
-let dtMs = 1000 / 60;
-let paletteSize = 1;
-let paused = false;
-let pendingSingleSteps = 0;
-let accumulator = 0;
-let lastTick = 0;
-let simTime = 0;
-let steps = 0;
-let version = 0;
-let versionSent = -1;
-let dirty = true;
-let lastStats = 0;
-let stepsSinceStats = 0;
-let tickTimer: ReturnType<typeof setTimeout> | null = null;
-/** Buffers the worker may fill; the main thread returns them after use. */
-const freeBuffers: ArrayBuffer[] = [];
-
 const now = () => performance.timeOrigin + performance.now();
+
+/** Everything the worker changes as it runs, in one place. */
+class WorkerState {
+  engine: Engine | null = null;
+  /** The module's bytes and its glue's URL, to instantiate it afresh if it ever traps. */
+  wasmBytes: ArrayBuffer | null = null;
+  glueHref = "";
+  /** The engine once the module is instantiated (validation requests wait for it). */
+  started: Promise<Engine> | null = null;
+  /** The scene of the current world, to rebuild it after a trap. */
+  currentSceneJson: string | null = null;
+  restarts = 0;
+  /** Whether frames carry the step's contacts (the debug view is on). */
+  sendContacts = false;
+  dtMs = 1000 / 60;
+  paletteSize = 1;
+  paused = false;
+  pendingSingleSteps = 0;
+  accumulator = 0;
+  lastTick = 0;
+  simTime = 0;
+  steps = 0;
+  /** Bumped whenever bodies are added or removed or the world is rebuilt: picks name the version they were made in. */
+  version = 0;
+  versionSent = -1;
+  /** Whether the page lacks a frame of the current state. */
+  dirty = true;
+  lastStats = 0;
+  stepsSinceStats = 0;
+  tickTimer: ReturnType<typeof setTimeout> | null = null;
+  /** Buffers the worker may fill; the main thread returns them after use. */
+  freeBuffers: ArrayBuffer[] = [];
+  lastStepTime = now();
+  /** Poses before the last step of a tick, for interpolation; reused, grown only with the world. */
+  previousPoses = new Float32Array(0);
+}
+
+const state = new WorkerState();
 
 function post(message: FromWorker, transfer: Transferable[] = []): void {
   scope.postMessage(message, transfer);
@@ -76,35 +86,35 @@ function worldInfo(e: Engine): WorldInfo {
 
 /** Builds the world from `sceneJson` (default scene when null) and announces it. */
 function load(sceneJson: string | null): void {
-  if (!engine) return;
-  if (sceneJson === null) engine.loadDefaultScene();
-  else engine.loadSceneJson(sceneJson);
-  const info = worldInfo(engine);
-  currentSceneJson = info.sceneJson;
-  dtMs = info.dt * 1000;
-  paletteSize = Math.max(1, info.palette.length);
-  simTime = 0;
-  steps = 0;
-  accumulator = 0;
-  version++;
-  dirty = true;
+  if (!state.engine) return;
+  if (sceneJson === null) state.engine.loadDefaultScene();
+  else state.engine.loadSceneJson(sceneJson);
+  const info = worldInfo(state.engine);
+  state.currentSceneJson = info.sceneJson;
+  state.dtMs = info.dt * 1000;
+  state.paletteSize = Math.max(1, info.palette.length);
+  state.simTime = 0;
+  state.steps = 0;
+  state.accumulator = 0;
+  state.version++;
+  state.dirty = true;
   post({ type: "ready", info });
 }
 
 /** Takes a free buffer of at least `bytes`, or allocates one (only when the world grew). */
 function takeBuffer(bytes: number): ArrayBuffer | null {
-  const i = freeBuffers.findIndex((b) => b.byteLength >= bytes);
-  if (i >= 0) return freeBuffers.splice(i, 1)[0];
-  if (freeBuffers.length === 0) return null;
+  const i = state.freeBuffers.findIndex((b) => b.byteLength >= bytes);
+  if (i >= 0) return state.freeBuffers.splice(i, 1)[0];
+  if (state.freeBuffers.length === 0) return null;
   // Only too-small buffers are free: replace one with a roomier one.
-  freeBuffers.pop();
+  state.freeBuffers.pop();
   return new ArrayBuffer(Math.ceil(bytes * 1.5));
 }
 
 function sendFrame(previous: Float32Array | null): void {
-  if (!engine) return;
-  const count = engine.bodyCount();
-  const contacts = sendContacts ? engine.contacts(MAX_DRAWN_CONTACTS) : null;
+  if (!state.engine) return;
+  const count = state.engine.bodyCount();
+  const contacts = state.sendContacts ? state.engine.contacts(MAX_DRAWN_CONTACTS) : null;
   const contactCount = contacts?.count ?? 0;
   const buffer = takeBuffer(Math.max(4, frameFloats(count, contactCount) * 4));
   if (!buffer) return; // the main thread still holds every buffer: send on return
@@ -112,7 +122,7 @@ function sendFrame(previous: Float32Array | null): void {
   // Copy the contacts before asking for poses: writing poses may grow wasm memory,
   // which detaches the contacts view.
   if (contacts) out.contacts.set(contacts.view);
-  const current = engine.poses();
+  const current = state.engine.poses();
   out.prev.set(previous && previous.length === current.length ? previous : current);
   out.curr.set(current);
   const frame: FromWorker = {
@@ -121,18 +131,18 @@ function sendFrame(previous: Float32Array | null): void {
     count,
     contactCount,
     contactTotal: contacts?.total ?? 0,
-    version,
-    stepTime: lastStepTime,
-    simTime,
-    steps,
-    paused,
+    version: state.version,
+    stepTime: state.lastStepTime,
+    simTime: state.simTime,
+    steps: state.steps,
+    paused: state.paused,
   };
-  if (versionSent !== version) {
-    frame.colors = engine.colors().slice();
-    frame.models = engine.models().slice();
-    versionSent = version;
+  if (state.versionSent !== state.version) {
+    frame.colors = state.engine.colors().slice();
+    frame.models = state.engine.models().slice();
+    state.versionSent = state.version;
   }
-  dirty = false;
+  state.dirty = false;
   post(frame, [buffer]);
 }
 
@@ -141,21 +151,21 @@ function sendFrame(previous: Float32Array | null): void {
  * afresh and rebuild the scene, saying so. Returns whether `error` was one.
  */
 function restartAfterTrap(error: unknown): boolean {
-  if (!(error instanceof WebAssembly.RuntimeError) || !wasmBytes) return false;
-  engine = null;
-  restarts++;
-  if (restarts > MAX_RESTARTS) {
-    fail(new Error(`the physics engine stopped ${restarts} times (last: ${error.message}); reload the page`), true);
+  if (!(error instanceof WebAssembly.RuntimeError) || !state.wasmBytes) return false;
+  state.engine = null;
+  state.restarts++;
+  if (state.restarts > MAX_RESTARTS) {
+    fail(new Error(`the physics engine stopped ${state.restarts} times (last: ${error.message}); reload the page`), true);
     return true;
   }
   fail(new Error(`the physics engine stopped (${error.message}) and was restarted: the scene starts again`), false);
-  const scene = currentSceneJson;
-  const bytes = wasmBytes;
+  const scene = state.currentSceneJson;
+  const bytes = state.wasmBytes;
   // A glue module holds one instance: a fresh import gives a fresh one.
-  started = Engine.importGlue(glueHref, restarts).then((glue) => Engine.load(glue, bytes));
-  started
+  state.started = Engine.importGlue(state.glueHref, state.restarts).then((glue) => Engine.load(glue, bytes));
+  state.started
     .then((e) => {
-      engine = e;
+      state.engine = e;
       try {
         load(scene);
       } catch (err) {
@@ -168,83 +178,79 @@ function restartAfterTrap(error: unknown): boolean {
   return true;
 }
 
-let lastStepTime = now();
-/** Poses before the last step of a tick, for interpolation; reused, grown only with the world. */
-let previousPoses = new Float32Array(0);
-
 function stepN(n: number): Float32Array | null {
-  if (!engine || n <= 0) return null;
-  if (n > 1) engine.step(n - 1);
-  const poses = engine.poses();
-  if (previousPoses.length < poses.length) previousPoses = new Float32Array(Math.ceil(poses.length * 1.5));
-  const previous = previousPoses.subarray(0, poses.length);
+  if (!state.engine || n <= 0) return null;
+  if (n > 1) state.engine.step(n - 1);
+  const poses = state.engine.poses();
+  if (state.previousPoses.length < poses.length) state.previousPoses = new Float32Array(Math.ceil(poses.length * 1.5));
+  const previous = state.previousPoses.subarray(0, poses.length);
   previous.set(poses);
-  engine.step(1);
-  steps += n;
-  stepsSinceStats += n;
-  simTime += (n * dtMs) / 1000;
-  lastStepTime = now();
+  state.engine.step(1);
+  state.steps += n;
+  state.stepsSinceStats += n;
+  state.simTime += (n * state.dtMs) / 1000;
+  state.lastStepTime = now();
   return previous;
 }
 
 function tick(): void {
-  tickTimer = null;
+  state.tickTimer = null;
   const t = now();
   let due = 0;
-  if (engine && !paused) {
-    accumulator += t - lastTick;
-    due = Math.floor(accumulator / dtMs);
+  if (state.engine && !state.paused) {
+    state.accumulator += t - state.lastTick;
+    due = Math.floor(state.accumulator / state.dtMs);
     if (due > MAX_STEPS_PER_TICK) {
       due = MAX_STEPS_PER_TICK;
-      accumulator = 0; // fall behind gracefully: slow motion, not a spiral
+      state.accumulator = 0; // fall behind gracefully: slow motion, not a spiral
     } else {
-      accumulator -= due * dtMs;
+      state.accumulator -= due * state.dtMs;
     }
   } else {
-    accumulator = 0;
+    state.accumulator = 0;
   }
-  if (engine && paused && pendingSingleSteps > 0) {
-    due = pendingSingleSteps;
-    pendingSingleSteps = 0;
+  if (state.engine && state.paused && state.pendingSingleSteps > 0) {
+    due = state.pendingSingleSteps;
+    state.pendingSingleSteps = 0;
   }
-  lastTick = t;
+  state.lastTick = t;
   try {
     const previous = stepN(due);
-    if (due > 0 || dirty) sendFrame(previous);
-    if (engine && t - lastStats > STATS_INTERVAL_MS) {
-      const seconds = (t - lastStats) / 1000;
-      post({ type: "stats", stats: engine.stats(), stepsPerSecond: lastStats > 0 ? stepsSinceStats / seconds : 0 });
-      lastStats = t;
-      stepsSinceStats = 0;
+    if (due > 0 || state.dirty) sendFrame(previous);
+    if (state.engine && t - state.lastStats > STATS_INTERVAL_MS) {
+      const seconds = (t - state.lastStats) / 1000;
+      post({ type: "stats", stats: state.engine.stats(), stepsPerSecond: state.lastStats > 0 ? state.stepsSinceStats / seconds : 0 });
+      state.lastStats = t;
+      state.stepsSinceStats = 0;
     }
   } catch (e) {
     if (restartAfterTrap(e)) return;
     fail(e, false);
-    paused = true;
+    state.paused = true;
   }
   schedule();
 }
 
 function schedule(): void {
-  if (tickTimer !== null) return;
-  const wait = paused ? 50 : Math.max(0, dtMs - accumulator - (now() - lastTick));
-  tickTimer = setTimeout(tick, wait);
+  if (state.tickTimer !== null) return;
+  const wait = state.paused ? 50 : Math.max(0, state.dtMs - state.accumulator - (now() - state.lastTick));
+  state.tickTimer = setTimeout(tick, wait);
 }
 
 function handle(msg: ToWorker): void {
   switch (msg.type) {
     case "init":
-      glueHref = glueUrl(msg.wasmUrl);
-      started = Promise.all([Engine.fetchBytes(msg.wasmUrl), Engine.importGlue(glueHref)]).then(([bytes, glue]: [ArrayBuffer, GlueModule]) => {
-        wasmBytes = bytes;
+      state.glueHref = glueUrl(msg.wasmUrl);
+      state.started = Promise.all([Engine.fetchBytes(msg.wasmUrl), Engine.importGlue(state.glueHref)]).then(([bytes, glue]: [ArrayBuffer, GlueModule]) => {
+        state.wasmBytes = bytes;
         const e = Engine.load(glue, bytes);
         checkLayout(e.constants);
         return e;
       });
-      started
+      state.started
         .then((e) => {
-          engine = e;
-          for (let i = 0; i < 3; i++) freeBuffers.push(new ArrayBuffer(4096));
+          state.engine = e;
+          for (let i = 0; i < 3; i++) state.freeBuffers.push(new ArrayBuffer(4096));
           try {
             load(msg.sceneJson);
           } catch (err) {
@@ -252,7 +258,7 @@ function handle(msg: ToWorker): void {
             fail(err, false);
             load(null);
           }
-          lastTick = now();
+          state.lastTick = now();
           schedule();
         })
         .catch((err) => fail(err, true));
@@ -261,22 +267,22 @@ function handle(msg: ToWorker): void {
       // The engine is the page's only scene validator; asked before it has started, the answer waits.
       const { id, sceneJson } = msg;
       const answer = (error: string | null) => post({ type: "validated", id, error });
-      if (!started) answer("the physics engine has not been started");
-      else started.then((e) => answer(e.validateScene(sceneJson))).catch((err) => answer(err instanceof Error ? err.message : String(err)));
+      if (!state.started) answer("the physics engine has not been started");
+      else state.started.then((e) => answer(e.validateScene(sceneJson))).catch((err) => answer(err instanceof Error ? err.message : String(err)));
       return;
     }
     case "debug":
-      sendContacts = msg.on;
-      dirty = true;
+      state.sendContacts = msg.on;
+      state.dirty = true;
       return;
     case "return":
-      freeBuffers.push(msg.buffer);
-      if (dirty) sendFrame(null);
+      state.freeBuffers.push(msg.buffer);
+      if (state.dirty) sendFrame(null);
       return;
     default:
       break;
   }
-  if (!engine) return;
+  if (!state.engine) return;
   try {
     switch (msg.type) {
       case "load":
@@ -287,45 +293,45 @@ function handle(msg: ToWorker): void {
         }
         break;
       case "pause":
-        paused = msg.paused;
-        dirty = true;
-        lastTick = now();
+        state.paused = msg.paused;
+        state.dirty = true;
+        state.lastTick = now();
         break;
       case "step":
-        pendingSingleSteps++;
+        state.pendingSingleSteps++;
         break;
 
       case "addOnFloor": {
-        const color = engine.bodyCount() % paletteSize;
-        engine.addBalloonOnFloor(msg.x, msg.z, color);
-        version++;
-        dirty = true;
+        const color = state.engine.bodyCount() % state.paletteSize;
+        state.engine.addBalloonOnFloor(msg.x, msg.z, color);
+        state.version++;
+        state.dirty = true;
         break;
       }
       case "pop":
-        if (msg.version === version) {
-          engine.remove(msg.index);
-          version++;
-          dirty = true;
+        if (msg.version === state.version) {
+          state.engine.remove(msg.index);
+          state.version++;
+          state.dirty = true;
         }
         break;
       case "grab":
-        if (msg.version === version) engine.grab(msg.index, ...msg.point);
+        if (msg.version === state.version) state.engine.grab(msg.index, ...msg.point);
         break;
       case "dragTo":
-        engine.dragTo(...msg.point);
+        state.engine.dragTo(...msg.point);
         break;
       case "release":
-        engine.release();
+        state.engine.release();
         break;
     }
   } catch (err) {
     if (restartAfterTrap(err)) return;
     fail(err, false);
   }
-  if (tickTimer !== null && dirty) {
-    clearTimeout(tickTimer);
-    tickTimer = null;
+  if (state.tickTimer !== null && state.dirty) {
+    clearTimeout(state.tickTimer);
+    state.tickTimer = null;
   }
   schedule();
 }
