@@ -21,6 +21,7 @@ use super::World;
 use crate::continuous::{sweep_fast_bodies, SweepInput};
 use crate::counters::{Counters, Stopwatch};
 use crate::sleep::{self, SleepRules};
+use crate::solver::integrate::GrabSpring;
 use crate::solver::{SolveParams, Stabilization};
 
 /// What the last step measured.
@@ -72,16 +73,10 @@ impl World {
         let grab = self.prepare_solver();
         counters.prepare_ms = clock.lap();
 
-        self.stages
-            .solve
-            .solver
-            .solve(&self.solve_params(), grab.as_ref());
+        self.solve(grab.as_ref());
         counters.solve_ms = clock.lap();
 
-        self.stages
-            .solve
-            .solver
-            .restitution(self.def.restitution, self.def.restitution_threshold);
+        self.bounce();
         self.store_impulses();
         self.store_tensions();
         self.remove_overlap();
@@ -106,6 +101,18 @@ impl World {
             + counters.continuous_ms
             + counters.sleep_ms;
         self.counters = counters;
+    }
+
+    /// The substeps: velocities, contacts and joints (`solver`).
+    fn solve(&mut self, grab: Option<&GrabSpring>) {
+        let params = self.solve_params();
+        self.stages.solve.solver.solve(&params, grab);
+    }
+
+    /// Bounces, for contacts that closed faster than the restitution threshold.
+    fn bounce(&mut self) {
+        let (restitution, threshold) = (self.def.restitution, self.def.restitution_threshold);
+        self.stages.solve.solver.restitution(restitution, threshold);
     }
 
     fn solve_params(&self) -> SolveParams {
