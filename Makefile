@@ -59,9 +59,8 @@ $(WASM_OUT): $(RUST_SOURCES) | setup-rust
 	# up_wasm.js (glue), up_wasm.d.ts (types), and the module, renamed from
 	# up_wasm_bg.wasm: the page and the tools pass its bytes to initSync.
 	wasm-bindgen --target web --out-dir $(dir $@) target/$(WASM_TARGET)/release/up_wasm.wasm
-	# up-physics' stage clock imports env.up_now_ms; the glue would import it from
-	# a module named "env", which no browser resolves: it is performance.now here.
-	sed -i 's|^import \* as \(import[0-9]*\) from "env"$$|const \1 = { up_now_ms: () => performance.now() };|' $(dir $@)up_wasm.js
+	# The module imports only what the glue provides (up-wasm defines the stage
+	# clock): an import from "env" would be a module no browser resolves.
 	! grep -n 'from "env"' $(dir $@)up_wasm.js
 	mv $(dir $@)up_wasm_bg.wasm $@
 	mv $(dir $@)up_wasm_bg.wasm.d.ts $(dir $@)up_wasm.wasm.d.ts

@@ -40,8 +40,8 @@ impl Counters {
 }
 
 /// A monotonic clock in milliseconds. Native builds use `std::time::Instant`;
-/// `wasm32-unknown-unknown` has no clock of its own, so the host provides
-/// `env.up_now_ms` (the web app passes `performance.now`).
+/// `wasm32-unknown-unknown` has no clock of its own, so the crate that builds
+/// the module defines `up_now_ms` (up-wasm: the host's `performance.now`).
 #[cfg(not(target_arch = "wasm32"))]
 pub(crate) fn now_ms() -> f64 {
     use std::sync::OnceLock;
@@ -52,11 +52,10 @@ pub(crate) fn now_ms() -> f64 {
 
 #[cfg(target_arch = "wasm32")]
 pub(crate) fn now_ms() -> f64 {
-    #[link(wasm_import_module = "env")]
     extern "C" {
         fn up_now_ms() -> f64;
     }
-    // SAFETY: a pure host function without arguments or memory access.
+    // SAFETY: a pure function without arguments or memory access.
     unsafe { up_now_ms() }
 }
 

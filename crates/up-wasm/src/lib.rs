@@ -26,11 +26,13 @@
 //!   `*_len()`, and the view is that many elements (times the stride) at
 //!   `*_ptr()` in the module's `memory`. A view is valid until the next call
 //!   (memory may grow and move).
-//! - The stage timers of up-physics import `env.up_now_ms() -> f64` (ms,
-//!   monotonic); the Makefile points it at `performance.now()` in the glue.
+//! - The stage timers of up-physics read `up_now_ms() -> f64` (ms,
+//!   monotonic), which `clock.rs` defines on the host's `performance.now()`.
 //!
 //! SI units, Y up, origin at the centre of the floor.
 
+#[cfg(target_arch = "wasm32")]
+mod clock;
 mod contacts;
 mod error;
 mod info;
