@@ -59,23 +59,15 @@ impl Checker<'_> {
         lo: f32,
         hi: f32,
         lo_open: bool,
-        unit: &str,
+        unit: &'static str,
     ) -> Result<(), SceneError> {
-        let above = if lo_open { value > lo } else { value >= lo };
-        if value.is_finite() && above && value <= hi {
-            return Ok(());
-        }
-        let open = if lo_open { '(' } else { '[' };
-        let unit = if unit.is_empty() {
-            String::new()
-        } else {
-            format!(" {unit}")
+        let limit = Limit {
+            min: lo,
+            max: hi,
+            min_exclusive: lo_open,
+            unit,
         };
-        Err(self.fail(
-            key,
-            format!("a finite number in {open}{lo}, {hi}]{unit}"),
-            value.to_string(),
-        ))
+        self.limit(key, value, &limit)
     }
 
     fn vector(&self, key: &str, v: [f32; 3], max_len: f32, unit: &str) -> Result<(), SceneError> {

@@ -107,19 +107,14 @@ impl Default for WorldDef {
     }
 }
 
-fn check(
-    ok: bool,
-    key: &'static str,
-    value: f32,
-    expected: &'static str,
-) -> Result<(), PhysicsError> {
+fn check(ok: bool, key: &'static str, value: f32, expected: &str) -> Result<(), PhysicsError> {
     if ok && value.is_finite() {
         Ok(())
     } else {
         Err(PhysicsError::BadParameter {
             key,
             value,
-            expected,
+            expected: expected.to_string(),
         })
     }
 }
@@ -129,11 +124,7 @@ fn within(limit: &Limit, key: &'static str, value: f32) -> Result<(), PhysicsErr
     if limit.contains(value) {
         return Ok(());
     }
-    Err(PhysicsError::OutOfRange {
-        key,
-        value,
-        expected: limit.describe(),
-    })
+    check(false, key, value, &limit.describe())
 }
 
 impl WorldDef {

@@ -11,12 +11,6 @@ pub enum PhysicsError {
     BadParameter {
         key: &'static str,
         value: f32,
-        expected: &'static str,
-    },
-    #[error("invalid world parameter `{key}` = {value}: expected {expected}")]
-    OutOfRange {
-        key: &'static str,
-        value: f32,
         expected: String,
     },
     #[error("invalid balloon shape: {0}")]
