@@ -6,7 +6,8 @@
 //!    instructions and can run a colour's groups on several threads (`parallel`);
 //! 2. per substep: integrate velocities (forces), warm start, solve (soft
 //!    push-out of overlap), integrate positions, project the joints to their
-//!    lengths (`joint_constraint`, position level), relax (no push-out, so the
+//!    lengths (`joint_constraint`, position level), the ribbons (handed in
+//!    by the world, `ribbon::solve`), relax (no push-out, so the
 //!    push-out's velocity does not linger as jitter; each contact's separation
 //!    is first brought to the new positions in the same pass);
 //! 3. restitution (bounces), and store impulses for the next step;
@@ -248,7 +249,14 @@ impl Solver {
     }
 
     /// Runs the substeps over prepared `states`, `forces` and constraints.
-    pub fn solve(&mut self, p: &SolveParams, grab: Option<&GrabSpring>) {
+    /// `after_positions` runs once a substep on the states, after the joints
+    /// and before the relax pass (the ribbons).
+    pub fn solve(
+        &mut self,
+        p: &SolveParams,
+        grab: Option<&GrabSpring>,
+        after_positions: &mut dyn FnMut(&mut [BodyState]),
+    ) {
         let h = p.dt / p.substeps as f32;
         let inv_h = 1.0 / h;
         // Stiffer than a quarter of the substep rate would ring.
@@ -289,6 +297,7 @@ impl Solver {
                 s.integrate_position(h)
             });
             self.project_joints(h);
+            after_positions(&mut self.states);
             self.refresh_and_relax(&relax);
         }
     }

@@ -79,6 +79,7 @@ impl World {
         self.wake(id)?;
         let i = self.dense(id)?;
         let anchor = self.bodies.rotation[i].inverse() * (point - self.bodies.center[i]);
+        self.ribbon_grab = None;
         self.grab = Some(Grab {
             body: id,
             anchor,
@@ -97,12 +98,18 @@ impl World {
         if let Some(g) = &mut self.grab {
             g.target = target;
         }
+        if let Some(g) = &mut self.ribbon_grab {
+            g.target = target;
+        }
         Ok(())
     }
 
-    /// Lets go; the body keeps its velocity (a throw). Returns the body that was held.
+    /// Lets go; the body keeps its velocity (a throw). Returns the body that
+    /// was held, or whose ribbon was.
     pub fn release_grab(&mut self) -> Option<BodyId> {
-        self.grab.take().map(|g| g.body)
+        let ribbon = self.ribbon_grab.take();
+        let ribbon_body = ribbon.and_then(|g| self.ribbon_body(g.ribbon));
+        self.grab.take().map(|g| g.body).or(ribbon_body)
     }
 
     pub fn grabbed(&self) -> Option<BodyId> {

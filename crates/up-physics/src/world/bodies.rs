@@ -104,6 +104,7 @@ impl World {
             self.wake(partner)?;
         }
         self.joints.remove_on(id);
+        self.remove_ribbon_on(id);
         if self.grab.is_some_and(|g| g.body == id) {
             self.grab = None;
         }

@@ -4,6 +4,7 @@ use thiserror::Error;
 
 use crate::body::BodyId;
 use crate::joint::JointId;
+use crate::ribbon::RibbonId;
 
 #[derive(Debug, Error, PartialEq)]
 pub enum PhysicsError {
@@ -27,4 +28,8 @@ pub enum PhysicsError {
     StaleJoint(JointId),
     #[error("invalid joint: {0}")]
     BadJoint(String),
+    #[error("ribbon {0:?} does not exist (removed with its balloon, or from another world)")]
+    StaleRibbon(RibbonId),
+    #[error("invalid ribbon: {0}")]
+    BadRibbon(String),
 }

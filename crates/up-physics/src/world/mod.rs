@@ -2,7 +2,8 @@
 //!
 //! This file holds the `World` and its buffers; the public calls are in
 //! `bodies` (adding and removing), `actions` (pushing, grabbing, waking),
-//! `queries` (reading the state), `joints` and `state` (hash, snapshots).
+//! `queries` (reading the state), `joints`, `ribbons` and `state` (hash,
+//! snapshots).
 //! The step is `step.rs`: a list of named stages, each in a file of its own
 //! here or in the crate (`place`, `contacts`, `prepare`, the solver,
 //! `finish`, `crate::continuous`, `crate::sleep`), each stage owning its buffers.
@@ -18,6 +19,7 @@ pub mod limits;
 mod place;
 mod prepare;
 mod queries;
+mod ribbons;
 mod state;
 mod step;
 
@@ -33,6 +35,8 @@ use crate::grab::Grab;
 use crate::joint::Joints;
 use crate::narrow_phase::NarrowPhase;
 use crate::quarantine::{FaultBuffers, QuarantinedBody};
+use crate::ribbon::solve::RibbonStage;
+use crate::ribbon::Ribbons;
 use crate::sleep::{SleepBuffers, SleepInput, SleepRules, SleepingIslands};
 
 pub use contacts::ContactInfo;
@@ -61,6 +65,7 @@ struct Stages {
     sweep: SweepBuffers,
     sleep: SleepBuffers,
     faults: FaultBuffers,
+    ribbons: RibbonStage,
     /// Pairs of bodies held by a joint, dense indices (`joints`).
     joined: Vec<(u32, u32)>,
 }
@@ -82,6 +87,7 @@ impl Stages {
             motion: &self.place.motion,
             joined: &self.joined,
             contacts: &self.narrow.found.contacts,
+            ribbon_moving: &self.ribbons.moving,
         };
         (input, &mut self.sleep)
     }
@@ -95,9 +101,11 @@ pub struct World {
     bodies: Bodies,
     handles: HandleMap,
     joints: Joints,
+    ribbons: Ribbons,
     warm: WarmStartCache,
     sleeping: SleepingIslands,
     grab: Option<Grab>,
+    ribbon_grab: Option<ribbons::RibbonGrab>,
     time: f64,
     step_count: u64,
     stats: StepStats,
@@ -122,9 +130,11 @@ impl World {
             bodies: Bodies::default(),
             handles: HandleMap::default(),
             joints: Joints::default(),
+            ribbons: Ribbons::default(),
             warm: WarmStartCache::default(),
             sleeping: SleepingIslands::default(),
             grab: None,
+            ribbon_grab: None,
             time: 0.0,
             step_count: 0,
             stats: StepStats::default(),

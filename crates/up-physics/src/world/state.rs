@@ -5,7 +5,8 @@ use crate::hash::Fnv1a;
 use crate::snapshot::{self, SnapshotError};
 
 impl World {
-    /// FNV-1a over every body's handle, pose, velocity and sleep state, in dense order.
+    /// FNV-1a over every body's handle, pose, velocity and sleep state, in
+    /// dense order, then every ribbon's points and their velocities.
     pub fn state_hash(&self) -> u64 {
         let mut h = Fnv1a::new();
         h.write_u32(self.bodies.len() as u32);
@@ -24,6 +25,16 @@ impl World {
                 h.write_f32(x);
             }
             h.write_u32(b.awake[i] as u32);
+        }
+        // A world without ribbons hashes as it did before there were any.
+        for (id, ribbon) in self.ribbons.iter() {
+            h.write_u32(id.index);
+            h.write_u32(id.generation);
+            for (p, v) in ribbon.points.iter().zip(&ribbon.velocities) {
+                for x in [p.x, p.y, p.z, v.x, v.y, v.z] {
+                    h.write_f32(x);
+                }
+            }
         }
         h.finish()
     }
@@ -80,6 +91,19 @@ impl World {
                 if self.handles.dense(body).is_none() {
                     return Err(format!("joint {id:?} holds a removed body"));
                 }
+            }
+        }
+        for (id, ribbon) in self.ribbons.iter() {
+            if self.handles.dense(ribbon.body).is_none() {
+                return Err(format!("ribbon {id:?} is tied to a removed body"));
+            }
+            let n = ribbon.points.len();
+            if !(crate::ribbon::MIN_SEGMENTS as usize + 1
+                ..=crate::ribbon::MAX_SEGMENTS as usize + 1)
+                .contains(&n)
+                || ribbon.velocities.len() != n
+            {
+                return Err(format!("ribbon {id:?} has {n} points"));
             }
         }
         for (island, members) in self.sleeping.members.iter().enumerate() {

@@ -1,15 +1,17 @@
 //! The step, as the list of its stages. Each stage is a method or a module
 //! of its own, owning its buffers:
 //!
-//! 1. broadphase: place the bodies (`place`), pair their bounds, wake what
+//! 1. broadphase: wake the balloons whose sleeping ribbons an awake one
+//!    reaches (`ribbons`), place the bodies (`place`), pair their bounds, wake what
 //!    restless bodies reach (`sleep::wake`), and each pair's knocks;
 //! 2. narrowphase: the contact points of the pairs (`contacts`);
 //! 3. prepare: solver states, forces (`forces::body_forces`), contact
-//!    constraints and joints (`prepare`);
-//! 4. solve: the substeps (`solver`);
+//!    constraints and joints (`prepare`), the awake ribbons (`ribbons`);
+//! 4. solve: the substeps (`solver`), the ribbons' in them (`ribbon::solve`);
 //! 5. restitution and position: bounces, impulses kept for the next step,
 //!    overlap removed, results back to the bodies (`finish`);
-//! 6. continuous: fast bodies swept against the room (`continuous`);
+//! 6. continuous: fast bodies swept against the room (`continuous`); the
+//!    ribbons' points handed back (`ribbons`);
 //! 7. sleep: rest clocks and groups falling asleep (`sleep::rest`), bodies
 //!    gone non-finite taken out, spare capacity given back.
 //!
@@ -20,7 +22,10 @@ use serde::{Deserialize, Serialize};
 use super::World;
 use crate::continuous::{sweep_fast_bodies, SweepInput};
 use crate::counters::{Counters, Stopwatch};
+use crate::ribbon;
+use crate::ribbon::solve::SubstepInput;
 use crate::sleep::{self, SleepRules};
+use crate::solver::body_state::BodyState;
 use crate::solver::integrate::GrabSpring;
 use crate::solver::{SolveParams, Stabilization};
 
@@ -59,6 +64,7 @@ impl World {
         let mut counters = Counters::default();
 
         self.find_joined();
+        self.wake_touched_ribbons();
         self.place_bodies(false);
         self.find_pairs();
         if self.wake_touched_bodies() {
@@ -71,6 +77,7 @@ impl World {
         counters.narrowphase_ms = clock.lap();
 
         let grab = self.prepare_solver();
+        self.prepare_ribbons();
         counters.prepare_ms = clock.lap();
 
         self.solve(grab.as_ref());
@@ -84,6 +91,7 @@ impl World {
         counters.restitution_ms = clock.lap();
 
         self.sweep_fast_bodies();
+        self.finish_ribbons();
         counters.continuous_ms = clock.lap();
 
         self.update_sleep();
@@ -103,10 +111,30 @@ impl World {
         self.counters = counters;
     }
 
-    /// The substeps: velocities, contacts and joints (`solver`).
+    /// The substeps: velocities, contacts, joints and ribbons (`solver`,
+    /// `ribbon::solve`).
     fn solve(&mut self, grab: Option<&GrabSpring>) {
         let params = self.solve_params();
-        self.stages.solve.solver.solve(&params, grab);
+        let ribbons = &mut self.stages.ribbons;
+        let input = SubstepInput {
+            h: params.dt / params.substeps as f32,
+            gravity: self.def.gravity,
+            centers: &self.bodies.center,
+            shape_of: &self.bodies.shape,
+            shapes: &self.shapes,
+            triangles: &ribbons.triangles,
+            bodies: &ribbons.bodies,
+        };
+        let active = &mut ribbons.active;
+        let mut ribbons_substep = |states: &mut [BodyState]| {
+            if !active.is_empty() {
+                ribbon::solve::substep(active, &input, states);
+            }
+        };
+        self.stages
+            .solve
+            .solver
+            .solve(&params, grab, &mut ribbons_substep);
     }
 
     /// Bounces, for contacts that closed faster than the restitution threshold.

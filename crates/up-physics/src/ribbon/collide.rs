@@ -1,0 +1,126 @@
+//! A ribbon's points against the room and the balloons, at position level.
+//!
+//! The room: a point closer to a triangle's inner face than its radius, or
+//! one that crossed the face this substep, goes back to the radius in front
+//! of it, and friction takes back up to μ times that push from its slide
+//! along the face (Coulomb at position level, as in Müller et al. 2020). So
+//! a ribbon cannot tunnel out through a wall at any speed it reaches, and it
+//! lies on the floor instead of sliding off it.
+//!
+//! Balloons: a point inside a balloon's leaf sphere goes out to its surface
+//! along the line from the sphere's centre. The balloon is not pushed back.
+
+use glam::Vec3;
+use up_geom::norm::Norm;
+use up_geom::{closest_point_triangle, Sphere, TriangleRegion};
+
+/// A room triangle near a ribbon this step, with its unit inward normal.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct NearTriangle {
+    pub corners: [Vec3; 3],
+    pub normal: Vec3,
+}
+
+/// Pushes `point` (which was at `start` when the substep began) out of the
+/// triangles `near`, with friction `mu`.
+pub(crate) fn push_out_of_room(
+    point: &mut Vec3,
+    start: Vec3,
+    radius: f32,
+    mu: f32,
+    near: &[NearTriangle],
+) {
+    for t in near {
+        let [a, b, c] = t.corners;
+        let height = (*point - a).dot(t.normal);
+        if height >= radius {
+            continue;
+        }
+        let (closest, region) = closest_point_triangle(*point, a, b, c);
+        let push = if region == TriangleRegion::Face {
+            // In front of the face at the substep's start: it may not cross.
+            let was_in_front = (start - a).dot(t.normal) > -radius;
+            if !was_in_front {
+                continue;
+            }
+            (radius - height) * t.normal
+        } else {
+            // An edge or a corner: only from the front, as a rounded edge.
+            let away = *point - closest;
+            let distance = away.norm();
+            if height < 0.0 || distance >= radius || distance <= 1e-9 {
+                continue;
+            }
+            (radius - distance) * (away / distance)
+        };
+        *point += push;
+        let depth = push.norm();
+        let normal = push / depth;
+        let moved = *point - start;
+        let slide = moved - moved.dot(normal) * normal;
+        let slide_len = slide.norm();
+        if slide_len > 0.0 {
+            *point -= slide * (mu * depth / slide_len).min(1.0);
+        }
+    }
+}
+
+/// Pushes `point` out of each of `spheres`.
+pub(crate) fn push_out_of_spheres(point: &mut Vec3, radius: f32, spheres: &[Sphere]) {
+    for s in spheres {
+        let away = *point - s.center;
+        let reach = s.radius + radius;
+        let d2 = away.length_squared();
+        if d2 >= reach * reach {
+            continue;
+        }
+        let d = d2.sqrt();
+        // At the very centre any way out will do: up, where ribbons hang from.
+        let out = if d > 1e-9 { away / d } else { Vec3::NEG_Y };
+        *point = s.center + reach * out;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn floor() -> Vec<NearTriangle> {
+        let corners = [
+            Vec3::new(-1.0, 0.0, -1.0),
+            Vec3::new(-1.0, 0.0, 1.0),
+            Vec3::new(1.0, 0.0, -1.0),
+        ];
+        vec![NearTriangle {
+            corners,
+            normal: Vec3::Y,
+        }]
+    }
+
+    #[test]
+    fn a_point_that_crossed_the_floor_comes_back_above_it() {
+        // Fell 5 cm in one substep, from just above the floor to well below it.
+        let start = Vec3::new(0.0, 0.01, -0.5);
+        let mut p = Vec3::new(0.0, -0.04, -0.5);
+        push_out_of_room(&mut p, start, 0.0025, 0.5, &floor());
+        assert!((p.y - 0.0025).abs() < 1e-6, "{p}");
+    }
+
+    #[test]
+    fn friction_holds_a_slow_slide_and_slows_a_fast_one() {
+        let start = Vec3::new(0.0, 0.0025, -0.5);
+        let mut slow = start + Vec3::new(0.001, -0.004, 0.0);
+        push_out_of_room(&mut slow, start, 0.0025, 0.5, &floor());
+        assert!((slow.x - start.x).abs() < 1e-7, "{slow}");
+        let mut fast = start + Vec3::new(0.02, -0.004, 0.0);
+        push_out_of_room(&mut fast, start, 0.0025, 0.5, &floor());
+        assert!((fast.x - 0.018).abs() < 1e-6, "{fast}");
+    }
+
+    #[test]
+    fn a_point_inside_a_balloon_goes_to_its_surface() {
+        let mut p = Vec3::new(0.05, 0.0, 0.0);
+        push_out_of_spheres(&mut p, 0.0025, &[Sphere::new(Vec3::ZERO, 0.1)]);
+        assert!((p - Vec3::new(0.1025, 0.0, 0.0)).length() < 1e-6, "{p}");
+    }
+}

@@ -1,0 +1,239 @@
+//! Ribbons: light strings tied to a balloon's knot, with a weight at the free
+//! end if wanted. A ribbon is a chain of point masses (its segments' masses
+//! lumped at their ends) held at fixed distances: inextensible, free to bend.
+//!
+//! It is solved with the balloons, in the same substeps (`solve`): after the
+//! substep has moved the bodies, each awake ribbon's points move under gravity
+//! and air drag, are pushed out of the room and the balloons near them
+//! (`collide`), and the whole chain, knot included, is brought back to its
+//! segments' lengths by one direct solve (`chain`): the Lagrange multipliers
+//! of all its distance constraints at once, from a tridiagonal system, where
+//! Gauss–Seidel would need as many sweeps as the chain has points for the
+//! knot to feel the whole ribbon's weight. The knot's share of that solve is
+//! a position correction on the balloon (two-way, like a joint's), so the
+//! balloon carries exactly the ribbon it lifts.
+//!
+//! Balloons push ribbons aside but are not pushed by them (a ribbon is a few
+//! milligrams a point); ribbons do not collide with each other. A ribbon
+//! sleeps and wakes with its balloon, and keeps its balloon awake while it
+//! still moves.
+
+pub(crate) mod chain;
+pub(crate) mod collide;
+pub(crate) mod nearby;
+pub(crate) mod solve;
+
+use glam::Vec3;
+use serde::{Deserialize, Serialize};
+
+use crate::body::BodyId;
+
+/// Mass per metre of 5 mm polypropylene curling ribbon, kg/m. No measured
+/// figure was found: BOPP film of 20–60 µm gives 0.1–0.3 g/m; an estimate.
+pub const DEFAULT_MASS_PER_LENGTH: f32 = 0.25e-3;
+/// Collision radius of a ribbon's points: half its 5 mm width, m.
+pub const RIBBON_RADIUS: f32 = 0.0025;
+/// Width of the ribbon the air sees, m.
+pub const RIBBON_WIDTH: f32 = 0.005;
+/// Collision radius of a balloon weight at the free end, m (a small foil weight).
+pub const WEIGHT_RADIUS: f32 = 0.025;
+/// Drag coefficient of the ribbon moving across its length (a flat strip
+/// broadside, ≈ 1.2; a guess for a strip that twists).
+pub const NORMAL_DRAG_COEFFICIENT: f32 = 1.2;
+/// Drag coefficient along its length, on its width (skin friction; a guess).
+pub const TANGENT_DRAG_COEFFICIENT: f32 = 0.02;
+/// Drag coefficient of the weight (a bluff body), on its cross-section.
+pub const WEIGHT_DRAG_COEFFICIENT: f32 = 1.0;
+/// Friction of a ribbon point on the room's surfaces (a guess).
+pub const ROOM_FRICTION: f32 = 0.5;
+/// Fastest a grabbed point is carried toward its target, m/s.
+pub const GRAB_MAX_SPEED: f32 = 10.0;
+/// Segments of a ribbon, at least and at most.
+pub const MIN_SEGMENTS: u32 = 2;
+pub const MAX_SEGMENTS: u32 = 128;
+
+/// A ribbon to tie to a balloon.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RibbonDef {
+    /// The balloon; it holds at most one ribbon.
+    pub body: BodyId,
+    /// Where the ribbon is tied, in the body's mesh frame (the frame of
+    /// `BodyDef::pose`): the bottom of the balloon's neck, m.
+    pub knot: Vec3,
+    /// m, > 0.
+    pub length: f32,
+    /// kg/m, > 0.
+    pub mass_per_length: f32,
+    /// Points after the knot; [`MIN_SEGMENTS`, `MAX_SEGMENTS`].
+    pub segments: u32,
+    /// A weight tied to the free end, kg (0: none).
+    pub end_mass: f32,
+}
+
+impl RibbonDef {
+    /// A ribbon of `length` m in `segments` of the default ribbon, no weight.
+    pub fn new(body: BodyId, knot: Vec3, length: f32, segments: u32) -> RibbonDef {
+        RibbonDef {
+            body,
+            knot,
+            length,
+            mass_per_length: DEFAULT_MASS_PER_LENGTH,
+            segments,
+            end_mass: 0.0,
+        }
+    }
+}
+
+/// Generational handle of a ribbon; stale once the ribbon is removed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub struct RibbonId {
+    pub index: u32,
+    pub generation: u32,
+}
+
+/// A ribbon in the world: its points (0 at the knot) and their velocities.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub(crate) struct Ribbon {
+    pub body: BodyId,
+    /// The knot from the body's centre of mass, body frame, m.
+    pub arm: Vec3,
+    pub segment_length: f32,
+    /// Mass of each point after the knot but the last, kg: the segment above
+    /// it, so the points weigh the whole ribbon and the knot none of it.
+    pub point_mass: f32,
+    /// Mass of the last point: its segment and the weight, kg.
+    pub end_mass: f32,
+    /// The weight tied at the end, kg (0: none); sets the end's radius and drag.
+    pub weight: f32,
+    pub points: Vec<Vec3>,
+    pub velocities: Vec<Vec3>,
+    /// The ribbon's pull on the knot over the last substep of the last step, N.
+    pub pull: Vec3,
+}
+
+impl Ribbon {
+    pub fn segments(&self) -> usize {
+        self.points.len() - 1
+    }
+
+    pub fn length(&self) -> f32 {
+        self.segment_length * self.segments() as f32
+    }
+
+    /// Mass of point `i` (`i ≥ 1`), kg.
+    pub fn mass(&self, i: usize) -> f32 {
+        if i == self.segments() {
+            self.end_mass
+        } else {
+            self.point_mass
+        }
+    }
+
+    /// Collision radius of point `i`, m.
+    pub fn radius(&self, i: usize) -> f32 {
+        if i == self.segments() && self.weight > 0.0 {
+            WEIGHT_RADIUS
+        } else {
+            RIBBON_RADIUS
+        }
+    }
+
+    /// Length along the points divided by the ribbon's length, less one.
+    pub fn stretch(&self) -> f32 {
+        let along: f32 = self.points.windows(2).map(|p| p[0].distance(p[1])).sum();
+        along / self.length() - 1.0
+    }
+
+    /// Total mass, weight included, kg.
+    pub fn total_mass(&self) -> f32 {
+        self.point_mass * (self.segments() - 1) as f32 + self.end_mass
+    }
+}
+
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+struct Slot {
+    generation: u32,
+    ribbon: Option<Ribbon>,
+}
+
+/// The world's ribbons: slots reused through a free list, handles with
+/// generations (as bodies' and joints' are).
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+pub(crate) struct Ribbons {
+    slots: Vec<Slot>,
+    free: Vec<u32>,
+    /// The largest stretch any ribbon ended a step with since the world was
+    /// made (`World::ribbon_max_stretch`).
+    pub max_stretch: f32,
+}
+
+impl Ribbons {
+    pub fn add(&mut self, ribbon: Ribbon) -> RibbonId {
+        let index = match self.free.pop() {
+            Some(index) => index,
+            None => {
+                self.slots.push(Slot::default());
+                self.slots.len() as u32 - 1
+            }
+        };
+        let slot = &mut self.slots[index as usize];
+        slot.ribbon = Some(ribbon);
+        RibbonId {
+            index,
+            generation: slot.generation,
+        }
+    }
+
+    pub fn get(&self, id: RibbonId) -> Option<&Ribbon> {
+        let slot = self.slots.get(id.index as usize)?;
+        (slot.generation == id.generation)
+            .then_some(slot.ribbon.as_ref())
+            .flatten()
+    }
+
+    pub fn remove(&mut self, id: RibbonId) -> Option<Ribbon> {
+        let slot = self.slots.get_mut(id.index as usize)?;
+        if slot.generation != id.generation {
+            return None;
+        }
+        let ribbon = slot.ribbon.take()?;
+        slot.generation = slot.generation.wrapping_add(1);
+        self.free.push(id.index);
+        Some(ribbon)
+    }
+
+    /// The ribbon tied to `body`.
+    pub fn on(&self, body: BodyId) -> Option<RibbonId> {
+        self.iter().find(|(_, r)| r.body == body).map(|(id, _)| id)
+    }
+
+    /// Live ribbons in slot order (the solver's order).
+    pub fn iter(&self) -> impl Iterator<Item = (RibbonId, &Ribbon)> + '_ {
+        self.slots.iter().enumerate().filter_map(|(index, slot)| {
+            slot.ribbon.as_ref().map(|ribbon| {
+                let id = RibbonId {
+                    index: index as u32,
+                    generation: slot.generation,
+                };
+                (id, ribbon)
+            })
+        })
+    }
+
+    pub fn slot_mut(&mut self, index: u32) -> Option<&mut Ribbon> {
+        self.slots.get_mut(index as usize)?.ribbon.as_mut()
+    }
+
+    /// Every slot's ribbon, in slot order, for the solve to change in place.
+    pub fn slots_mut(&mut self) -> impl Iterator<Item = Option<&mut Ribbon>> + '_ {
+        self.slots.iter_mut().map(|s| s.ribbon.as_mut())
+    }
+
+    pub fn len(&self) -> usize {
+        self.slots.len() - self.free.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}

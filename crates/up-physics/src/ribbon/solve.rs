@@ -1,0 +1,257 @@
+//! The ribbons' part of each substep, run after the bodies have moved and the
+//! joints have been projected, before the contacts' relax pass:
+//!
+//! 1. each point falls under gravity and air drag (drag taken implicitly, as
+//!    the bodies' is, across and along the ribbon apart);
+//! 2. points are pushed out of the balloons near the ribbon and out of the room;
+//! 3. the chain, knot included, is brought back to its lengths in one direct
+//!    solve (`chain`), and the room's push repeated for what that moved;
+//! 4. each point's velocity is what it moved over the substep.
+//!
+//! The ribbons read the bodies' states and write only their own points, so
+//! they run on rayon's threads in any split; their pulls on their balloons
+//! (one ribbon a balloon) are then applied in ribbon order.
+
+use std::ops::Range;
+
+use glam::Vec3;
+use up_geom::norm::Norm;
+use up_geom::Sphere;
+
+use super::chain::{solve_chain, KnotBody};
+use super::collide::{push_out_of_room, push_out_of_spheres, NearTriangle};
+use super::nearby::NearbyBodies;
+use super::{
+    Ribbon, GRAB_MAX_SPEED, NORMAL_DRAG_COEFFICIENT, RIBBON_WIDTH, ROOM_FRICTION,
+    TANGENT_DRAG_COEFFICIENT, WEIGHT_DRAG_COEFFICIENT, WEIGHT_RADIUS,
+};
+use crate::body::ShapeData;
+use crate::solver::body_state::BodyState;
+use crate::tasks::fill_chunks;
+
+/// Ribbons one task takes.
+const RIBBON_CHUNK: usize = 64;
+
+/// An awake ribbon during the step, its points taken from the world's.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct ActiveRibbon {
+    /// Its slot in the world's ribbons.
+    pub slot: u32,
+    /// Its balloon's solver state (dense index).
+    pub state: u32,
+    /// The balloon's centre of mass at the step's start, m.
+    pub origin: Vec3,
+    /// The knot from the centre of mass, world frame at the step's start, m.
+    pub arm0: Vec3,
+    pub points: Vec<Vec3>,
+    pub velocities: Vec<Vec3>,
+    /// Per point: inverse mass (0 for a held point; unused at the knot).
+    pub inv_mass: Vec<f32>,
+    /// Per point: drag across and along the ribbon, ½·ρ·C·A, kg/m.
+    pub drag: Vec<[f32; 2]>,
+    /// Per point: its radius, m.
+    pub radius: Vec<f32>,
+    /// Where each point began the substep.
+    start: Vec<Vec3>,
+    /// Room triangles and balloons near it this step, in the stage's lists.
+    pub triangles: Range<u32>,
+    pub bodies: Range<u32>,
+    /// A grabbed point and where it is carried.
+    pub grab: Option<(usize, Vec3)>,
+    /// This substep's position impulse on the balloon (kg·m) and the knot's
+    /// arm it acts at, world frame, m.
+    pub impulse: Vec3,
+    pub arm: Vec3,
+    /// The knot's pull on the balloon over the last substep, N.
+    pub pull: Vec3,
+    pub segment_length: f32,
+    /// The leaf spheres of the balloons near it, at this substep's poses.
+    spheres: Vec<Sphere>,
+}
+
+impl ActiveRibbon {
+    /// Takes `ribbon`'s points for the step (`give_back` returns them).
+    pub fn take(&mut self, ribbon: &mut Ribbon, air_density: f32) {
+        self.points = std::mem::take(&mut ribbon.points);
+        self.velocities = std::mem::take(&mut ribbon.velocities);
+        self.segment_length = ribbon.segment_length;
+        let n = self.points.len() - 1;
+        self.inv_mass.clear();
+        self.drag.clear();
+        self.radius.clear();
+        for i in 0..=n {
+            let m = if i == 0 { 0.0 } else { ribbon.mass(i) };
+            self.inv_mass.push(if m > 0.0 { 1.0 / m } else { 0.0 });
+            // The knot's and the end's half segments; the weight's cross-section.
+            let share = if i == 0 || i == n { 0.5 } else { 1.0 };
+            let area = share * ribbon.segment_length * RIBBON_WIDTH;
+            let mut across = 0.5 * air_density * NORMAL_DRAG_COEFFICIENT * area;
+            let along = 0.5 * air_density * TANGENT_DRAG_COEFFICIENT * area;
+            if i == n && ribbon.weight > 0.0 {
+                let disc = std::f32::consts::PI * WEIGHT_RADIUS * WEIGHT_RADIUS;
+                across += 0.5 * air_density * WEIGHT_DRAG_COEFFICIENT * disc;
+            }
+            self.drag.push([across, along]);
+            self.radius.push(ribbon.radius(i));
+        }
+    }
+
+    /// Returns the points to `ribbon`, with the pull the step ended with.
+    pub fn give_back(&mut self, ribbon: &mut Ribbon) {
+        ribbon.points = std::mem::take(&mut self.points);
+        ribbon.velocities = std::mem::take(&mut self.velocities);
+        ribbon.pull = self.pull;
+    }
+}
+
+/// What a substep of the ribbons reads.
+pub(crate) struct SubstepInput<'a> {
+    pub h: f32,
+    pub gravity: Vec3,
+    /// Every body's centre of mass at the step's start, and its shape.
+    pub centers: &'a [Vec3],
+    pub shape_of: &'a [u32],
+    pub shapes: &'a [ShapeData],
+    pub triangles: &'a [NearTriangle],
+    pub bodies: &'a [u32],
+}
+
+/// The ribbons' buffers for a step.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct RibbonStage {
+    pub active: Vec<ActiveRibbon>,
+    /// Room triangles and balloons near each active ribbon, back to back.
+    pub triangles: Vec<NearTriangle>,
+    pub bodies: Vec<u32>,
+    pub nearby: NearbyBodies,
+    /// The spheres hashed in `nearby`: per body, or per awake body
+    /// (`awake_bodies` says which) when waking.
+    pub bound_center: Vec<Vec3>,
+    pub bound_radius: Vec<f32>,
+    pub awake_bodies: Vec<u32>,
+    /// Per body (dense): its ribbon still moves faster than the sleep speed.
+    pub moving: Vec<bool>,
+}
+
+/// One substep of every active ribbon; then their pulls on their balloons.
+pub(crate) fn substep(active: &mut [ActiveRibbon], input: &SubstepInput, states: &mut [BodyState]) {
+    let read: &[BodyState] = states;
+    fill_chunks(active, RIBBON_CHUNK, |_, ribbons| {
+        for r in ribbons {
+            substep_one(r, input, read);
+        }
+    });
+    let inv_h = 1.0 / input.h;
+    for r in active.iter() {
+        states[r.state as usize].apply_position_correction(r.impulse, r.arm, inv_h);
+    }
+}
+
+fn substep_one(r: &mut ActiveRibbon, input: &SubstepInput, states: &[BodyState]) {
+    let h = input.h;
+    let s = &states[r.state as usize];
+    r.arm = s.dq * r.arm0;
+    r.points[0] = r.origin + s.dp + r.arm;
+    let n = r.points.len() - 1;
+    r.start.clear();
+    r.start.extend_from_slice(&r.points);
+    fall(r, input.gravity, h);
+    if let Some((k, target)) = r.grab {
+        let to = target - r.points[k];
+        let reach = GRAB_MAX_SPEED * h;
+        let len = to.norm();
+        r.points[k] = r.start[k] + if len > reach { to * (reach / len) } else { to };
+    }
+    place_near_spheres(r, input, states);
+    for i in 1..=n {
+        push_out_of_spheres(&mut r.points[i], r.radius[i], &r.spheres);
+    }
+    let triangles = &input.triangles[r.triangles.start as usize..r.triangles.end as usize];
+    push_out_of_room_all(r, triangles);
+    let knot = KnotBody {
+        inv_mass: s.inv_mass,
+        inv_inertia: s.inv_inertia,
+        arm: r.arm,
+    };
+    if let Some((k, _)) = r.grab {
+        r.inv_mass[k] = 0.0;
+    }
+    r.impulse = solve_chain(&mut r.points, &r.inv_mass, r.segment_length, &knot);
+    push_out_of_room_all(r, triangles);
+    let inv_h = 1.0 / h;
+    r.pull = r.impulse * (inv_h * inv_h);
+    for i in 1..=n {
+        r.velocities[i] = (r.points[i] - r.start[i]) * inv_h;
+    }
+    r.velocities[0] = s.point_velocity(r.arm);
+}
+
+/// Gravity and drag on each point, then its move over the substep.
+fn fall(r: &mut ActiveRibbon, gravity: Vec3, h: f32) {
+    let n = r.points.len() - 1;
+    for i in 1..=n {
+        if r.inv_mass[i] == 0.0 {
+            continue;
+        }
+        let v = r.velocities[i] + h * gravity;
+        // Along the ribbon: from the point before to the one after.
+        let along = r.points[(i + 1).min(n)] - r.points[i - 1];
+        let len = along.norm();
+        let t = if len > 1e-9 { along / len } else { Vec3::ZERO };
+        let v_along = v.dot(t) * t;
+        let v_across = v - v_along;
+        let [k_across, k_along] = r.drag[i];
+        let w = h * r.inv_mass[i];
+        let v_along = v_along / (1.0 + w * k_along * v_along.norm());
+        let v_across = v_across / (1.0 + w * k_across * v_across.norm());
+        r.velocities[i] = v_along + v_across;
+        r.points[i] += h * r.velocities[i];
+    }
+}
+
+/// The leaf spheres of the balloons near `r` whose roots reach its points, at
+/// this substep's poses.
+fn place_near_spheres(r: &mut ActiveRibbon, input: &SubstepInput, states: &[BodyState]) {
+    r.spheres.clear();
+    let bodies = &input.bodies[r.bodies.start as usize..r.bodies.end as usize];
+    if bodies.is_empty() {
+        return;
+    }
+    let (mut lo, mut hi) = (r.points[1], r.points[1]);
+    let mut reach = 0.0f32;
+    for (p, &radius) in r.points[1..].iter().zip(&r.radius[1..]) {
+        lo = lo.min(*p);
+        hi = hi.max(*p);
+        reach = reach.max(radius);
+    }
+    for &b in bodies {
+        let s = &states[b as usize];
+        let tree = &input.shapes[input.shape_of[b as usize] as usize].tree;
+        let center = input.centers[b as usize] + s.dp;
+        let root = tree.root();
+        let root_center = center + s.q * root.center;
+        let closest = root_center.clamp(lo, hi);
+        if closest.distance_squared(root_center) > (root.radius + reach).powi(2) {
+            continue;
+        }
+        let nodes = tree.nodes();
+        for &leaf in tree.leaves() {
+            let node = &nodes[leaf as usize];
+            r.spheres
+                .push(Sphere::new(center + s.q * node.center, node.radius));
+        }
+    }
+}
+
+fn push_out_of_room_all(r: &mut ActiveRibbon, triangles: &[NearTriangle]) {
+    if triangles.is_empty() {
+        return;
+    }
+    for i in 1..r.points.len() {
+        if r.inv_mass[i] == 0.0 {
+            continue;
+        }
+        let (start, radius) = (r.start[i], r.radius[i]);
+        push_out_of_room(&mut r.points[i], start, radius, ROOM_FRICTION, triangles);
+    }
+}
