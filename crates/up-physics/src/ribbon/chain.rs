@@ -38,6 +38,11 @@ pub(crate) struct KnotBody {
 }
 
 impl KnotBody {
+    /// How far a position impulse `p` at the knot moves it, m (linearised).
+    pub fn point_motion(&self, p: Vec3) -> Vec3 {
+        self.inv_mass * p + (self.inv_inertia * self.arm.cross(p)).cross(self.arm)
+    }
+
     /// Effective inverse mass of the knot along unit `n`.
     fn inv_mass_along(&self, n: Vec3) -> f32 {
         let rn = self.arm.cross(n);
@@ -48,20 +53,22 @@ impl KnotBody {
 /// Brings the chain `points` (point 0 at the knot) back to `segment_length`
 /// between neighbours. `inv_mass[i]` is point i's inverse mass for i ≥ 1
 /// (0: held); `inv_mass[0]` is unused. Moves points 1.. and returns the
-/// position impulse (kg·m) to apply to the knot's body at its arm; the knot
-/// in `points[0]` is left where it is (the body carries it).
+/// position impulse (kg·m) to apply to the knot's body at its arm, and the
+/// largest |C_j| it started from (m); the knot in `points[0]` is left where
+/// it is (the body carries it).
 pub(crate) fn solve_chain(
     points: &mut [Vec3],
     inv_mass: &[f32],
     segment_length: f32,
     knot: &KnotBody,
-) -> Vec3 {
+) -> (Vec3, f32) {
     let n = points.len() - 1;
     debug_assert!(n as u32 <= MAX_SEGMENTS && inv_mass.len() == points.len());
     const CAP: usize = MAX_SEGMENTS as usize;
     let mut dir = [Vec3::ZERO; CAP];
     let mut upper = [0.0f32; CAP];
     let mut rhs = [0.0f32; CAP];
+    let mut worst = 0.0f32;
     for j in 0..n {
         let d = points[j + 1] - points[j];
         let len = d.norm();
@@ -74,6 +81,7 @@ pub(crate) fn solve_chain(
             Vec3::NEG_Y
         };
         rhs[j] = segment_length - len;
+        worst = worst.max(rhs[j].abs());
     }
     let w = |i: usize| {
         if i == 0 {
@@ -118,7 +126,7 @@ pub(crate) fn solve_chain(
         points[i] += inv_mass[i] * (pull_back - pull_on);
     }
     // The knot's share: Δx_0 = −w_0·λ_0·n_0, an impulse −λ_0·n_0.
-    -rhs[0] * dir[0]
+    (-rhs[0] * dir[0], worst)
 }
 
 #[cfg(test)]
@@ -146,7 +154,7 @@ mod tests {
             .map(|i| Vec3::new(0.0, -0.101 * i as f32, 0.0))
             .collect();
         let inv_mass = vec![1.0 / 25e-6; 17];
-        let impulse = solve_chain(&mut points, &inv_mass, 0.1, &fixed_knot());
+        let (impulse, _) = solve_chain(&mut points, &inv_mass, 0.1, &fixed_knot());
         for l in lengths(&points) {
             assert!((l - 0.1).abs() < 1e-6, "{l}");
         }
@@ -188,7 +196,7 @@ mod tests {
             .map(|i| Vec3::new(0.0, -0.1 * i as f32 - if i > 0 { delta } else { 0.0 }, 0.0))
             .collect();
         let inv_mass = vec![1.0 / m; points_n + 1];
-        let impulse = solve_chain(&mut points, &inv_mass, 0.1, &fixed_knot());
+        let (impulse, _) = solve_chain(&mut points, &inv_mass, 0.1, &fixed_knot());
         // Each point moves back up δ; the knot's impulse is the chain's momentum change.
         let expected = points_n as f32 * m * delta;
         assert!(
@@ -212,7 +220,7 @@ mod tests {
         };
         let mut points = vec![Vec3::ZERO, Vec3::new(0.0, -0.101, 0.0)];
         let inv_mass = vec![0.0, 1.0 / 25e-6];
-        let impulse = solve_chain(&mut points, &inv_mass, 0.1, &knot);
+        let (impulse, _) = solve_chain(&mut points, &inv_mass, 0.1, &knot);
         let knot_moves = impulse * knot.inv_mass;
         let gap = (points[1] - knot_moves).length();
         assert!((gap - 0.1).abs() < 1e-6, "{gap}");
