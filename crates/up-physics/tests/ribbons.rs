@@ -148,7 +148,17 @@ fn a_ribbon_jerked_by_a_thrown_balloon_stays_within_one_percent() {
         world.step();
         let stretch = world.ribbon_stretch(ribbon).unwrap();
         worst = worst.max(stretch);
-        assert!(stretch.abs() <= 0.01, "step {step}: stretch {stretch}");
+        assert!(stretch <= 0.01, "step {step}: stretch {stretch}");
+        // Its own segments hold their length both ways; only the one at the
+        // knot may go slack (a ribbon never pushes its balloon).
+        let points = world.ribbon_points(ribbon).unwrap();
+        for (k, pair) in points.windows(2).enumerate().skip(1) {
+            let l = pair[0].distance(pair[1]);
+            assert!(
+                (l / (1.5 / 16.0) - 1.0).abs() <= 0.01,
+                "step {step}: segment {k} is {l} m"
+            );
+        }
     }
     println!("thrown at 5 m/s: worst stretch {worst}");
     assert!(world.ribbon_max_stretch() >= worst);
@@ -374,4 +384,106 @@ fn bad_ribbons_are_refused_naming_what_is_wrong() {
     world.remove_body(id).unwrap();
     assert_eq!(world.ribbon_count(), 0);
     assert_eq!(world.ribbon_points(r), None);
+}
+
+#[test]
+fn balloons_and_their_ribbons_fall_asleep_and_wake_together() {
+    // Twenty balloons on ribbons under a flat ceiling.
+    let def = WorldDef {
+        room: Some(room(3.0, 3.0, 3.0, None)),
+        ..WorldDef::default()
+    };
+    let (mut world, shape) = world_with(def);
+    let mut ids = Vec::new();
+    for k in 0..20 {
+        let p = Vec3::new(
+            -1.2 + 0.6 * (k % 5) as f32,
+            1.0,
+            -0.9 + 0.6 * (k / 5) as f32,
+        );
+        let id = add(&mut world, shape, p, Quat::IDENTITY);
+        world
+            .add_ribbon(&RibbonDef::new(id, KNOT, 1.5, 16))
+            .unwrap();
+        ids.push(id);
+    }
+    let mut asleep_at = None;
+    for step in 0..(60 * 60) {
+        world.step();
+        if world.stats().awake_count == 0 {
+            asleep_at = Some(step);
+            break;
+        }
+    }
+    let asleep_at = asleep_at.expect("the pile never fell asleep");
+    println!("asleep after {:.1} s", asleep_at as f32 / 60.0);
+    // Asleep, nothing moves: not the balloons, not the ribbons.
+    let before = world.state_hash();
+    let r = world.ribbon_of(ids[7]).unwrap();
+    let points: Vec<Vec3> = world.ribbon_points(r).unwrap().to_vec();
+    for _ in 0..60 {
+        world.step();
+    }
+    assert_eq!(world.ribbon_points(r).unwrap(), &points[..]);
+    assert_ne!(before, world.state_hash(), "the step count moves on");
+    // A push on one balloon wakes it, and its ribbon moves with it.
+    world
+        .apply_impulse_at_point(
+            ids[7],
+            Vec3::new(0.02, -0.02, 0.0),
+            world.center_of_mass(ids[7]).unwrap(),
+        )
+        .unwrap();
+    for _ in 0..30 {
+        world.step();
+    }
+    assert!(world.is_awake(ids[7]).unwrap());
+    let moved = world.ribbon_points(r).unwrap()[8].distance(points[8]);
+    assert!(moved > 1e-3, "the ribbon stayed put: {moved} m");
+}
+
+#[test]
+fn a_balloon_pulled_down_by_its_ribbon_follows_it() {
+    let (mut world, id, ribbon) =
+        balloon_on_ribbon(Some((6.0, 3.0)), Vec3::new(0.0, 2.0, 0.0), |body| {
+            RibbonDef::new(body, KNOT, 1.5, 16)
+        });
+    for _ in 0..(3 * 60) {
+        world.step();
+    }
+    let top = world.center_of_mass(id).unwrap().y;
+    let end = *world.ribbon_points(ribbon).unwrap().last().unwrap();
+    world.grab_ribbon(ribbon, 16, end).unwrap();
+    assert_eq!(world.grabbed_ribbon(), Some((ribbon, 16)));
+    // Drag the end down to 0.3 m above the floor over a second.
+    for k in 1..=60 {
+        let target = end + (Vec3::new(end.x, 0.3, end.z) - end) * (k as f32 / 60.0);
+        world.set_grab_target(target).unwrap();
+        world.step();
+    }
+    for _ in 0..60 {
+        world.step();
+    }
+    let held = world.center_of_mass(id).unwrap().y;
+    let points = world.ribbon_points(ribbon).unwrap();
+    assert!(
+        (points.last().unwrap().y - 0.3).abs() < 0.01,
+        "the end is where it is held: {}",
+        points.last().unwrap()
+    );
+    // The balloon floats on its taut ribbon above the hand.
+    assert!(held < top - 0.5, "from {top} m down to {held} m");
+    assert!(
+        (points[0].y - 0.3 - 1.5).abs() < 0.05,
+        "knot at {}",
+        points[0]
+    );
+    assert_eq!(world.release_grab(), Some(id));
+    for _ in 0..(3 * 60) {
+        world.step();
+    }
+    assert!(
+        world.center_of_mass(id).unwrap().y > held + 0.5,
+        "it rises again"
+    );
 }

@@ -22,8 +22,8 @@ use super::chain::{solve_chain, KnotBody};
 use super::collide::{push_out_of_room, push_out_of_spheres, NearTriangle};
 use super::nearby::NearbyBodies;
 use super::{
-    Ribbon, GRAB_MAX_SPEED, NORMAL_DRAG_COEFFICIENT, RIBBON_WIDTH, ROOM_FRICTION,
-    TANGENT_DRAG_COEFFICIENT, WEIGHT_DRAG_COEFFICIENT, WEIGHT_RADIUS,
+    Ribbon, NORMAL_DRAG_COEFFICIENT, RIBBON_WIDTH, ROOM_FRICTION, TANGENT_DRAG_COEFFICIENT,
+    WEIGHT_DRAG_COEFFICIENT, WEIGHT_RADIUS,
 };
 use crate::body::ShapeData;
 use crate::solver::body_state::BodyState;
@@ -65,8 +65,9 @@ pub(crate) struct ActiveRibbon {
     /// Room triangles and balloons near it this step, in the stage's lists.
     pub triangles: Range<u32>,
     pub bodies: Range<u32>,
-    /// A grabbed point and where it is carried.
+    /// A grabbed point and where it is carried, and how fast, m/s.
     pub grab: Option<(usize, Vec3)>,
+    pub grab_speed: f32,
     /// This substep's position impulse on the balloon (kg·m) and the knot's
     /// arm it acts at, world frame, m.
     pub impulse: Vec3,
@@ -167,10 +168,13 @@ fn substep_one(r: &mut ActiveRibbon, input: &SubstepInput, states: &[BodyState])
     r.start.extend_from_slice(&r.points);
     fall(r, input.gravity, h);
     if let Some((k, target)) = r.grab {
-        let to = target - r.points[k];
-        let reach = GRAB_MAX_SPEED * h;
+        // Carried at the speed that reaches the target by the step's end.
+        let to = target - r.start[k];
         let len = to.norm();
-        r.points[k] = r.start[k] + if len > reach { to * (reach / len) } else { to };
+        let reach = (r.grab_speed * h).min(len);
+        if len > 0.0 {
+            r.points[k] = r.start[k] + to * (reach / len);
+        }
     }
     place_near_spheres(r, input, states);
     for i in 1..=n {

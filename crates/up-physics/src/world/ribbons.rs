@@ -10,7 +10,8 @@ use crate::body::BodyId;
 use crate::ribbon::collide::NearTriangle;
 use crate::ribbon::solve::ActiveRibbon;
 use crate::ribbon::{
-    Ribbon, RibbonDef, RibbonId, MAX_SEGMENTS, MIN_SEGMENTS, RIBBON_RADIUS, WEIGHT_RADIUS,
+    Ribbon, RibbonDef, RibbonId, GRAB_MAX_SPEED, MAX_SEGMENTS, MIN_SEGMENTS, RIBBON_RADIUS,
+    WEIGHT_RADIUS,
 };
 
 /// A ribbon point held by the pointer.
@@ -350,6 +351,10 @@ impl World {
             r.grab = grab
                 .filter(|g| g.ribbon.index as usize == slot)
                 .map(|g| (g.point as usize, g.target));
+            if let Some((k, target)) = r.grab {
+                let distance = target.distance(ribbon.points[k]);
+                r.grab_speed = (distance / dt).min(GRAB_MAX_SPEED);
+            }
             let speed = ribbon
                 .velocities
                 .iter()
