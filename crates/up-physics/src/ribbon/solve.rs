@@ -177,7 +177,7 @@ fn substep_one(r: &mut ActiveRibbon, input: &SubstepInput, states: &[BodyState])
         }
     }
     place_near_spheres(r, input, states);
-    for i in 1..=n {
+    for i in (1..=n).filter(|&i| r.inv_mass[i] > 0.0) {
         push_out_of_spheres(&mut r.points[i], r.radius[i], &r.spheres);
     }
     let triangles = &input.triangles[r.triangles.start as usize..r.triangles.end as usize];
@@ -187,9 +187,6 @@ fn substep_one(r: &mut ActiveRibbon, input: &SubstepInput, states: &[BodyState])
         inv_inertia: s.inv_inertia,
         arm: r.arm,
     };
-    if let Some((k, _)) = r.grab {
-        r.inv_mass[k] = 0.0;
-    }
     r.impulse = Vec3::ZERO;
     for _ in 0..CHAIN_ITERATIONS {
         let (impulse, worst) = solve_chain(&mut r.points, &r.inv_mass, r.segment_length, &knot);
