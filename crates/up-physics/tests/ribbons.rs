@@ -89,13 +89,6 @@ fn a_hanging_ribbon_pulls_on_the_knot_with_its_weight_straight_down() {
         pull.x.hypot(pull.z) <= 0.01 * weight,
         "not straight down: {pull}"
     );
-    // The hand carries it: its spring stretched by the ribbon's weight.
-    let sag = at.y - world.center_of_mass(id).unwrap().y;
-    assert!(
-        (sag * HAND_STIFFNESS - weight).abs() <= 0.02 * weight,
-        "the hand holds {} N",
-        sag * HAND_STIFFNESS
-    );
     assert!(world.ribbon_stretch(ribbon).unwrap().abs() < 1e-3);
 }
 

@@ -9,7 +9,10 @@
 //! lies on the floor instead of sliding off it.
 //!
 //! Balloons: a point inside a balloon's leaf sphere goes out to its surface
-//! along the line from the sphere's centre. The balloon is not pushed back.
+//! along the line from the sphere's centre, with the same friction against
+//! the balloon's move, so a ribbon draped over a balloon stays draped; the
+//! balloon takes the opposite impulse (momentum is kept: a one-way push lets
+//! balloons stir each other through their ribbons for ever).
 
 use glam::{Quat, Vec3};
 use up_geom::norm::Norm;
@@ -51,14 +54,23 @@ pub(crate) fn push_out_of_room(
         }
         let push = (radius - height) * t.normal;
         *point += push;
-        let depth = push.norm();
-        let normal = push / depth;
-        let moved = *point - start;
-        let slide = moved - moved.dot(normal) * normal;
-        let slide_len = slide.norm();
-        if slide_len > 0.0 {
-            *point -= slide * (mu * depth / slide_len).min(1.0);
-        }
+        take_back_slide(point, *point - start, push, mu);
+    }
+}
+
+/// Coulomb friction at position level: of `moved`, the point's move over the
+/// substep relative to the surface, friction takes back the slide along the
+/// surface, up to `mu` times the surface's `push`.
+fn take_back_slide(point: &mut Vec3, moved: Vec3, push: Vec3, mu: f32) {
+    let depth = push.norm();
+    if depth <= 0.0 {
+        return;
+    }
+    let normal = push / depth;
+    let slide = moved - moved.dot(normal) * normal;
+    let slide_len = slide.norm();
+    if slide_len > 0.0 {
+        *point -= slide * (mu * depth / slide_len).min(1.0);
     }
 }
 
@@ -66,7 +78,11 @@ pub(crate) fn push_out_of_room(
 /// its leaf spheres once a point has come within that.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct NearBalloon {
+    /// Its solver state.
+    pub state: u32,
     pub bound: Sphere,
+    /// Its move over this substep, m (its centre's; its spin is left out).
+    pub moved: Vec3,
     pub center: Vec3,
     pub rotation: Quat,
     pub tree: u32,
@@ -74,15 +90,22 @@ pub(crate) struct NearBalloon {
     pub leaves: (u32, u32),
 }
 
-/// Pushes `point` out of the leaf spheres of each balloon of `near` whose
-/// bounding sphere it is in (most points are in none: one test a balloon),
-/// placing a balloon's leaves (`place`) the first time a point needs them.
+/// Pushes `point` (which was at `start` when the substep began) out of the
+/// leaf spheres of each balloon of `near` whose bounding sphere it is in
+/// (most points are in none: one test a balloon), with friction `mu` against
+/// the balloon's move; places a balloon's leaves (`place`) the first time a
+/// point needs them, and hands each balloon that moved the point, with that
+/// move and where the point ended, to `moved_by` (the push back on it).
+#[allow(clippy::too_many_arguments)] // the point, its surfaces, and two callbacks
 pub(crate) fn push_out_of_balloons(
     point: &mut Vec3,
+    start: Vec3,
     radius: f32,
+    mu: f32,
     near: &mut [NearBalloon],
     leaves: &mut Vec<Sphere>,
     place: impl Fn(&NearBalloon, &mut Vec<Sphere>),
+    mut moved_by: impl FnMut(&NearBalloon, Vec3, Vec3),
 ) {
     for b in near {
         let reach = b.bound.radius + radius;
@@ -94,11 +117,13 @@ pub(crate) fn push_out_of_balloons(
             place(b, leaves);
             b.leaves = (first, leaves.len() as u32);
         }
-        push_out_of_spheres(
-            point,
-            radius,
-            &leaves[b.leaves.0 as usize..b.leaves.1 as usize],
-        );
+        let before = *point;
+        let spheres = &leaves[b.leaves.0 as usize..b.leaves.1 as usize];
+        push_out_of_spheres(point, radius, spheres);
+        take_back_slide(point, *point - start - b.moved, *point - before, mu);
+        if *point != before {
+            moved_by(b, *point - before, *point);
+        }
     }
 }
 

@@ -10,11 +10,11 @@
 //! of all its distance constraints at once, from a tridiagonal system, where
 //! Gauss–Seidel would need as many sweeps as the chain has points for the
 //! knot to feel the whole ribbon's weight. The knot's share of that solve is
-//! a position correction on the balloon (two-way, like a joint's), so the
-//! balloon carries exactly the ribbon it lifts.
+//! an impulse on the balloon (two-way), so the balloon carries exactly the
+//! ribbon it lifts.
 //!
-//! Balloons push ribbons aside but are not pushed by them (a ribbon is a few
-//! milligrams a point); ribbons do not collide with each other. A ribbon
+//! Balloons push ribbons aside and take the opposite impulse (a few
+//! milligrams' worth); ribbons do not collide with each other. A ribbon
 //! sleeps and wakes with its balloon, and keeps its balloon awake while it
 //! still moves.
 
@@ -37,15 +37,24 @@ pub const RIBBON_RADIUS: f32 = 0.0025;
 pub const RIBBON_WIDTH: f32 = 0.005;
 /// Collision radius of a balloon weight at the free end, m (a small foil weight).
 pub const WEIGHT_RADIUS: f32 = 0.025;
-/// Drag coefficient of the ribbon moving across its length (a flat strip
-/// broadside, ≈ 1.2; a guess for a strip that twists).
+/// Drag coefficient of the ribbon moving across its length at high Reynolds
+/// numbers (a flat strip broadside, ≈ 1.2; a guess for a strip that twists).
+/// Slow, the air is viscous: the coefficient grows as White's fit for a
+/// cylinder across a flow, C = C∞ + 10·Re^(−2/3) (Re on the width), which
+/// is what stills a ribbon's last swing (quadratic drag alone would take
+/// minutes to damp a 1 cm/s sway).
 pub const NORMAL_DRAG_COEFFICIENT: f32 = 1.2;
+/// Viscosity of air at 20 °C, Pa·s.
+pub const AIR_VISCOSITY: f32 = 1.81e-5;
 /// Drag coefficient along its length, on its width (skin friction; a guess).
 pub const TANGENT_DRAG_COEFFICIENT: f32 = 0.02;
-/// Drag coefficient of the weight (a bluff body), on its cross-section.
-pub const WEIGHT_DRAG_COEFFICIENT: f32 = 1.0;
+/// Drag coefficient of the weight at high Reynolds numbers, on its
+/// cross-section (a sphere, ≈ 0.5); slow, Stokes's 24/Re is added.
+pub const WEIGHT_DRAG_COEFFICIENT: f32 = 0.5;
 /// Friction of a ribbon point on the room's surfaces (a guess).
 pub const ROOM_FRICTION: f32 = 0.5;
+/// Friction of a ribbon point on latex (a guess).
+pub const BALLOON_FRICTION: f32 = 0.5;
 /// Fastest a grabbed point is carried toward its target, m/s.
 pub const GRAB_MAX_SPEED: f32 = 10.0;
 /// Segments of a ribbon, at least and at most.
@@ -142,6 +151,15 @@ impl Ribbon {
     pub fn stretch(&self) -> f32 {
         let along: f32 = self.points.windows(2).map(|p| p[0].distance(p[1])).sum();
         along / self.length() - 1.0
+    }
+
+    /// Root-mean-square speed of its points (the knot's left out), m/s.
+    pub fn rms_speed(&self) -> f32 {
+        let sum: f32 = self.velocities[1..]
+            .iter()
+            .map(|v| v.length_squared())
+            .sum();
+        (sum / self.segments() as f32).sqrt()
     }
 
     /// Total mass, weight included, kg.

@@ -2,7 +2,7 @@
 //! joints have been projected, before the contacts' relax pass:
 //!
 //! 1. each point falls under gravity and air drag (drag taken implicitly, as
-//!    the bodies' is, across and along the ribbon apart);
+//!    the bodies' is, across and along the ribbon apart, viscous when slow);
 //! 2. points are pushed out of the balloons near the ribbon and out of the room;
 //! 3. the chain, knot included, is brought back to its lengths in one direct
 //!    solve (`chain`), and the room's push repeated for what that moved;
@@ -10,7 +10,11 @@
 //!
 //! The ribbons read the bodies' states and write only their own points, so
 //! they run on rayon's threads in any split; their pulls on their balloons
-//! (one ribbon a balloon) are then applied in ribbon order.
+//! (one ribbon a balloon) and the pushes back of the balloons they touched
+//! are then applied in ribbon order, as impulses on the balloons' velocities:
+//! the contacts' relax pass and friction then see them, where a position
+//! move would slip past friction and let a pile of balloons on ribbons creep
+//! for ever.
 
 use std::ops::Range;
 
@@ -22,8 +26,8 @@ use super::chain::{solve_chain, KnotBody};
 use super::collide::{push_out_of_balloons, push_out_of_room, NearBalloon, NearTriangle};
 use super::nearby::NearbyBodies;
 use super::{
-    Ribbon, NORMAL_DRAG_COEFFICIENT, RIBBON_WIDTH, ROOM_FRICTION, TANGENT_DRAG_COEFFICIENT,
-    WEIGHT_DRAG_COEFFICIENT, WEIGHT_RADIUS,
+    Ribbon, AIR_VISCOSITY, BALLOON_FRICTION, NORMAL_DRAG_COEFFICIENT, RIBBON_WIDTH, ROOM_FRICTION,
+    TANGENT_DRAG_COEFFICIENT, WEIGHT_DRAG_COEFFICIENT, WEIGHT_RADIUS,
 };
 use crate::body::ShapeData;
 use crate::solver::body_state::BodyState;
@@ -56,8 +60,10 @@ pub(crate) struct ActiveRibbon {
     pub velocities: Vec<Vec3>,
     /// Per point: inverse mass (0 for a held point; unused at the knot).
     pub inv_mass: Vec<f32>,
-    /// Per point: drag across and along the ribbon, ½·ρ·C·A, kg/m.
-    pub drag: Vec<[f32; 2]>,
+    /// Per point: drag across and along the ribbon (½·ρ·C∞·A, kg/m), and
+    /// across at low Reynolds numbers: the drag factor times the speed is
+    /// `drag[0]·|v| + drag[2]·|v|^(1/3) + drag[3]`.
+    pub drag: Vec<[f32; 4]>,
     /// Per point: its radius, m.
     pub radius: Vec<f32>,
     /// Where each point began the substep.
@@ -78,6 +84,12 @@ pub(crate) struct ActiveRibbon {
     substeps: u32,
     h: f32,
     pub segment_length: f32,
+    /// This substep's pushes back on the balloons its points touched: the
+    /// balloon's state, the position impulse (kg·m) and its arm (m).
+    reactions: Vec<(u32, Vec3, Vec3)>,
+    /// Per point: the normal of the balloon that pushed it this substep (zero
+    /// if none), and that balloon's velocity.
+    touched: Vec<(Vec3, Vec3)>,
     /// The balloons near it and their leaf spheres, at this substep's poses.
     near: Vec<NearBalloon>,
     spheres: Vec<Sphere>,
@@ -98,14 +110,20 @@ impl ActiveRibbon {
             self.inv_mass.push(if m > 0.0 { 1.0 / m } else { 0.0 });
             // The knot's and the end's half segments; the weight's cross-section.
             let share = if i == 0 || i == n { 0.5 } else { 1.0 };
-            let area = share * ribbon.segment_length * RIBBON_WIDTH;
-            let mut across = 0.5 * air_density * NORMAL_DRAG_COEFFICIENT * area;
-            let along = 0.5 * air_density * TANGENT_DRAG_COEFFICIENT * area;
+            let q = 0.5 * air_density * share * ribbon.segment_length * RIBBON_WIDTH;
+            let nu = AIR_VISCOSITY / air_density;
+            let mut across = q * NORMAL_DRAG_COEFFICIENT;
+            let along = q * TANGENT_DRAG_COEFFICIENT;
+            // 10·Re^(−2/3)·|v| = 10·(ν/w)^(2/3)·|v|^(1/3).
+            let viscous = q * 10.0 * (nu / RIBBON_WIDTH).powf(2.0 / 3.0);
+            let mut stokes = 0.0;
             if i == n && ribbon.weight > 0.0 {
-                let disc = std::f32::consts::PI * WEIGHT_RADIUS * WEIGHT_RADIUS;
-                across += 0.5 * air_density * WEIGHT_DRAG_COEFFICIENT * disc;
+                let disc = 0.5 * air_density * std::f32::consts::PI * WEIGHT_RADIUS * WEIGHT_RADIUS;
+                across += disc * WEIGHT_DRAG_COEFFICIENT;
+                // 24/Re·|v| = 24·ν/D.
+                stokes = disc * 24.0 * nu / (2.0 * WEIGHT_RADIUS);
             }
-            self.drag.push([across, along]);
+            self.drag.push([across, along, viscous, stokes]);
             self.radius.push(ribbon.radius(i));
         }
         // Last: a ribbon without its points has no segments to ask about.
@@ -164,7 +182,10 @@ pub(crate) fn substep(active: &mut [ActiveRibbon], input: &SubstepInput, states:
     });
     let inv_h = 1.0 / input.h;
     for r in active.iter() {
-        states[r.state as usize].apply_position_correction(r.impulse, r.arm, inv_h);
+        states[r.state as usize].apply_impulse(r.impulse * inv_h, r.arm);
+        for &(state, impulse, arm) in &r.reactions {
+            states[state as usize].apply_impulse(impulse * inv_h, arm);
+        }
     }
 }
 
@@ -198,9 +219,20 @@ fn substep_one(r: &mut ActiveRibbon, input: &SubstepInput, states: &[BodyState])
             ));
         }
     };
+    r.reactions.clear();
+    r.touched.clear();
+    r.touched.resize(n + 1, (Vec3::ZERO, Vec3::ZERO));
     for i in (1..=n).filter(|&i| r.inv_mass[i] > 0.0) {
-        let point = &mut r.points[i];
-        push_out_of_balloons(point, r.radius[i], &mut r.near, &mut r.spheres, place);
+        let (start, radius, mass) = (r.start[i], r.radius[i], 1.0 / r.inv_mass[i]);
+        let (reactions, touched) = (&mut r.reactions, &mut r.touched[i]);
+        // The point's momentum change, the other way, where it touched.
+        let push_back = |b: &NearBalloon, moved: Vec3, at: Vec3| {
+            reactions.push((b.state, -mass * moved, at - b.center));
+            *touched = (moved.normalize_or_zero(), b.moved / h);
+        };
+        let (point, near, leaves) = (&mut r.points[i], &mut r.near, &mut r.spheres);
+        let mu = BALLOON_FRICTION;
+        push_out_of_balloons(point, start, radius, mu, near, leaves, place, push_back);
     }
     let triangles = &input.triangles[r.triangles.start as usize..r.triangles.end as usize];
     push_out_of_room_all(r, triangles);
@@ -210,14 +242,19 @@ fn substep_one(r: &mut ActiveRibbon, input: &SubstepInput, states: &[BodyState])
         arm: r.arm,
     };
     r.impulse = Vec3::ZERO;
+    let mut converged = false;
     for _ in 0..CHAIN_ITERATIONS {
         let (impulse, worst) = solve_chain(&mut r.points, &r.inv_mass, r.segment_length, &knot);
         // The knot moves with its body's share before the next solve.
         r.points[0] += knot.point_motion(impulse);
         r.impulse += impulse;
         if worst < CHAIN_TOLERANCE * r.segment_length {
+            converged = true;
             break;
         }
+    }
+    if !converged {
+        follow_the_leader(&mut r.points, &r.inv_mass, r.segment_length);
     }
     push_out_of_room_all(r, triangles);
     r.step_impulse += r.impulse;
@@ -225,9 +262,33 @@ fn substep_one(r: &mut ActiveRibbon, input: &SubstepInput, states: &[BodyState])
     r.h = h;
     let inv_h = 1.0 / h;
     for i in 1..=n {
-        r.velocities[i] = (r.points[i] - r.start[i]) * inv_h;
+        let mut v = (r.points[i] - r.start[i]) * inv_h;
+        // A push out of a balloon stops the point going in; it does not
+        // throw it off (no bounce: a ribbon against latex is inelastic).
+        let (normal, balloon) = r.touched.get(i).copied().unwrap_or_default();
+        let off = (v - balloon).dot(normal);
+        if off > 0.0 {
+            v -= off * normal;
+        }
+        r.velocities[i] = v;
     }
     r.velocities[0] = s.point_velocity(r.arm);
+}
+
+/// Each point pulled after the one before it, from the knot out, to at most
+/// the segment length (Müller, Kim, Chentanez, "Fast simulation of
+/// inextensible hair and fur", 2012): for a ribbon jerked harder than the
+/// solves converge on in a substep (a balloon thrown at 25 m/s with a weight
+/// on its ribbon), which bounds its length at the price of the momentum the
+/// solves had not yet handed round. A held point stays.
+fn follow_the_leader(points: &mut [Vec3], inv_mass: &[f32], segment_length: f32) {
+    for i in 1..points.len() {
+        let d = points[i] - points[i - 1];
+        let len = d.norm();
+        if len > segment_length && inv_mass[i] > 0.0 {
+            points[i] = points[i - 1] + d * (segment_length / len);
+        }
+    }
 }
 
 /// Gravity and drag on each point, then its move over the substep.
@@ -244,10 +305,12 @@ fn fall(r: &mut ActiveRibbon, gravity: Vec3, h: f32) {
         let t = if len > 1e-9 { along / len } else { Vec3::ZERO };
         let v_along = v.dot(t) * t;
         let v_across = v - v_along;
-        let [k_across, k_along] = r.drag[i];
+        let [k_across, k_along, viscous, stokes] = r.drag[i];
         let w = h * r.inv_mass[i];
         let v_along = v_along / (1.0 + w * k_along * v_along.norm());
-        let v_across = v_across / (1.0 + w * k_across * v_across.norm());
+        let speed = v_across.norm();
+        let across = k_across * speed + viscous * speed.cbrt() + stokes;
+        let v_across = v_across / (1.0 + w * across);
         r.velocities[i] = v_along + v_across;
         r.points[i] += h * r.velocities[i];
     }
@@ -280,7 +343,9 @@ fn place_near_spheres(r: &mut ActiveRibbon, input: &SubstepInput, states: &[Body
             continue;
         }
         r.near.push(NearBalloon {
+            state: b,
             bound: Sphere::new(root_center, root.radius),
+            moved: s.v * input.h,
             center,
             rotation: s.q,
             tree: input.shape_of[b as usize],

@@ -393,7 +393,9 @@ impl World {
 
     /// Hands the points back to the ribbons, each knot where its balloon
     /// ended the step; keeps the largest stretch; marks the balloons whose
-    /// ribbons still move (they may not sleep yet), and those whose ribbons
+    /// ribbons still move as a whole (their points' root-mean-square speed:
+    /// a free end's millimetre sway alone keeps no pile awake) — those may
+    /// not sleep yet — and those whose ribbons
     /// went non-finite (quarantined with them).
     pub(super) fn finish_ribbons(&mut self) {
         let stage = &mut self.stages.ribbons;
@@ -418,7 +420,7 @@ impl World {
                 self.stages.faults.non_finite.push(i);
                 continue;
             }
-            stage.moving[i] = ribbon.velocities[1..].iter().any(|v| v.norm() >= slow);
+            stage.moving[i] = ribbon.rms_speed() >= slow;
             max_stretch = max_stretch.max(ribbon.stretch());
         }
         self.ribbons.max_stretch = max_stretch;
