@@ -1,0 +1,198 @@
+//! The ribbons the page draws and grabs: every ribbon's points in one array
+//! a frame (like the poses), and, when ribbons come or go, which balloon each
+//! hangs from, where its points start in that array and its colour. The
+//! ribbon length the page sets re-ties a ribbon of that length on every
+//! balloon, and on each balloon added later.
+
+use std::collections::HashMap;
+
+use glam::Vec3;
+use up_physics::{BodyId, RibbonDef, RibbonId, World};
+
+use crate::error::{finite, WasmError};
+use crate::state::{Loaded, State};
+
+/// Floats per ribbon point: x, y, z.
+pub const RIBBON_POINT_FLOATS: usize = 3;
+/// Longest ribbon the page may tie, m (a scene's `ribbon.length_m` range).
+pub const MAX_RIBBON_LENGTH_M: f32 = 20.0;
+/// Segments of a ribbon the page ties where its balloon's group names none.
+pub const DEFAULT_RIBBON_SEGMENTS: u32 = 16;
+/// Colour of such a ribbon, 0xRRGGBB in sRGB: white curling ribbon.
+pub const DEFAULT_RIBBON_COLOR: u32 = 0xffffff;
+
+/// Packs an RGB of 0–1 (display sRGB, as the palette is) into 0xRRGGBB.
+pub fn pack_rgb(rgb: [f32; 3]) -> u32 {
+    rgb.iter().fold(0, |packed, &c| {
+        (packed << 8) | (c.clamp(0.0, 1.0) * 255.0).round() as u32
+    })
+}
+
+/// What the page needs besides the points: one entry per ribbon, in the
+/// world's ribbon order (`World::ribbon_ids`).
+#[derive(Default)]
+pub struct RibbonTables {
+    pub points: Vec<f32>,
+    /// First point of each ribbon in `points` (in points, not floats), then
+    /// the total: ribbons + 1 entries.
+    pub offsets: Vec<u32>,
+    /// Dense index of the balloon each ribbon is tied to.
+    pub bodies: Vec<u32>,
+    /// Colour of each ribbon, 0xRRGGBB (sRGB).
+    pub colors: Vec<u32>,
+    /// The ribbon length the page asked for, m (0: none); `None` until it asks,
+    /// when each balloon has its scene's ribbon.
+    pub length: Option<f32>,
+}
+
+/// Where a balloon of group `group` ties its ribbon, in its mesh frame, m:
+/// the bottom of the knot.
+fn knot_of(loaded: &Loaded, group: usize) -> Vec3 {
+    loaded
+        .built
+        .balloon_models
+        .get(group)
+        .map_or(Vec3::ZERO, |m| {
+            Vec3::new(0.0, m.mesh.dimensions.bottom_y, 0.0)
+        })
+}
+
+/// Ties a ribbon of `length` m to `body` (of group `group`).
+fn tie(
+    loaded: &mut Loaded,
+    body: BodyId,
+    group: usize,
+    length: f32,
+) -> Result<RibbonId, WasmError> {
+    let knot = knot_of(loaded, group);
+    let def = RibbonDef::new(body, knot, length, DEFAULT_RIBBON_SEGMENTS);
+    Ok(loaded.built.world.add_ribbon(&def)?)
+}
+
+/// The colour of the ribbon of a balloon of `group`.
+fn color_of(_loaded: &Loaded, _group: usize) -> u32 {
+    DEFAULT_RIBBON_COLOR
+}
+
+fn group_of(world: &World, body: BodyId) -> usize {
+    world
+        .user_data(body)
+        .map_or(0, up_scene::build::group_index)
+}
+
+impl State {
+    /// Ribbons in the world (0 without one).
+    pub fn ribbon_count(&self) -> usize {
+        self.world().map_or(0, World::ribbon_count)
+    }
+
+    /// Every ribbon's points, ribbon after ribbon, `RIBBON_POINT_FLOATS` each.
+    pub fn write_ribbon_points(&mut self) -> Result<(), WasmError> {
+        let loaded = self.loaded.as_ref().ok_or(WasmError::NoWorld)?;
+        let world = &loaded.built.world;
+        let points = &mut self.ribbons.points;
+        points.resize(world.ribbon_point_count() * RIBBON_POINT_FLOATS, 0.0);
+        world.write_ribbon_points(points);
+        Ok(())
+    }
+
+    /// Each ribbon's first point, balloon and colour (`RibbonTables`).
+    pub fn write_ribbon_tables(&mut self) -> Result<(), WasmError> {
+        let loaded = self.loaded.as_ref().ok_or(WasmError::NoWorld)?;
+        let world = &loaded.built.world;
+        let dense: HashMap<BodyId, u32> = world
+            .body_ids()
+            .iter()
+            .enumerate()
+            .map(|(i, &id)| (id, i as u32))
+            .collect();
+        let t = &mut self.ribbons;
+        t.offsets.clear();
+        t.bodies.clear();
+        t.colors.clear();
+        let mut first = 0u32;
+        for id in world.ribbon_ids() {
+            let body = world.ribbon_body(id);
+            let points = world.ribbon_points(id).map_or(0, <[Vec3]>::len);
+            t.offsets.push(first);
+            first += points as u32;
+            t.bodies.push(
+                body.and_then(|b| dense.get(&b).copied())
+                    .unwrap_or(u32::MAX),
+            );
+            t.colors.push(body.map_or(DEFAULT_RIBBON_COLOR, |b| {
+                color_of(loaded, group_of(world, b))
+            }));
+        }
+        t.offsets.push(first);
+        Ok(())
+    }
+
+    /// The ribbon length balloons get, m: the page's, once it set one.
+    pub fn ribbon_length(&self) -> f32 {
+        self.ribbons.length.unwrap_or(0.0)
+    }
+
+    /// Unties every ribbon and ties one of `length` m (0: none) to every
+    /// balloon; balloons added later get one too.
+    pub fn set_ribbon_length(&mut self, length: f32) -> Result<(), WasmError> {
+        finite("ribbon length", &[length])?;
+        if !(0.0..=MAX_RIBBON_LENGTH_M).contains(&length) {
+            return Err(WasmError::OutOfRange(format!(
+                "ribbon length {length} m: expected 0 (none) to {MAX_RIBBON_LENGTH_M} m"
+            )));
+        }
+        let loaded = self.loaded.as_mut().ok_or(WasmError::NoWorld)?;
+        let world = &mut loaded.built.world;
+        for id in world.ribbon_ids() {
+            world.remove_ribbon(id)?;
+        }
+        if length > 0.0 {
+            let bodies = loaded.built.world.body_ids().to_vec();
+            for body in bodies {
+                let group = group_of(&loaded.built.world, body);
+                tie(loaded, body, group, length)?;
+            }
+        }
+        self.ribbons.length = Some(length);
+        Ok(())
+    }
+
+    /// Ties the page's ribbon to a balloon just added (none when its length is 0).
+    pub(crate) fn tie_added(&mut self, body: BodyId, group: usize) -> Result<(), WasmError> {
+        let length = self.ribbon_length();
+        if length > 0.0 {
+            let loaded = self.loaded.as_mut().ok_or(WasmError::NoWorld)?;
+            tie(loaded, body, group, length)?;
+        }
+        Ok(())
+    }
+
+    /// The ribbon at `index` in the world's ribbon order.
+    fn ribbon_at(&self, index: u32) -> Result<RibbonId, WasmError> {
+        let ids = self.world()?.ribbon_ids();
+        ids.get(index as usize).copied().ok_or_else(|| {
+            WasmError::OutOfRange(format!("ribbon {index}: there are {} ribbons", ids.len()))
+        })
+    }
+
+    /// Holds point `point` of ribbon `index` (its free end is its segment
+    /// count; 0, the knot, is its balloon's) and carries it toward `target`,
+    /// then toward each `drag_to`; its balloon follows on the ribbon.
+    pub fn grab_ribbon(&mut self, index: u32, point: u32, target: Vec3) -> Result<(), WasmError> {
+        finite("grab target", &target.to_array())?;
+        let id = self.ribbon_at(index)?;
+        let world = self.world()?;
+        let points = world.ribbon_points(id).map_or(0, <[Vec3]>::len);
+        if point == 0 || point as usize >= points {
+            return Err(WasmError::OutOfRange(format!(
+                "point {point} of ribbon {index}: expected 1 to {} (0 is the knot)",
+                points.saturating_sub(1)
+            )));
+        }
+        let bounds = self.loaded()?.built.room.bounds();
+        let target = target.clamp(bounds.min, bounds.max);
+        self.world_mut()?.grab_ribbon(id, point as usize, target)?;
+        Ok(())
+    }
+}
