@@ -9,7 +9,10 @@ use super::{PhysicsError, World};
 use crate::body::BodyId;
 use crate::ribbon::collide::NearTriangle;
 use crate::ribbon::solve::ActiveRibbon;
-use crate::ribbon::{Ribbon, RibbonDef, RibbonId, MAX_SEGMENTS, MIN_SEGMENTS};
+use crate::ribbon::{
+    Ribbon, RibbonDef, RibbonId, GRAB_MAX_SPEED, MAX_SEGMENTS, MIN_SEGMENTS, RIBBON_RADIUS,
+    WEIGHT_RADIUS,
+};
 
 /// A ribbon point held by the pointer.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -74,7 +77,7 @@ impl World {
             velocities: vec![Vec3::ZERO; segments + 1],
             pull: Vec3::ZERO,
         };
-        ribbon.points = self.hang(knot, &ribbon);
+        ribbon.points = self.hang(knot, &ribbon, segments);
         self.wake(def.body)?;
         Ok(self.ribbons.add(ribbon))
     }
@@ -82,11 +85,15 @@ impl World {
     /// Points straight down from `knot` (along gravity), turning along the
     /// floor toward the room's middle where they reach it, and round its
     /// walls: a ribbon laid out inside the room.
-    fn hang(&self, knot: Vec3, ribbon: &Ribbon) -> Vec<Vec3> {
-        let n = ribbon.segments();
+    fn hang(&self, knot: Vec3, ribbon: &Ribbon, n: usize) -> Vec<Vec3> {
         let down = self.def.gravity.try_normalize().unwrap_or(Vec3::NEG_Y);
         let bounds = self.def.room.as_ref().map(|room| {
-            let margin = ribbon.radius(n).max(ribbon.radius(1)) + 1e-3;
+            let end_radius = if ribbon.weight > 0.0 {
+                WEIGHT_RADIUS
+            } else {
+                RIBBON_RADIUS
+            };
+            let margin = end_radius + 1e-3;
             let b = room.aabb();
             (b.min + margin, b.max - margin)
         });
@@ -344,6 +351,10 @@ impl World {
             r.grab = grab
                 .filter(|g| g.ribbon.index as usize == slot)
                 .map(|g| (g.point as usize, g.target));
+            if let Some((k, target)) = r.grab {
+                let distance = target.distance(ribbon.points[k]);
+                r.grab_speed = (distance / dt).min(GRAB_MAX_SPEED);
+            }
             let speed = ribbon
                 .velocities
                 .iter()
