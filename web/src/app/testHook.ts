@@ -93,12 +93,17 @@ export function createTestHook(app: App) {
       return { width: w, height: h, mean, std: Math.sqrt(Math.max(0, sum2 / n - mean * mean)), saturatedFraction: saturated / n, pixels: n };
     },
     /**
-     * Renders once (without the balloons when `hideBalloons`) and counts the
+     * Renders once (without the balloons or the ribbons when asked) and counts the
      * pixels of hue within `hueDegrees` of `rgb`'s and saturated (over 0.35,
      * not dark): a lit, shaded surface of that colour. In the client
      * rectangle `region` (CSS pixels; the whole view when left out).
      */
-    colorPixels(rgb: [number, number, number], hueDegrees: number, region?: { left: number; top: number; right: number; bottom: number }, hideBalloons = false) {
+    colorPixels(
+      rgb: [number, number, number],
+      hueDegrees: number,
+      region?: { left: number; top: number; right: number; bottom: number },
+      hide: { balloons?: boolean; ribbons?: boolean } = {},
+    ) {
       const hue = (r: number, g: number, b: number) => {
         const max = Math.max(r, g, b);
         const d = max - Math.min(r, g, b);
@@ -108,9 +113,13 @@ export function createTestHook(app: App) {
       };
       const target = hue(...rgb);
       const balloons = world.balloons;
-      if (hideBalloons && balloons) balloons.setVisible(false);
+      const ribbons = world.ribbons?.mesh;
+      const ribbonsShown = ribbons?.visible ?? false;
+      if (hide.balloons && balloons) balloons.setVisible(false);
+      if (hide.ribbons && ribbons) ribbons.visible = false;
       renderer.render(scene, camera);
-      if (hideBalloons && balloons) balloons.setVisible(true);
+      if (hide.balloons && balloons) balloons.setVisible(true);
+      if (ribbons) ribbons.visible = ribbonsShown;
       const gl = renderer.getContext();
       const w = gl.drawingBufferWidth;
       const h = gl.drawingBufferHeight;
