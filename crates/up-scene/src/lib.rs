@@ -12,6 +12,7 @@ pub mod balloon_mesh;
 pub mod obj;
 pub mod obj_export;
 pub mod palette;
+pub mod ribbons;
 pub mod room;
 
 // Scene files and building a world from them.
