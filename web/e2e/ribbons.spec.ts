@@ -1,5 +1,5 @@
-// Ribbons in the browser: drawn below the balloons at the ceiling, and
-// grabbed by the free end to pull a balloon down.
+// Ribbons in the browser: drawn below the balloons at the ceiling, their
+// particles in the debug view, and grabbed by the free end to pull a balloon down.
 
 import { expect, open, pause, sceneHash, test } from "./fixtures";
 
@@ -45,6 +45,9 @@ test("ribbons are drawn below a pile at the ceiling", async ({ page }, testInfo)
   // Twelve ribbons of about 1 m, a pixel or two wide, seen from 6 m: hundreds of pixels.
   expect(counts.withRibbons.matching, JSON.stringify(counts)).toBeGreaterThan(300);
   expect(counts.without.matching, "nothing else there is of the ribbons' colour").toBeLessThan(20);
+  // The debug view (D) shows every ribbon particle: 16 segments, 17 points a ribbon.
+  await page.keyboard.press("d");
+  await page.waitForFunction(() => window.__up!.ribbonParticlesDrawn() === 12 * 17, null, { timeout: 30_000 });
 });
 
 test("pulling a ribbon's free end down brings its balloon down", async ({ page }) => {

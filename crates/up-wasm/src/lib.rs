@@ -314,13 +314,16 @@ impl Engine {
         self.state.ribbons.colors.as_ptr()
     }
 
-    /// Re-ties a ribbon of `length` m on every balloon, and on each added
-    /// later (0: unties them all); at most `constants().max_ribbon_length_m`.
+    /// Writes `length` m into every group's ribbon (the scene's other ribbon
+    /// keys kept) and re-ties a ribbon of that length on every balloon, and
+    /// on each added later (0: unties them all); at most
+    /// `constants().max_ribbon_length_m`.
     pub fn set_ribbon_length(&mut self, length: f32) -> Result<(), CallError> {
         named("set_ribbon_length", self.state.set_ribbon_length(length))
     }
 
-    /// The ribbon length `set_ribbon_length` last set, m (0 before it did).
+    /// The first group's ribbon length, m (0: none), as the scene or
+    /// `set_ribbon_length` set it.
     pub fn ribbon_length(&self) -> f32 {
         self.state.ribbon_length()
     }

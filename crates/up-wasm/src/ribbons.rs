@@ -1,13 +1,17 @@
 //! The ribbons the page draws and grabs: every ribbon's points in one array
 //! a frame (like the poses), and, when ribbons come or go, which balloon each
-//! hangs from, where its points start in that array and its colour. The
-//! ribbon length the page sets re-ties a ribbon of that length on every
-//! balloon, and on each balloon added later.
+//! hangs from, where its points start in that array and its colour. Ribbons
+//! are tied as the scene ties them (`up_scene::ribbons::tie_ribbon`, at the
+//! model's knot, with its group's ribbon); the ribbon length the page sets
+//! is written into every group's ribbon and re-ties them all, and a balloon
+//! added later gets its group's.
 
 use std::collections::HashMap;
 
 use glam::Vec3;
-use up_physics::{BodyId, RibbonDef, RibbonId, World};
+use up_physics::{BodyId, RibbonId, World};
+use up_scene::ribbons::{ribbon_rgb, tie_ribbon, GroupRibbon};
+use up_scene::scene::RibbonSpec;
 
 use crate::error::{finite, WasmError};
 use crate::state::{Loaded, State};
@@ -15,11 +19,7 @@ use crate::state::{Loaded, State};
 /// Floats per ribbon point: x, y, z.
 pub const RIBBON_POINT_FLOATS: usize = 3;
 /// Longest ribbon the page may tie, m (a scene's `ribbon.length_m` range).
-pub const MAX_RIBBON_LENGTH_M: f32 = 20.0;
-/// Segments of a ribbon the page ties where its balloon's group names none.
-pub const DEFAULT_RIBBON_SEGMENTS: u32 = 16;
-/// Colour of such a ribbon, 0xRRGGBB in sRGB: white curling ribbon.
-pub const DEFAULT_RIBBON_COLOR: u32 = 0xffffff;
+pub use up_scene::scene::MAX_RIBBON_LENGTH_M;
 
 /// Packs an RGB of 0–1 (display sRGB, as the palette is) into 0xRRGGBB.
 pub fn pack_rgb(rgb: [f32; 3]) -> u32 {
@@ -40,38 +40,27 @@ pub struct RibbonTables {
     pub bodies: Vec<u32>,
     /// Colour of each ribbon, 0xRRGGBB (sRGB).
     pub colors: Vec<u32>,
-    /// The ribbon length the page asked for, m (0: none); `None` until it asks,
-    /// when each balloon has its scene's ribbon.
-    pub length: Option<f32>,
 }
 
-/// Where a balloon of group `group` ties its ribbon, in its mesh frame, m:
-/// the bottom of the knot.
-fn knot_of(loaded: &Loaded, group: usize) -> Vec3 {
-    loaded
-        .built
-        .balloon_models
-        .get(group)
-        .map_or(Vec3::ZERO, |m| {
-            Vec3::new(0.0, m.mesh.dimensions.bottom_y, 0.0)
-        })
+/// Ties group `group`'s ribbon, if it has one, to `body`, a balloon of that group.
+fn tie(loaded: &mut Loaded, body: BodyId, group: usize) -> Result<Option<RibbonId>, WasmError> {
+    let built = &mut loaded.built;
+    let (Some(Some(ribbon)), Some(model)) = (
+        built.group_ribbons.get(group),
+        built.balloon_models.get(group),
+    ) else {
+        return Ok(None);
+    };
+    Ok(tie_ribbon(&mut built.world, body, model, &ribbon.spec)?)
 }
 
-/// Ties a ribbon of `length` m to `body` (of group `group`).
-fn tie(
-    loaded: &mut Loaded,
-    body: BodyId,
-    group: usize,
-    length: f32,
-) -> Result<RibbonId, WasmError> {
-    let knot = knot_of(loaded, group);
-    let def = RibbonDef::new(body, knot, length, DEFAULT_RIBBON_SEGMENTS);
-    Ok(loaded.built.world.add_ribbon(&def)?)
-}
-
-/// The colour of the ribbon of a balloon of `group`.
-fn color_of(_loaded: &Loaded, _group: usize) -> u32 {
-    DEFAULT_RIBBON_COLOR
+/// The colour of the ribbon of a balloon of `group`, 0xRRGGBB.
+fn color_of(loaded: &Loaded, group: usize) -> u32 {
+    let rgb = match loaded.built.group_ribbons.get(group) {
+        Some(Some(ribbon)) => ribbon.rgb,
+        _ => ribbon_rgb(&RibbonSpec::default()),
+    };
+    pack_rgb(rgb)
 }
 
 fn group_of(world: &World, body: BodyId) -> usize {
@@ -120,21 +109,26 @@ impl State {
                 body.and_then(|b| dense.get(&b).copied())
                     .unwrap_or(u32::MAX),
             );
-            t.colors.push(body.map_or(DEFAULT_RIBBON_COLOR, |b| {
-                color_of(loaded, group_of(world, b))
-            }));
+            t.colors
+                .push(color_of(loaded, body.map_or(0, |b| group_of(world, b))));
         }
         t.offsets.push(first);
         Ok(())
     }
 
-    /// The ribbon length balloons get, m: the page's, once it set one.
+    /// The first group's ribbon length, m (0: none): what the page shows.
     pub fn ribbon_length(&self) -> f32 {
-        self.ribbons.length.unwrap_or(0.0)
+        self.loaded
+            .as_ref()
+            .and_then(|l| l.scene.balloons.first())
+            .and_then(|g| g.tied_ribbon())
+            .map_or(0.0, |r| r.length_m)
     }
 
-    /// Unties every ribbon and ties one of `length` m (0: none) to every
-    /// balloon; balloons added later get one too.
+    /// Writes `length` m (0: none) into every group's ribbon, in the scene
+    /// (so that `scene_json` has it) and in the world: unties every ribbon
+    /// and ties the new ones; balloons added later get theirs. A group
+    /// without a ribbon gets the default ribbon (`RibbonSpec::default`).
     pub fn set_ribbon_length(&mut self, length: f32) -> Result<(), WasmError> {
         finite("ribbon length", &[length])?;
         if !(0.0..=MAX_RIBBON_LENGTH_M).contains(&length) {
@@ -143,28 +137,34 @@ impl State {
             )));
         }
         let loaded = self.loaded.as_mut().ok_or(WasmError::NoWorld)?;
+        for (group, ribbon) in loaded
+            .scene
+            .balloons
+            .iter_mut()
+            .zip(&mut loaded.built.group_ribbons)
+        {
+            if length > 0.0 || group.ribbon.is_some() {
+                let spec = group.ribbon.get_or_insert_with(RibbonSpec::default);
+                spec.length_m = length;
+                *ribbon = GroupRibbon::new(spec);
+            }
+        }
         let world = &mut loaded.built.world;
         for id in world.ribbon_ids() {
             world.remove_ribbon(id)?;
         }
-        if length > 0.0 {
-            let bodies = loaded.built.world.body_ids().to_vec();
-            for body in bodies {
-                let group = group_of(&loaded.built.world, body);
-                tie(loaded, body, group, length)?;
-            }
+        let bodies = loaded.built.world.body_ids().to_vec();
+        for body in bodies {
+            let group = group_of(&loaded.built.world, body);
+            tie(loaded, body, group)?;
         }
-        self.ribbons.length = Some(length);
         Ok(())
     }
 
-    /// Ties the page's ribbon to a balloon just added (none when its length is 0).
+    /// Ties its group's ribbon to a balloon just added (none when the group has none).
     pub(crate) fn tie_added(&mut self, body: BodyId, group: usize) -> Result<(), WasmError> {
-        let length = self.ribbon_length();
-        if length > 0.0 {
-            let loaded = self.loaded.as_mut().ok_or(WasmError::NoWorld)?;
-            tie(loaded, body, group, length)?;
-        }
+        let loaded = self.loaded.as_mut().ok_or(WasmError::NoWorld)?;
+        tie(loaded, body, group)?;
         Ok(())
     }
 

@@ -119,7 +119,6 @@ impl State {
             built,
             shapes,
         });
-        self.ribbons.length = None;
         Ok(())
     }
 

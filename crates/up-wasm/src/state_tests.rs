@@ -333,3 +333,46 @@ fn popping_a_balloon_takes_its_ribbon_and_the_tables_follow() {
     s.write_ribbon_tables().unwrap();
     assert!(s.ribbons.bodies.iter().all(|&b| (b as usize) < n - 1));
 }
+
+#[test]
+fn the_scene_ties_its_ribbons_and_the_page_length_is_written_into_the_scene() {
+    let mut s = State::default();
+    let text = r##"{"balloons": [
+        {"count": 3, "ribbon": {"length_m": 0.9, "segments": 6, "color": "#ff00ff"}},
+        {"count": 2}
+    ]}"##;
+    s.load_json(text).unwrap();
+    assert_eq!(s.ribbon_count(), 3, "only the group with a ribbon table");
+    assert_eq!(s.ribbon_length(), 0.9);
+    s.write_ribbon_tables().unwrap();
+    assert!(s.ribbons.colors.iter().all(|&c| c == 0xff00ff));
+    assert!(s.ribbons.offsets.windows(2).all(|w| w[1] - w[0] == 7));
+    // A balloon added to the first model gets that group's ribbon.
+    s.add_balloon(Vec3::new(0.0, 1.0, 0.0), 0, 0).unwrap();
+    assert_eq!(s.ribbon_count(), 4);
+    s.add_balloon(Vec3::new(0.5, 1.0, 0.0), 0, 1).unwrap();
+    assert_eq!(s.ribbon_count(), 4, "the second group has none");
+
+    s.set_ribbon_length(1.25).unwrap();
+    assert_eq!(s.ribbon_count(), s.body_count(), "every group gets one");
+    let scene = Scene::from_json_str(&s.scene_json().unwrap(), "t").unwrap();
+    let ribbons: Vec<_> = scene
+        .balloons
+        .iter()
+        .map(|g| g.ribbon.clone().unwrap())
+        .collect();
+    assert_eq!(ribbons[0].length_m, 1.25);
+    assert_eq!(ribbons[0].color, "#ff00ff", "its other keys kept");
+    assert_eq!(ribbons[0].segments, 6);
+    assert_eq!(ribbons[1].length_m, 1.25);
+    // What the page shares is a scene the engine builds the same.
+    let again = s.scene_json().unwrap();
+    let mut t = State::default();
+    t.load_json(&again).unwrap();
+    assert_eq!(t.ribbon_count(), t.body_count());
+
+    s.set_ribbon_length(0.0).unwrap();
+    assert_eq!(s.ribbon_count(), 0);
+    let scene = Scene::from_json_str(&s.scene_json().unwrap(), "t").unwrap();
+    assert_eq!(scene.balloons[0].ribbon.as_ref().unwrap().length_m, 0.0);
+}
