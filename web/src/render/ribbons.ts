@@ -228,11 +228,16 @@ export class Ribbons {
     const ribbon = new Float32Array(n * 4);
     const colors = new Float32Array(n * 3);
     for (let r = 0; r < n; r++) {
+      ribbon[r * 4] = tables.offsets[r];
+      ribbon[r * 4 + 1] = tables.offsets[r + 1] - tables.offsets[r];
+      ribbon[r * 4 + 2] = lengths[r];
       // A phase per ribbon, so that neighbours do not twist in step (golden angle).
-      ribbon.set([tables.offsets[r], tables.offsets[r + 1] - tables.offsets[r], lengths[r], (r * 2.39996) % (2 * Math.PI)], r * 4);
+      ribbon[r * 4 + 3] = (r * 2.39996) % (2 * Math.PI);
       // 0xRRGGBB is display sRGB; the shader works in linear.
       this.color.setHex(tables.colors[r], THREE.SRGBColorSpace);
-      colors.set([this.color.r, this.color.g, this.color.b], r * 3);
+      colors[r * 3] = this.color.r;
+      colors[r * 3 + 1] = this.color.g;
+      colors[r * 3 + 2] = this.color.b;
     }
     const g = this.mesh.geometry;
     g.setAttribute("ribbon", new THREE.InstancedBufferAttribute(ribbon, 4));
