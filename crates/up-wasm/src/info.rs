@@ -75,6 +75,8 @@ pub struct Constants {
     pub ribbon_point_stride: u32,
     /// Width of the ribbon drawn, m (the engine's ribbon, 5 mm curling ribbon).
     pub ribbon_width_m: f32,
+    /// Radius of a weight at a ribbon's free end, m (as it collides).
+    pub weight_radius_m: f32,
     /// Longest ribbon `set_ribbon_length` ties, m.
     pub max_ribbon_length_m: f32,
     /// Most balloons the page's world holds.
@@ -109,6 +111,7 @@ impl Constants {
             tree_stride: TREE_FLOATS as u32,
             ribbon_point_stride: RIBBON_POINT_FLOATS as u32,
             ribbon_width_m: up_physics::ribbon::RIBBON_WIDTH,
+            weight_radius_m: up_physics::ribbon::WEIGHT_RADIUS,
             max_ribbon_length_m: MAX_RIBBON_LENGTH_M,
             capacity: CAPACITY as u32,
             max_contacts: MAX_CONTACTS as u32,

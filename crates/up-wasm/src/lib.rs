@@ -295,8 +295,9 @@ impl Engine {
 
     /// Writes, per ribbon in the order of the points: its first point
     /// (`ribbon_offsets_ptr`, one more entry at the end: the total), the
-    /// dense index of its balloon (`ribbon_bodies_ptr`) and its colour,
-    /// 0xRRGGBB sRGB (`ribbon_colors_ptr`); returns the ribbon count.
+    /// dense index of its balloon (`ribbon_bodies_ptr`), its colour,
+    /// 0xRRGGBB sRGB (`ribbon_colors_ptr`) and the weight at its free end, kg,
+    /// 0 for none (`ribbon_weights_ptr`); returns the ribbon count.
     pub fn write_ribbons(&mut self) -> Result<u32, CallError> {
         named("write_ribbons", self.state.write_ribbon_tables())?;
         Ok(self.state.ribbons.bodies.len() as u32)
@@ -312,6 +313,10 @@ impl Engine {
 
     pub fn ribbon_colors_ptr(&self) -> *const u32 {
         self.state.ribbons.colors.as_ptr()
+    }
+
+    pub fn ribbon_weights_ptr(&self) -> *const f32 {
+        self.state.ribbons.weights.as_ptr()
     }
 
     /// Writes `length` m into every group's ribbon (the scene's other ribbon

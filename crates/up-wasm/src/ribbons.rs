@@ -40,6 +40,8 @@ pub struct RibbonTables {
     pub bodies: Vec<u32>,
     /// Colour of each ribbon, 0xRRGGBB (sRGB).
     pub colors: Vec<u32>,
+    /// The weight tied to each ribbon's free end, kg (0: none).
+    pub weights: Vec<f32>,
 }
 
 /// Ties group `group`'s ribbon, if it has one, to `body`, a balloon of that group.
@@ -52,6 +54,14 @@ fn tie(loaded: &mut Loaded, body: BodyId, group: usize) -> Result<Option<RibbonI
         return Ok(None);
     };
     Ok(tie_ribbon(&mut built.world, body, model, &ribbon.spec)?)
+}
+
+/// The weight at the free end of the ribbon of a balloon of `group`, kg.
+fn weight_of(loaded: &Loaded, group: usize) -> f32 {
+    match loaded.built.group_ribbons.get(group) {
+        Some(Some(ribbon)) => ribbon.spec.weight_g * 1e-3,
+        _ => 0.0,
+    }
 }
 
 /// The colour of the ribbon of a balloon of `group`, 0xRRGGBB.
@@ -99,6 +109,7 @@ impl State {
         t.offsets.clear();
         t.bodies.clear();
         t.colors.clear();
+        t.weights.clear();
         let mut first = 0u32;
         for id in world.ribbon_ids() {
             let body = world.ribbon_body(id);
@@ -109,8 +120,9 @@ impl State {
                 body.and_then(|b| dense.get(&b).copied())
                     .unwrap_or(u32::MAX),
             );
-            t.colors
-                .push(color_of(loaded, body.map_or(0, |b| group_of(world, b))));
+            let group = body.map_or(0, |b| group_of(world, b));
+            t.colors.push(color_of(loaded, group));
+            t.weights.push(weight_of(loaded, group));
         }
         t.offsets.push(first);
         Ok(())

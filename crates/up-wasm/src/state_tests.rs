@@ -346,6 +346,7 @@ fn the_scene_ties_its_ribbons_and_the_page_length_is_written_into_the_scene() {
     assert_eq!(s.ribbon_length(), 0.9);
     s.write_ribbon_tables().unwrap();
     assert!(s.ribbons.colors.iter().all(|&c| c == 0xff00ff));
+    assert_eq!(s.ribbons.weights, vec![0.0; 3]);
     assert!(s.ribbons.offsets.windows(2).all(|w| w[1] - w[0] == 7));
     // A balloon added to the first model gets that group's ribbon.
     s.add_balloon(Vec3::new(0.0, 1.0, 0.0), 0, 0).unwrap();
@@ -375,4 +376,19 @@ fn the_scene_ties_its_ribbons_and_the_page_length_is_written_into_the_scene() {
     assert_eq!(s.ribbon_count(), 0);
     let scene = Scene::from_json_str(&s.scene_json().unwrap(), "t").unwrap();
     assert_eq!(scene.balloons[0].ribbon.as_ref().unwrap().length_m, 0.0);
+}
+
+#[test]
+fn each_ribbon_says_the_weight_at_its_end() {
+    let mut s = State::default();
+    let text = r##"{"balloons": [
+        {"count": 2, "ribbon": {"length_m": 1.0, "weight_g": 12}},
+        {"count": 1, "ribbon": {"length_m": 1.0}}
+    ]}"##;
+    s.load_json(text).unwrap();
+    s.write_ribbon_tables().unwrap();
+    let mut weights = s.ribbons.weights.clone();
+    weights.sort_by(f32::total_cmp);
+    assert_eq!(weights, vec![0.0, 0.012, 0.012]);
+    assert_eq!(s.ribbons.weights.len(), s.ribbons.bodies.len());
 }

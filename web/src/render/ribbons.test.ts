@@ -3,8 +3,8 @@ import * as THREE from "three";
 import { CURL_SAMPLES, Ribbons, STRIP_SAMPLES, TEXTURE_WIDTH, ribbonLengths, stripTemplate, writeRibbonTexels } from "./ribbons";
 import type { RibbonTables } from "../sim/engine";
 
-/** `n` ribbons of `points` points hanging straight down, 0.1 m a segment, side by side. */
-function hanging(n: number, points: number): { tables: RibbonTables; curr: Float32Array } {
+/** `n` ribbons of `points` points hanging straight down, 0.1 m a segment, side by side; every third weighted when `weighted`. */
+function hanging(n: number, points: number, weighted = false): { tables: RibbonTables; curr: Float32Array } {
   const curr = new Float32Array(n * points * 3);
   const offsets = new Uint32Array(n + 1);
   for (let r = 0; r < n; r++) {
@@ -14,7 +14,8 @@ function hanging(n: number, points: number): { tables: RibbonTables; curr: Float
   offsets[n] = n * points;
   const bodies = Uint32Array.from({ length: n }, (_, r) => n - 1 - r);
   const colors = Uint32Array.from({ length: n }, (_, r) => (r % 2 ? 0xff0000 : 0x00ff00));
-  return { tables: { offsets, bodies, colors }, curr };
+  const weights = Float32Array.from({ length: n }, (_, r) => (weighted && r % 3 === 0 ? 0.01 : 0));
+  return { tables: { offsets, bodies, colors, weights }, curr };
 }
 
 describe("ribbon strips", () => {
@@ -44,8 +45,8 @@ describe("ribbon strips", () => {
   });
 
   it("place each ribbon by its first point, point count, length and colour", () => {
-    const ribbons = new Ribbons(0.005);
-    const { tables, curr } = hanging(3, 5);
+    const ribbons = new Ribbons(0.005, 0.025);
+    const { tables, curr } = hanging(3, 5, true);
     ribbons.setRibbons(tables, curr);
     expect(ribbons.count).toBe(3);
     expect(ribbons.mesh.visible).toBe(true);
@@ -57,19 +58,25 @@ describe("ribbon strips", () => {
     expect([c.getX(1), c.getY(1), c.getZ(1)]).toEqual([1, 0, 0]);
     expect([c.getX(0), c.getY(0), c.getZ(0)]).toEqual([0, 1, 0]);
     ribbons.update(curr, curr, 1);
+    // Ribbon 0 has a weight (every third): one ball, at its free end.
+    expect(ribbons.weights.count).toBe(1);
+    const m = new THREE.Matrix4();
+    ribbons.weights.getMatrixAt(0, m);
+    expect(new THREE.Vector3().setFromMatrixPosition(m).toArray()).toEqual([0, curr[13], 0]);
     const texture = ribbons.mesh.material as THREE.MeshStandardMaterial;
     expect(texture.side).toBe(THREE.DoubleSide);
-    ribbons.setRibbons({ offsets: new Uint32Array(1), bodies: new Uint32Array(0), colors: new Uint32Array(0) }, new Float32Array(0));
+    ribbons.setRibbons({ offsets: new Uint32Array(1), bodies: new Uint32Array(0), colors: new Uint32Array(0), weights: new Float32Array(0) }, new Float32Array(0));
+    expect(ribbons.weights.count).toBe(0);
     expect(ribbons.count).toBe(0);
     expect(ribbons.mesh.visible).toBe(false);
   });
 
   it("update 5,000 ribbons in a few milliseconds of the main thread", () => {
     const n = 5000;
-    const points = 17; // 16 segments, the scenes' default
+    const points = 17; // 16 segments, the scenes' default; no weights, as there
     const { tables, curr } = hanging(n, points);
     const prev = curr.map((v) => v + 0.001);
-    const ribbons = new Ribbons(0.005);
+    const ribbons = new Ribbons(0.005, 0.025);
     // New ribbons (added, popped, re-tied): the third of three, warm.
     let setMs = 0;
     for (let k = 0; k < 3; k++) {

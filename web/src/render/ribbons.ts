@@ -6,7 +6,8 @@
 // last CURL_LENGTH (as curling ribbon does). Each instance is one ribbon: a
 // strip of fixed samples (STRIP_SAMPLES along, CURL_SAMPLES in the curl)
 // that the shader places on that ribbon's points. Lit (MeshStandardMaterial),
-// double-sided, in each ribbon's colour; it casts no shadow.
+// double-sided, in each ribbon's colour; it casts no shadow. A weight at a
+// free end is a small foil ball of the ribbon's colour (one instanced mesh).
 
 import * as THREE from "three";
 import type { RibbonTables } from "../sim/engine";
@@ -175,7 +176,14 @@ export function writeRibbonTexels(out: Float32Array, prev: Float32Array, curr: F
 }
 
 export class Ribbons {
+  /** The ribbons and their weights: what the scene shows. */
+  readonly group = new THREE.Group();
   readonly mesh: THREE.Mesh<THREE.InstancedBufferGeometry, THREE.MeshStandardMaterial>;
+  /** One ball per weighted ribbon, at its free end. */
+  weights: THREE.InstancedMesh;
+  /** The free end's point (in all the points) of each weighted ribbon, in instance order. */
+  private weightEnds = new Uint32Array(0);
+  private readonly weightMatrix = new THREE.Matrix4();
   private texture: THREE.DataTexture;
   private readonly uniforms: Record<string, THREE.IUniform>;
   private pointCapacity = 0;
@@ -183,7 +191,7 @@ export class Ribbons {
   private points = 0;
   private readonly color = new THREE.Color();
 
-  constructor(ribbonWidth: number) {
+  constructor(ribbonWidth: number, private readonly weightRadius: number) {
     this.texture = this.makeTexture(TEXTURE_WIDTH);
     this.uniforms = {
       ribbonPoints: { value: this.texture },
@@ -196,6 +204,27 @@ export class Ribbons {
     // Placed by the shader: the template's bounds say nothing of where they are.
     this.mesh.frustumCulled = false;
     this.mesh.visible = false;
+    this.weights = this.makeWeights(16);
+    this.group.name = "ribbons";
+    this.group.add(this.mesh);
+  }
+
+  private makeWeights(capacity: number): THREE.InstancedMesh {
+    if (this.weights) {
+      this.group.remove(this.weights);
+      this.weights.dispose();
+    }
+    const ball = new THREE.IcosahedronGeometry(this.weightRadius, 2);
+    // Foil: metallic, a little rough.
+    const foil = new THREE.MeshStandardMaterial({ color: 0xffffff, metalness: 0.85, roughness: 0.3 });
+    const mesh = new THREE.InstancedMesh(ball, foil, capacity);
+    mesh.name = "ribbon weights";
+    mesh.castShadow = true;
+    mesh.frustumCulled = false;
+    mesh.count = 0;
+    mesh.instanceMatrix.setUsage(THREE.DynamicDrawUsage);
+    this.group.add(mesh);
+    return mesh;
   }
 
   private makeTexture(points: number): THREE.DataTexture {
@@ -245,13 +274,29 @@ export class Ribbons {
     g.instanceCount = n;
     this.points = total;
     this.mesh.visible = n > 0;
+    const weighted: number[] = [];
+    for (let r = 0; r < n; r++) if ((tables.weights[r] ?? 0) > 0) weighted.push(r);
+    if (weighted.length > this.weights.instanceMatrix.count) this.weights = this.makeWeights(Math.max(weighted.length, 2 * this.weights.instanceMatrix.count));
+    this.weightEnds = Uint32Array.from(weighted, (r) => tables.offsets[r + 1] - 1);
+    weighted.forEach((r, k) => this.weights.setColorAt(k, this.color.setHex(tables.colors[r], THREE.SRGBColorSpace)));
+    if (this.weights.instanceColor) this.weights.instanceColor.needsUpdate = true;
+    this.weights.count = weighted.length;
   }
 
   /** The frame's points, interpolated by `alpha` between its two steps, into the texture. */
   update(prev: Float32Array, curr: Float32Array, alpha: number): void {
     const count = Math.min(this.points, Math.floor(curr.length / RIBBON_POINT_STRIDE), this.pointCapacity);
     if (count === 0) return;
-    writeRibbonTexels(this.texture.image.data as Float32Array, prev, curr, count, alpha);
+    const texels = this.texture.image.data as Float32Array;
+    writeRibbonTexels(texels, prev, curr, count, alpha);
     this.texture.needsUpdate = true;
+    const ends = this.weightEnds;
+    for (let k = 0; k < ends.length; k++) {
+      const t = ends[k] * 4;
+      // The end point is the centre of the weight's collision sphere.
+      this.weightMatrix.makeTranslation(texels[t], texels[t + 1], texels[t + 2]);
+      this.weights.setMatrixAt(k, this.weightMatrix);
+    }
+    if (ends.length > 0) this.weights.instanceMatrix.needsUpdate = true;
   }
 }

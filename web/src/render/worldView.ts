@@ -53,8 +53,8 @@ export class WorldView {
     }
     this.debug.setTrees(info.trees);
     if (!this.ribbons) {
-      this.ribbons = new Ribbons(info.constants.ribbon_width_m);
-      this.scene.add(this.ribbons.mesh);
+      this.ribbons = new Ribbons(info.constants.ribbon_width_m, info.constants.weight_radius_m);
+      this.scene.add(this.ribbons.group);
     }
     this.ribbonVersion = -1;
     this.balloons?.setWorld(info.palette, info.colorNames, info.diameters);

@@ -28,7 +28,7 @@ export class SimBridge {
   ribbonsPrev = new Float32Array(0);
   ribbonsCurr = new Float32Array(0);
   /** Each ribbon's first point, balloon and colour,. */
-  ribbons: RibbonTables = { offsets: new Uint32Array(1), bodies: new Uint32Array(0), colors: new Uint32Array(0) };
+  ribbons: RibbonTables = { offsets: new Uint32Array(1), bodies: new Uint32Array(0), colors: new Uint32Array(0), weights: new Float32Array(0) };
   info: WorldInfo | null = null;
   paused = false;
   /** Validation requests waiting for the worker's answer, by id. */

@@ -78,6 +78,7 @@ describe("ribbons", () => {
     expect(frameFloats(n, 0, points.length)).toBe(2 * n * POSE_STRIDE + 2 * points.length);
     expect([...tables.bodies].sort((a, b) => a - b)).toEqual([...Array(n).keys()]);
     for (const c of tables.colors) expect(c).toBeLessThanOrEqual(0xffffff);
+    expect(Array.from(tables.weights), "the default ribbons carry no weight").toEqual(Array(n).fill(0));
     const poses = engine.poses().slice();
     for (let r = 0; r < n; r++) {
       const ribbon = pointsOf(r);

@@ -58,6 +58,8 @@ export interface RibbonTables {
   bodies: Uint32Array;
   /** Colour of each ribbon, 0xRRGGBB (sRGB). */
   colors: Uint32Array;
+  /** The weight at each ribbon's free end, kg (0: none). */
+  weights: Float32Array;
 }
 
 /** The URL of the glue next to the module `up_wasm.wasm` (`up_wasm.js`). */
@@ -242,6 +244,7 @@ export class Engine {
       offsets: new Uint32Array(buffer, this.e.ribbon_offsets_ptr(), n + 1).slice(),
       bodies: new Uint32Array(buffer, this.e.ribbon_bodies_ptr(), n).slice(),
       colors: new Uint32Array(buffer, this.e.ribbon_colors_ptr(), n).slice(),
+      weights: new Float32Array(buffer, this.e.ribbon_weights_ptr(), n).slice(),
     };
   }
 
