@@ -48,6 +48,17 @@ test("ribbons are drawn below a pile at the ceiling", async ({ page }, testInfo)
   // The debug view (D) shows every ribbon particle: 16 segments, 17 points a ribbon.
   await page.keyboard.press("d");
   await page.waitForFunction(() => window.__up!.ribbonParticlesDrawn() === 12 * 17, null, { timeout: 30_000 });
+  // The panel's ribbon length re-ties them in the running world; 0 unties them.
+  const steps = await page.evaluate(() => window.__up!.steps());
+  const input = page.locator('[data-key="ribbonLength"] input').first();
+  await input.fill("0");
+  await input.press("Enter");
+  await page.waitForFunction(() => window.__up!.ribbonsDrawn() === 0, null, { timeout: 30_000 });
+  expect(await page.evaluate(() => window.__up!.balloonCount()), "the balloons stay").toBe(12);
+  expect(await page.evaluate(() => window.__up!.steps()), "the world was not rebuilt (paused, its steps kept)").toBe(steps);
+  const scene = JSON.parse(await page.evaluate(() => window.__up!.sceneJson())) as { balloons: { ribbon: { length_m: number; color: string } }[] };
+  expect(scene.balloons[0].ribbon, "the scene and its link say so").toEqual(expect.objectContaining({ length_m: 0, color: "#ff00ff" }));
+  expect(page.url()).toMatch(/#scene=/);
 });
 
 test("pulling a ribbon's free end down brings its balloon down", async ({ page }) => {
