@@ -22,12 +22,21 @@ use super::chain::{solve_chain, KnotBody};
 use super::collide::{push_out_of_room, push_out_of_spheres, NearTriangle};
 use super::nearby::NearbyBodies;
 use super::{
-    Ribbon, GRAB_MAX_SPEED, NORMAL_DRAG_COEFFICIENT, RIBBON_WIDTH, ROOM_FRICTION,
-    TANGENT_DRAG_COEFFICIENT, WEIGHT_DRAG_COEFFICIENT, WEIGHT_RADIUS,
+    Ribbon, NORMAL_DRAG_COEFFICIENT, RIBBON_WIDTH, ROOM_FRICTION, TANGENT_DRAG_COEFFICIENT,
+    WEIGHT_DRAG_COEFFICIENT, WEIGHT_RADIUS,
 };
 use crate::body::ShapeData;
 use crate::solver::body_state::BodyState;
 use crate::tasks::fill_chunks;
+
+/// Most direct solves of a ribbon's chain a substep. Each takes out what the
+/// last one's linearisation left (a taut ribbon whose light points swing
+/// across it, jerked by its balloon, needs several; left alone, that error
+/// grows into a stretched ribbon); a calm ribbon needs one or two.
+const CHAIN_ITERATIONS: usize = 8;
+/// A solve that started within this fraction of the segment length of every
+/// length ends them: what it leaves is of the order of its square.
+const CHAIN_TOLERANCE: f32 = 2e-3;
 
 /// Ribbons one task takes.
 const RIBBON_CHUNK: usize = 64;
@@ -56,8 +65,9 @@ pub(crate) struct ActiveRibbon {
     /// Room triangles and balloons near it this step, in the stage's lists.
     pub triangles: Range<u32>,
     pub bodies: Range<u32>,
-    /// A grabbed point and where it is carried.
+    /// A grabbed point and where it is carried, and how fast, m/s.
     pub grab: Option<(usize, Vec3)>,
+    pub grab_speed: f32,
     /// This substep's position impulse on the balloon (kg·m) and the knot's
     /// arm it acts at, world frame, m.
     pub impulse: Vec3,
@@ -72,10 +82,8 @@ pub(crate) struct ActiveRibbon {
 impl ActiveRibbon {
     /// Takes `ribbon`'s points for the step (`give_back` returns them).
     pub fn take(&mut self, ribbon: &mut Ribbon, air_density: f32) {
-        self.points = std::mem::take(&mut ribbon.points);
-        self.velocities = std::mem::take(&mut ribbon.velocities);
         self.segment_length = ribbon.segment_length;
-        let n = self.points.len() - 1;
+        let n = ribbon.segments();
         self.inv_mass.clear();
         self.drag.clear();
         self.radius.clear();
@@ -94,6 +102,9 @@ impl ActiveRibbon {
             self.drag.push([across, along]);
             self.radius.push(ribbon.radius(i));
         }
+        // Last: a ribbon without its points has no segments to ask about.
+        self.points = std::mem::take(&mut ribbon.points);
+        self.velocities = std::mem::take(&mut ribbon.velocities);
     }
 
     /// Returns the points to `ribbon`, with the pull the step ended with.
@@ -157,13 +168,16 @@ fn substep_one(r: &mut ActiveRibbon, input: &SubstepInput, states: &[BodyState])
     r.start.extend_from_slice(&r.points);
     fall(r, input.gravity, h);
     if let Some((k, target)) = r.grab {
-        let to = target - r.points[k];
-        let reach = GRAB_MAX_SPEED * h;
+        // Carried at the speed that reaches the target by the step's end.
+        let to = target - r.start[k];
         let len = to.norm();
-        r.points[k] = r.start[k] + if len > reach { to * (reach / len) } else { to };
+        let reach = (r.grab_speed * h).min(len);
+        if len > 0.0 {
+            r.points[k] = r.start[k] + to * (reach / len);
+        }
     }
     place_near_spheres(r, input, states);
-    for i in 1..=n {
+    for i in (1..=n).filter(|&i| r.inv_mass[i] > 0.0) {
         push_out_of_spheres(&mut r.points[i], r.radius[i], &r.spheres);
     }
     let triangles = &input.triangles[r.triangles.start as usize..r.triangles.end as usize];
@@ -173,10 +187,16 @@ fn substep_one(r: &mut ActiveRibbon, input: &SubstepInput, states: &[BodyState])
         inv_inertia: s.inv_inertia,
         arm: r.arm,
     };
-    if let Some((k, _)) = r.grab {
-        r.inv_mass[k] = 0.0;
+    r.impulse = Vec3::ZERO;
+    for _ in 0..CHAIN_ITERATIONS {
+        let (impulse, worst) = solve_chain(&mut r.points, &r.inv_mass, r.segment_length, &knot);
+        // The knot moves with its body's share before the next solve.
+        r.points[0] += knot.point_motion(impulse);
+        r.impulse += impulse;
+        if worst < CHAIN_TOLERANCE * r.segment_length {
+            break;
+        }
     }
-    r.impulse = solve_chain(&mut r.points, &r.inv_mass, r.segment_length, &knot);
     push_out_of_room_all(r, triangles);
     let inv_h = 1.0 / h;
     r.pull = r.impulse * (inv_h * inv_h);
