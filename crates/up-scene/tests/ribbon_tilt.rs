@@ -81,7 +81,13 @@ fn run(ribbons: bool, seed: u64) -> Tilts {
     tilts.sort_by(f32::total_cmp);
     let n = tilts.len() as f32;
     let share = |keep: &dyn Fn(f32) -> bool| tilts.iter().filter(|&&t| keep(t)).count() as f32 / n;
-    let rank = |p: f32| tilts[((p * (n - 1.0)).round() as usize).min(tilts.len() - 1)];
+    // Interpolated between ranks, as `up run --json` reports them.
+    let rank = |p: f32| {
+        let r = p * (n - 1.0);
+        let below = r.floor() as usize;
+        let above = (below + 1).min(tilts.len() - 1);
+        tilts[below] + (tilts[above] - tilts[below]) * (r - below as f32)
+    };
     let knots: Vec<f32> = world
         .ribbon_ids()
         .iter()
@@ -141,7 +147,7 @@ fn ribbons_leave_the_original_room_no_less_upright_at_forty_seconds() {
         assert!(with.max_stretch < 0.01, "seed {seed}: {with:?}");
         assert!(with.lowest_point > 0.5, "seed {seed}: {with:?}");
         // A ribbon pulls its knot down: it can only favour upright. The
-        // runs show more than that (a median 30–40° lower at 40 s on these
+        // runs show more than that (a median 34–58° lower at 40 s on these
         // seeds) from a pile that has not settled; what is held is the
         // direction, on every seed.
         assert!(
