@@ -14,6 +14,7 @@ pub mod obj_export;
 pub mod palette;
 pub mod ribbons;
 pub mod room;
+pub mod scene_obj;
 
 // Scene files and building a world from them.
 pub mod bench_scene;

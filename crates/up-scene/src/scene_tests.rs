@@ -478,15 +478,20 @@ fn default_scene_file_is_the_default_scene() {
 fn documented_full_example_parses_the_same_in_toml_and_json() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/scene-format.md");
     let doc = std::fs::read_to_string(path).unwrap();
+    let example = &doc[doc.find("## A full example").unwrap()..];
     let block = |lang: &str| {
-        let start = doc.find(&format!("```{lang}\n")).unwrap() + lang.len() + 4;
-        let len = doc[start..].find("```").unwrap();
-        doc[start..start + len].to_string()
+        let start = example.find(&format!("```{lang}\n")).unwrap() + lang.len() + 4;
+        let len = example[start..].find("```").unwrap();
+        example[start..start + len].to_string()
     };
     let from_toml = Scene::from_toml_str(&block("toml"), "doc.toml").unwrap();
     let from_json = Scene::from_json_str(&block("json"), "doc.json").unwrap();
     assert_eq!(from_toml, from_json);
     assert_eq!(from_toml.total_balloons(), 41);
+    assert_eq!(
+        from_toml.balloons[0].tied_ribbon(),
+        Some(&RibbonSpec::default())
+    );
 }
 
 #[test]

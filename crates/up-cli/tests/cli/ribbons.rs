@@ -179,3 +179,57 @@ fn run_json_reports_the_ribbons_their_stretch_and_the_tilts() {
     assert_eq!(j["ribbons"], 6, "{j}");
     assert!(j["ribbon_max_stretch"].as_f64().unwrap() < 0.01, "{j}");
 }
+
+#[test]
+fn export_obj_writes_the_scene_with_a_strip_a_ribbon_in_its_colour() {
+    let dir = TempDir::new("export-ribbons");
+    let out = dir.path("blender");
+    let listed = up_ok(&[
+        "export-obj",
+        &out.display().to_string(),
+        "--scene",
+        &asset("bouquet.toml"),
+        "--seconds",
+        "0.5",
+    ]);
+    let scene_obj = out.join("scene.obj");
+    assert!(
+        listed.lines().any(|l| Path::new(l) == scene_obj),
+        "{listed}"
+    );
+    assert!(listed.lines().all(|l| Path::new(l).exists()), "{listed}");
+    let obj = std::fs::read_to_string(&scene_obj).unwrap();
+    let objects = |prefix: &str| obj.lines().filter(|l| l.starts_with(prefix)).count();
+    assert_eq!(objects("o balloon_"), 6, "six balloons");
+    assert_eq!(objects("o ribbon_"), 6, "six ribbons");
+    assert_eq!(objects("usemtl ribbon_d4af37"), 6);
+    let mtl = std::fs::read_to_string(out.join("scene.mtl")).unwrap();
+    assert!(
+        mtl.contains("newmtl ribbon_d4af37\nKa 0.000 0.000 0.000\nKd 0.831 0.686 0.216"),
+        "{mtl}"
+    );
+    assert!(obj.contains("mtllib scene.mtl"));
+    // Every vertex inside the bouquet's 5 m x 5 m x 2.6 m room.
+    for line in obj.lines().filter(|l| l.starts_with("v ")) {
+        let v: Vec<f64> = line[2..].split(' ').map(|f| f.parse().unwrap()).collect();
+        assert!(
+            v[0].abs() <= 2.5 && v[2].abs() <= 2.5 && (0.0..=2.6).contains(&v[1]),
+            "{line}"
+        );
+    }
+    // The original room by default: fifty balloons on fifty ribbons.
+    let out = dir.path("original");
+    up_ok(&["export-obj", &out.display().to_string()]);
+    let obj = std::fs::read_to_string(out.join("scene.obj")).unwrap();
+    assert_eq!(
+        obj.lines().filter(|l| l.starts_with("o ribbon_")).count(),
+        50
+    );
+    // Bad input: exit 2, nothing written.
+    let bad = dir.path("bad");
+    up_err(&["export-obj", &bad.display().to_string(), "--seconds", "-1"]);
+    let scene = ribbon_scene(&dir, 1, "segments = 1");
+    let err = up_err(&["export-obj", &bad.display().to_string(), "--scene", &scene]);
+    assert!(err.contains("balloons[0].ribbon.segments"), "{err}");
+    assert!(!bad.exists());
+}
