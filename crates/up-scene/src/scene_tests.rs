@@ -708,3 +708,15 @@ fn bad_ribbon_values_name_their_key_line_and_range() {
     assert_eq!(e.key(), Some("balloons[0].ribbon.weight_g"), "{e}");
     assert!(e.to_string().contains("found inf"), "{e}");
 }
+
+#[test]
+fn documented_ribbon_table_is_the_default_ribbon() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/scene-format.md");
+    let doc = std::fs::read_to_string(path).unwrap();
+    let section = &doc[doc.find("### `[balloons.ribbon]`").unwrap()..];
+    let start = section.find("```toml\n").unwrap() + 8;
+    let len = section[start..].find("```").unwrap();
+    let scene = Scene::from_toml_str(&section[start..start + len], "doc.toml").unwrap();
+    assert_eq!(scene.balloons[0].count, 50);
+    assert_eq!(scene.balloons[0].ribbon, Some(RibbonSpec::default()));
+}

@@ -233,3 +233,18 @@ fn export_obj_writes_the_scene_with_a_strip_a_ribbon_in_its_colour() {
     assert!(err.contains("balloons[0].ribbon.segments"), "{err}");
     assert!(!bad.exists());
 }
+
+#[test]
+fn validate_shows_each_groups_ribbon() {
+    let text = up_ok(&["validate", &asset("bouquet.toml")]);
+    assert!(
+        text.contains("ribbon 1.2 m of 16 segments, 0.300 g, #d4af37, a 35 g weight"),
+        "{text}"
+    );
+    let text = up_ok(&["validate", &asset("default.toml")]);
+    assert!(
+        text.contains("ribbon 1.5 m of 16 segments, 0.375 g, white"),
+        "{text}"
+    );
+    assert!(!text.contains("weight"), "{text}");
+}
