@@ -42,7 +42,8 @@ pub struct RunSummary {
     /// Ribbons tied to the balloons.
     pub ribbons: usize,
     /// Largest relative stretch any ribbon ended a step with, over the world's
-    /// life (`World::ribbon_max_stretch`; 0.004 is 0.4 % longer than its length).
+    /// life (`World::ribbon_max_stretch`; 0.004 is 0.4 % longer than its
+    /// length); a world loaded with `--load-state` keeps its earlier largest.
     pub ribbon_max_stretch: f32,
 }
 
