@@ -182,8 +182,8 @@ impl World {
         }
     }
 
-    /// What the ribbon pulls its knot with, N, world frame, over the last
-    /// substep (zero while its balloon sleeps... its last pull is kept).
+    /// What the ribbon pulls its knot with, N, world frame: the mean over the
+    /// last step its balloon was awake.
     pub fn ribbon_pull(&self, id: RibbonId) -> Option<Vec3> {
         self.ribbons.get(id).map(|r| r.pull)
     }
@@ -350,7 +350,6 @@ impl World {
             r.state = i as u32;
             r.origin = b.center[i];
             r.arm0 = b.rotation[i] * ribbon.arm;
-            r.pull = ribbon.pull;
             r.grab = grab
                 .filter(|g| g.ribbon.index as usize == slot)
                 .map(|g| (g.point as usize, g.target));
