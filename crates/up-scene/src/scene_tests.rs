@@ -478,15 +478,20 @@ fn default_scene_file_is_the_default_scene() {
 fn documented_full_example_parses_the_same_in_toml_and_json() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/scene-format.md");
     let doc = std::fs::read_to_string(path).unwrap();
+    let example = &doc[doc.find("## A full example").unwrap()..];
     let block = |lang: &str| {
-        let start = doc.find(&format!("```{lang}\n")).unwrap() + lang.len() + 4;
-        let len = doc[start..].find("```").unwrap();
-        doc[start..start + len].to_string()
+        let start = example.find(&format!("```{lang}\n")).unwrap() + lang.len() + 4;
+        let len = example[start..].find("```").unwrap();
+        example[start..start + len].to_string()
     };
     let from_toml = Scene::from_toml_str(&block("toml"), "doc.toml").unwrap();
     let from_json = Scene::from_json_str(&block("json"), "doc.json").unwrap();
     assert_eq!(from_toml, from_json);
     assert_eq!(from_toml.total_balloons(), 41);
+    assert_eq!(
+        from_toml.balloons[0].tied_ribbon(),
+        Some(&RibbonSpec::default())
+    );
 }
 
 #[test]
@@ -702,4 +707,16 @@ fn bad_ribbon_values_name_their_key_line_and_range() {
     let e = json_err("{\"balloons\": [{\"ribbon\": {\"weight_g\": 1e39}}]}");
     assert_eq!(e.key(), Some("balloons[0].ribbon.weight_g"), "{e}");
     assert!(e.to_string().contains("found inf"), "{e}");
+}
+
+#[test]
+fn documented_ribbon_table_is_the_default_ribbon() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/scene-format.md");
+    let doc = std::fs::read_to_string(path).unwrap();
+    let section = &doc[doc.find("### `[balloons.ribbon]`").unwrap()..];
+    let start = section.find("```toml\n").unwrap() + 8;
+    let len = section[start..].find("```").unwrap();
+    let scene = Scene::from_toml_str(&section[start..start + len], "doc.toml").unwrap();
+    assert_eq!(scene.balloons[0].count, 50);
+    assert_eq!(scene.balloons[0].ribbon, Some(RibbonSpec::default()));
 }

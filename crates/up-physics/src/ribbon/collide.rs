@@ -11,7 +11,7 @@
 //! Balloons: a point inside a balloon's leaf sphere goes out to its surface
 //! along the line from the sphere's centre. The balloon is not pushed back.
 
-use glam::Vec3;
+use glam::{Quat, Vec3};
 use up_geom::norm::Norm;
 use up_geom::{closest_point_triangle, Sphere};
 
@@ -59,6 +59,46 @@ pub(crate) fn push_out_of_room(
         if slide_len > 0.0 {
             *point -= slide * (mu * depth / slide_len).min(1.0);
         }
+    }
+}
+
+/// A balloon near a ribbon at this substep's pose: its bounding sphere, and
+/// its leaf spheres once a point has come within that.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct NearBalloon {
+    pub bound: Sphere,
+    pub center: Vec3,
+    pub rotation: Quat,
+    pub tree: u32,
+    /// Where its placed leaves are in the list beside it; empty until placed.
+    pub leaves: (u32, u32),
+}
+
+/// Pushes `point` out of the leaf spheres of each balloon of `near` whose
+/// bounding sphere it is in (most points are in none: one test a balloon),
+/// placing a balloon's leaves (`place`) the first time a point needs them.
+pub(crate) fn push_out_of_balloons(
+    point: &mut Vec3,
+    radius: f32,
+    near: &mut [NearBalloon],
+    leaves: &mut Vec<Sphere>,
+    place: impl Fn(&NearBalloon, &mut Vec<Sphere>),
+) {
+    for b in near {
+        let reach = b.bound.radius + radius;
+        if point.distance_squared(b.bound.center) >= reach * reach {
+            continue;
+        }
+        if b.leaves.0 == b.leaves.1 {
+            let first = leaves.len() as u32;
+            place(b, leaves);
+            b.leaves = (first, leaves.len() as u32);
+        }
+        push_out_of_spheres(
+            point,
+            radius,
+            &leaves[b.leaves.0 as usize..b.leaves.1 as usize],
+        );
     }
 }
 

@@ -182,8 +182,8 @@ impl World {
         }
     }
 
-    /// What the ribbon pulls its knot with, N, world frame, over the last
-    /// substep (zero while its balloon sleeps... its last pull is kept).
+    /// What the ribbon pulls its knot with, N, world frame: the mean over the
+    /// last step its balloon was awake.
     pub fn ribbon_pull(&self, id: RibbonId) -> Option<Vec3> {
         self.ribbons.get(id).map(|r| r.pull)
     }
@@ -257,7 +257,8 @@ impl World {
             stage.bound_radius.push(shape.bound_radius + reach);
             stage.awake_bodies.push(i as u32);
         }
-        if stage.awake_bodies.is_empty() || self.ribbons.is_empty() {
+        let asleep = |body| self.handles.dense(body).is_some_and(|i| !b.awake[i]);
+        if stage.awake_bodies.is_empty() || !self.ribbons.iter().any(|(_, r)| asleep(r.body)) {
             return;
         }
         stage.nearby.build(&stage.bound_center, &stage.bound_radius);
@@ -304,12 +305,13 @@ impl World {
         stage.active.truncate(0);
         stage.triangles.clear();
         stage.bodies.clear();
-        if self.ribbons.is_empty() {
-            return;
+        let b = &self.bodies;
+        let awake = |body| self.handles.dense(body).is_some_and(|i| b.awake[i]);
+        if !self.ribbons.iter().any(|(_, r)| awake(r.body)) {
+            return; // every ribbon sleeps, or there are none
         }
         let n = self.bodies.len();
         let dt = self.def.dt;
-        let b = &self.bodies;
         let fall = 0.5 * self.def.gravity.norm() * dt * dt;
         let margin = self.def.speculative_distance + fall;
         stage.bound_center.clear();
@@ -334,8 +336,9 @@ impl World {
             let Some(i) = self.handles.dense(ribbon.body) else {
                 continue;
             };
+            // A sleeper's ribbon keeps its points and the (sleep-slow)
+            // velocities it fell asleep with, as they are, until it wakes.
             if !b.awake[i] {
-                ribbon.velocities.fill(Vec3::ZERO);
                 continue;
             }
             if stage.active.len() == count {
@@ -347,7 +350,6 @@ impl World {
             r.state = i as u32;
             r.origin = b.center[i];
             r.arm0 = b.rotation[i] * ribbon.arm;
-            r.pull = ribbon.pull;
             r.grab = grab
                 .filter(|g| g.ribbon.index as usize == slot)
                 .map(|g| (g.point as usize, g.target));
@@ -362,6 +364,9 @@ impl World {
             let reach = speed * dt + margin + ribbon.radius(ribbon.segments());
             let aabb = Aabb::from_points(&ribbon.points).expanded(reach);
             r.take(ribbon, air_density);
+            if let Some((k, _)) = r.grab {
+                r.inv_mass[k] = 0.0; // carried, not pushed
+            }
             let first = stage.bodies.len() as u32;
             stage.nearby.query(
                 &aabb,
