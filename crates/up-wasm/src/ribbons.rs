@@ -95,7 +95,7 @@ impl State {
         Ok(())
     }
 
-    /// Each ribbon's first point, balloon and colour (`RibbonTables`).
+    /// Each ribbon's first point, balloon, colour and end weight (`RibbonTables`).
     pub fn write_ribbon_tables(&mut self) -> Result<(), WasmError> {
         let loaded = self.loaded.as_ref().ok_or(WasmError::NoWorld)?;
         let world = &loaded.built.world;
