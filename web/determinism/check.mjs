@@ -9,6 +9,8 @@
 // its wasm-bindgen glue (up_wasm.js, `initSync`) in Node (no browser), builds
 // the world from the same text with `Engine.load_scene_toml` / `load_scene_json`,
 // takes exactly the native run's number of steps and compares `state_hash`.
+// Its scene has ribbons, which the hash covers; the ribbon counts are
+// compared too where the CLI reports them (`ribbons` in its JSON).
 // Exit 0: equal; 1: they differ; 2: something needed is missing or failed.
 // UP_WASM=path.wasm checks that module instead of the web app's copy (its
 // glue, the same name ending in .js, lies next to it).
@@ -71,6 +73,10 @@ call(`loading ${scenePath} in wasm`, () =>
 if (engine.body_count() !== native.balloons) {
   fail(1, `body counts differ: native ${native.balloons}, wasm ${engine.body_count()}`);
 }
+const ribbons = engine.ribbon_count();
+if (typeof native.ribbons === "number" && native.ribbons !== ribbons) {
+  fail(1, `ribbon counts differ: native ${native.ribbons}, wasm ${ribbons}`);
+}
 // The module says how many steps one call takes.
 const { max_steps_per_call } = glue.constants();
 for (let done = 0; done < steps; ) {
@@ -81,7 +87,7 @@ for (let done = 0; done < steps; ) {
 // u64 comes back as a BigInt: print it as the CLI does (16 hex digits).
 const wasmHash = BigInt.asUintN(64, engine.state_hash()).toString(16).padStart(16, "0");
 
-const summary = `${scenePath}: ${native.balloons} balloons, ${steps} steps`;
+const summary = `${scenePath}: ${native.balloons} balloons, ${ribbons} ribbons, ${steps} steps`;
 if (wasmHash !== native.state_hash) {
   const age = (p) => statSync(p).mtime.toISOString();
   fail(

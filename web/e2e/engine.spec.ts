@@ -41,6 +41,10 @@ test("the wasm engine answers bad calls with an error and a message, never a tra
     call("release");
     call("write_model_tree", 0);
     call("grab", 0, 0, 1, 0);
+    call("write_ribbon_points");
+    call("write_ribbons");
+    call("set_ribbon_length", 1);
+    call("grab_ribbon", 0, 1, 0, 1, 0);
     const beforeWorld = calls.length;
     e.load_default_scene();
     const n: number = e.body_count();
@@ -60,6 +64,13 @@ test("the wasm engine answers bad calls with an error and a message, never a tra
     call("add_balloon", 1e30, 1, 0, 0, 0);
     call("set_velocity", 0, 1e6, 0, 0, 0, 0, 0);
     call("step", 1e9);
+    call("set_ribbon_length", NaN);
+    call("set_ribbon_length", -1);
+    call("set_ribbon_length", 1e9);
+    call("grab_ribbon", e.ribbon_count(), 1, 0, 1, 0);
+    call("grab_ribbon", 0, 0, 0, 1, 0);
+    call("grab_ribbon", 0, 9999, 0, 1, 0);
+    call("grab_ribbon", 0, 1, NaN, 1, 0);
     const afterRefused = { count: e.body_count() as number, hash: String(e.state_hash()) };
     // A refused scene keeps the old world too; its message names the scene instead of the method.
     let scene: Call | null = null;

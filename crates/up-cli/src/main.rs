@@ -46,7 +46,15 @@ enum Command {
     Colliders(colliders::CollidersArgs),
     /// Check a scene file and print what it describes.
     Validate(validate::ValidateArgs),
-    /// Write the balloon and room meshes (OBJ) with their materials (MTL).
+    /// Write a scene as OBJ + MTL, ribbons included (for Blender), with the
+    /// balloon and room meshes the web app renders.
+    ///
+    /// Writes into DIR: scene.obj and scene.mtl, the scene's balloons where
+    /// they are (one object each, balloon_<id>) and its ribbons as flat 5 mm
+    /// strips (one object each, ribbon_<id> with its balloon's id), each with
+    /// a material of its colour; room.obj and room.mtl; balloon.obj with
+    /// balloon_<colour>.mtl for every named colour. Blender imports scene.obj
+    /// and room.obj as they are (File > Import > Wavefront (.obj), Y up).
     ExportObj(export_obj::ExportObjArgs),
     /// Fit a sphere tree to a closed OBJ mesh and write it as JSON.
     FitSpheres(fit_spheres::FitSpheresArgs),

@@ -28,7 +28,12 @@ pub struct RunArgs {
     /// Write the trajectory as CSV: `t,id,x,y,z,qx,qy,qz,qw` (s, m, unit quaternion; Y up).
     #[arg(long, value_name = "FILE.csv")]
     pub out: Option<PathBuf>,
-    /// Write a CSV row set every K steps (the first and last steps are always written).
+    /// Write the ribbons' points as CSV: `t,balloon,point,x,y,z` (s, the
+    /// balloon's id as in --out, the point from 0 at the knot to the free end, m).
+    #[arg(long, value_name = "FILE.csv")]
+    pub ribbons_out: Option<PathBuf>,
+    /// Write a CSV row set every K steps, to --out and --ribbons-out (the
+    /// first and last steps are always written).
     #[arg(long, value_name = "K", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
     pub every: u64,
     /// End with one JSON object on the last line of standard output.
@@ -76,36 +81,36 @@ pub fn run(args: &RunArgs) -> Result<()> {
     let steps = (seconds / dt).round().max(1.0) as u64;
 
     // Create output files first: a bad path fails before the simulation runs.
-    let mut csv = match &args.out {
-        Some(path) => {
-            let mut file = AtomicFile::create(path)?;
-            writeln!(file, "t,id,x,y,z,qx,qy,qz,qw")
-                .with_context(|| format!("cannot write {}", path.display()))?;
-            Some((file, path))
-        }
-        None => None,
-    };
+    let mut csv = CsvOut::create(
+        args.out.as_deref(),
+        "t,id,x,y,z,qx,qy,qz,qw",
+        write_pose_rows,
+    )?;
+    let mut ribbons_csv = CsvOut::create(
+        args.ribbons_out.as_deref(),
+        "t,balloon,point,x,y,z",
+        write_ribbon_rows,
+    )?;
     if let Some(path) = &args.save_state {
         // Probe the directory now rather than after a long run.
         AtomicFile::create(path)?;
     }
 
     let progress = progress_bar(steps);
-    let write_rows = |world: &World, csv: &mut Option<(AtomicFile, &PathBuf)>| -> Result<()> {
-        if let Some((file, path)) = csv {
-            write_csv_rows(world, file)
-                .with_context(|| format!("cannot write {}", path.display()))?;
+    let write_rows = |world: &World, outs: [&mut Option<CsvOut>; 2]| -> Result<()> {
+        for out in outs.into_iter().flatten() {
+            out.write(world)?;
         }
         Ok(())
     };
-    write_rows(world, &mut csv)?;
+    write_rows(world, [&mut csv, &mut ribbons_csv])?;
     let mut max_penetration = 0.0f32;
     let started = Instant::now();
     for step in 1..=steps {
         world.step();
         max_penetration = max_penetration.max(world.stats().max_penetration);
         if step % args.every == 0 || step == steps {
-            write_rows(world, &mut csv)?;
+            write_rows(world, [&mut csv, &mut ribbons_csv])?;
         }
         if let Some(bar) = &progress {
             if step % 16 == 0 {
@@ -117,8 +122,8 @@ pub fn run(args: &RunArgs) -> Result<()> {
     if let Some(bar) = progress {
         bar.finish_and_clear();
     }
-    if let Some((file, _)) = csv {
-        file.commit()?;
+    for out in [csv, ribbons_csv].into_iter().flatten() {
+        out.commit()?;
     }
     if let Some(path) = &args.save_state {
         write_atomically(path, &world.snapshot())?;
@@ -138,8 +143,12 @@ pub fn run(args: &RunArgs) -> Result<()> {
         state_hash: format!("{:016x}", world.state_hash()),
         mean_height_m: end.mean_height_m,
         max_tilt_deg: end.max_tilt_deg,
+        median_tilt_deg: end.median_tilt_deg,
+        p90_tilt_deg: end.p90_tilt_deg,
         kinetic_energy_j: world.kinetic_energy(),
         awake: world.stats().awake_count,
+        ribbons: world.ribbon_count(),
+        ribbon_max_stretch: world.ribbon_max_stretch(),
     };
     print_table("up run", &summary.rows());
     if args.json {
@@ -148,8 +157,42 @@ pub fn run(args: &RunArgs) -> Result<()> {
     Ok(())
 }
 
+/// A CSV file being written, whole or not at all, and how its rows are made.
+struct CsvOut<'a> {
+    file: AtomicFile,
+    path: &'a Path,
+    rows: fn(&World, &mut AtomicFile) -> std::io::Result<()>,
+}
+
+impl<'a> CsvOut<'a> {
+    /// Creates `path` (if given) and writes its header.
+    fn create(
+        path: Option<&'a Path>,
+        header: &str,
+        rows: fn(&World, &mut AtomicFile) -> std::io::Result<()>,
+    ) -> Result<Option<CsvOut<'a>>> {
+        let Some(path) = path else {
+            return Ok(None);
+        };
+        let mut file = AtomicFile::create(path)?;
+        writeln!(file, "{header}").with_context(|| format!("cannot write {}", path.display()))?;
+        Ok(Some(CsvOut { file, path, rows }))
+    }
+
+    /// The rows of the world as it is now.
+    fn write(&mut self, world: &World) -> Result<()> {
+        (self.rows)(world, &mut self.file)
+            .with_context(|| format!("cannot write {}", self.path.display()))
+    }
+
+    fn commit(self) -> Result<()> {
+        self.file.commit()?;
+        Ok(())
+    }
+}
+
 /// One row per body: time, handle index, position, rotation.
-fn write_csv_rows(world: &World, out: &mut impl Write) -> std::io::Result<()> {
+fn write_pose_rows(world: &World, out: &mut AtomicFile) -> std::io::Result<()> {
     let t = world.time();
     for (id, pose) in world.poses() {
         let (p, q) = (pose.position, pose.rotation);
@@ -158,6 +201,21 @@ fn write_csv_rows(world: &World, out: &mut impl Write) -> std::io::Result<()> {
             "{t},{},{},{},{},{},{},{},{}",
             id.index, p.x, p.y, p.z, q.x, q.y, q.z, q.w
         )?;
+    }
+    Ok(())
+}
+
+/// One row per ribbon point: time, its balloon's handle index (as in the
+/// poses' CSV), the point (0 at the knot), its position.
+fn write_ribbon_rows(world: &World, out: &mut AtomicFile) -> std::io::Result<()> {
+    let t = world.time();
+    for id in world.ribbon_ids() {
+        let (Some(body), Some(points)) = (world.ribbon_body(id), world.ribbon_points(id)) else {
+            continue;
+        };
+        for (k, p) in points.iter().enumerate() {
+            writeln!(out, "{t},{},{k},{},{},{}", body.index, p.x, p.y, p.z)?;
+        }
     }
     Ok(())
 }

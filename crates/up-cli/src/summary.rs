@@ -31,10 +31,20 @@ pub struct RunSummary {
     pub mean_height_m: f32,
     /// Largest angle between a body's +Y and the world's +Y, degrees.
     pub max_tilt_deg: f32,
+    /// Median of that angle over the bodies, degrees.
+    pub median_tilt_deg: f32,
+    /// Its 90th percentile, degrees.
+    pub p90_tilt_deg: f32,
     /// Total kinetic energy (added mass included), J.
     pub kinetic_energy_j: f32,
     /// Bodies awake after the last step.
     pub awake: u32,
+    /// Ribbons tied to the balloons.
+    pub ribbons: usize,
+    /// Largest relative stretch any ribbon ended a step with, over the world's
+    /// life (`World::ribbon_max_stretch`; 0.004 is 0.4 % longer than its
+    /// length); a world loaded with `--load-state` keeps its earlier largest.
+    pub ribbon_max_stretch: f32,
 }
 
 /// Measures the end state of `world`.
@@ -42,6 +52,7 @@ pub fn measure(world: &World, room: &RoomMesh) -> EndState {
     let mut end = EndState::default();
     let mut height_sum = 0.0f64;
     let mut finite = 0usize;
+    let mut tilts = Vec::with_capacity(world.body_count());
     for (_, pose) in world.poses() {
         let ok = pose.position.is_finite() && pose.rotation.is_finite();
         if !ok {
@@ -53,14 +64,37 @@ pub fn measure(world: &World, room: &RoomMesh) -> EndState {
             end.escaped += 1;
         }
         height_sum += f64::from(pose.position.y);
-        let up = pose.rotation * Vec3::Y;
-        let tilt = up.angle_between(Vec3::Y).to_degrees();
+        let tilt = tilt_deg(pose.rotation);
         end.max_tilt_deg = end.max_tilt_deg.max(tilt);
+        tilts.push(tilt);
     }
     if finite > 0 {
         end.mean_height_m = (height_sum / finite as f64) as f32;
     }
+    tilts.sort_by(f32::total_cmp);
+    end.median_tilt_deg = percentile(&tilts, 50.0);
+    end.p90_tilt_deg = percentile(&tilts, 90.0);
     end
+}
+
+/// Angle between a body's +Y and the world's +Y, degrees, in [0, 180].
+pub fn tilt_deg(rotation: glam::Quat) -> f32 {
+    (rotation * Vec3::Y).angle_between(Vec3::Y).to_degrees()
+}
+
+/// The `p`-th percentile (0 to 100) of ascending `sorted`, interpolated
+/// linearly between ranks (the median of an even count is the mean of the
+/// middle two); 0 for none.
+pub fn percentile(sorted: &[f32], p: f32) -> f32 {
+    let Some(&last) = sorted.last() else {
+        return 0.0;
+    };
+    let rank = (p / 100.0).clamp(0.0, 1.0) * (sorted.len() - 1) as f32;
+    let below = rank.floor() as usize;
+    match sorted.get(below + 1) {
+        Some(&above) => sorted[below] + (above - sorted[below]) * (rank - below as f32),
+        None => last,
+    }
 }
 
 /// Per-body measures of the end state.
@@ -70,6 +104,8 @@ pub struct EndState {
     pub nan_bodies: usize,
     pub mean_height_m: f32,
     pub max_tilt_deg: f32,
+    pub median_tilt_deg: f32,
+    pub p90_tilt_deg: f32,
 }
 
 /// Prints `label  value` rows aligned, with a title.
@@ -102,9 +138,43 @@ impl RunSummary {
             ("non-finite bodies", self.nan_bodies.to_string()),
             ("mean height", format!("{:.3} m", self.mean_height_m)),
             ("max tilt", format!("{:.1}°", self.max_tilt_deg)),
+            ("median tilt", format!("{:.1}°", self.median_tilt_deg)),
+            ("90th percentile tilt", format!("{:.1}°", self.p90_tilt_deg)),
             ("kinetic energy", format!("{:.3e} J", self.kinetic_energy_j)),
             ("awake", self.awake.to_string()),
+            ("ribbons", self.ribbons.to_string()),
+            (
+                "ribbon max stretch",
+                format!("{:.3} %", self.ribbon_max_stretch * 100.0),
+            ),
             ("state hash", self.state_hash.clone()),
         ]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn percentiles_interpolate_between_ranks() {
+        assert_eq!(percentile(&[], 50.0), 0.0);
+        assert_eq!(percentile(&[7.0], 90.0), 7.0);
+        let v = [0.0, 10.0, 20.0, 30.0];
+        assert_eq!(percentile(&v, 50.0), 15.0);
+        assert_eq!(percentile(&v, 0.0), 0.0);
+        assert_eq!(percentile(&v, 100.0), 30.0);
+        assert!((percentile(&v, 90.0) - 27.0).abs() < 1e-5);
+        let odd = [1.0, 2.0, 9.0];
+        assert_eq!(percentile(&odd, 50.0), 2.0);
+    }
+
+    #[test]
+    fn tilt_is_the_angle_from_upright() {
+        assert_eq!(tilt_deg(glam::Quat::IDENTITY), 0.0);
+        let side = glam::Quat::from_rotation_z(std::f32::consts::FRAC_PI_2);
+        assert!((tilt_deg(side) - 90.0).abs() < 1e-3);
+        let upside_down = glam::Quat::from_rotation_x(std::f32::consts::PI);
+        assert!((tilt_deg(upside_down) - 180.0).abs() < 1e-3);
     }
 }

@@ -80,8 +80,23 @@ pub fn run(args: &ValidateArgs) -> Result<()> {
                 Some(b) => format!("in {:?} to {:?} m", b.min, b.max),
                 None => "on the floor".to_string(),
             };
+            let ribbon = match group.tied_ribbon() {
+                Some(r) => {
+                    let grams = r.length_m * r.mass_per_m_g;
+                    let weight = if r.weight_g > 0.0 {
+                        format!(", a {} g weight", r.weight_g)
+                    } else {
+                        String::new()
+                    };
+                    format!(
+                        "; ribbon {} m of {} segments, {grams:.3} g, {}{weight}",
+                        r.length_m, r.segments, r.color
+                    )
+                }
+                None => String::new(),
+            };
             let value = format!(
-                "{} × {:.3} m {gas}, {:.2} g, net lift {:+.4} N, {} leaves, {}; colours {}",
+                "{} × {:.3} m {gas}, {:.2} g, net lift {:+.4} N, {} leaves, {}; colours {}{ribbon}",
                 group.count,
                 group.diameter(),
                 shape.mass * 1000.0,

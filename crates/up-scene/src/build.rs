@@ -1,5 +1,6 @@
 //! Building a scene into a `World`: the room, one balloon model per group,
-//! and every balloon placed without overlap, deterministically from `sim.seed`.
+//! and every balloon placed without overlap, deterministically from `sim.seed`,
+//! with its group's ribbon tied at its knot (`ribbons::tie_ribbon`).
 //!
 //! Each body's `user_data` packs its group and colour:
 //! `group << 16 | colour`, where `colour` indexes `BuiltScene::colors`
@@ -11,6 +12,7 @@ use up_physics::{BodyDef, BodyId, World, WorldDef};
 
 use crate::balloon::{build_balloon, BalloonModel, BalloonSpec, Gas};
 use crate::error::SceneError;
+use crate::ribbons::{tie_ribbon, GroupRibbon};
 use crate::room::{box_room, room_from_obj, Ceiling, RoomMesh};
 use crate::scene::{parse_color, CeilingKind, GasKind, Scene};
 
@@ -38,6 +40,8 @@ pub struct BuiltScene {
     pub color_names: Vec<String>,
     /// The bodies of each group, in creation order.
     pub group_bodies: Vec<Vec<BodyId>>,
+    /// Each group's ribbon (None: its balloons have none), in the scene's order.
+    pub group_ribbons: Vec<Option<GroupRibbon>>,
 }
 
 /// `user_data` of a body of `group` with palette colour `color`.
@@ -148,6 +152,7 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
     let mut rng = SplitMix64::new(scene.sim.seed);
     let mut balloon_models = Vec::with_capacity(scene.balloons.len());
     let mut group_bodies = Vec::with_capacity(scene.balloons.len());
+    let mut group_ribbons = Vec::with_capacity(scene.balloons.len());
 
     for (i, group) in scene.balloons.iter().enumerate() {
         let model = build_group_model(scene, i)?;
@@ -170,6 +175,7 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
                 placed: centres.len() as u64,
             });
         }
+        let ribbon = group.tied_ribbon().and_then(GroupRibbon::new);
         let mut bodies = Vec::with_capacity(count);
         for (k, centre) in centres.into_iter().enumerate() {
             let rotation = random_upright(&mut rng, group.tilt_deg, group.yaw_deg);
@@ -180,10 +186,15 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
             body.angular_velocity = Vec3::from_array(group.angular_velocity);
             let palette = &group_palette[i];
             body.user_data = user_data_for(i, palette[k % palette.len()]);
-            bodies.push(world.add_body(&body).map_err(physics)?);
+            let id = world.add_body(&body).map_err(physics)?;
+            if let Some(ribbon) = &ribbon {
+                tie_ribbon(&mut world, id, &model, &ribbon.spec).map_err(physics)?;
+            }
+            bodies.push(id);
         }
         balloon_models.push(model);
         group_bodies.push(bodies);
+        group_ribbons.push(ribbon);
     }
     Ok(BuiltScene {
         world,
@@ -192,6 +203,7 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
         colors,
         color_names,
         group_bodies,
+        group_ribbons,
     })
 }
 

@@ -162,17 +162,20 @@ fn default_group_matches_the_default_balloon_spec() {
 #[test]
 fn example_scenes_build() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/scenes");
+    // Name, balloons, ribbons.
     let expected = [
-        ("default.toml", 50),
-        ("terminal-velocity.toml", 1),
-        ("party-hall.toml", 1000),
-        ("thrown.toml", 1),
-        ("two-gases.json", 18),
+        ("default.toml", 50, 50),
+        ("bouquet.toml", 6, 6),
+        ("terminal-velocity.toml", 1, 0),
+        ("party-hall.toml", 1000, 0),
+        ("thrown.toml", 1, 0),
+        ("two-gases.json", 18, 0),
     ];
-    for (name, count) in expected {
+    for (name, count, ribbons) in expected {
         let scene = Scene::from_path(dir.join(name)).unwrap();
         let mut built = build_world(&scene).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(built.world.body_count(), count, "{name}");
+        assert_eq!(built.world.ribbon_count(), ribbons, "{name}");
         assert_eq!(
             built.world.max_penetration_now(),
             0.0,

@@ -1,5 +1,6 @@
 //! Scenes for UP: the balloon model (procedural mesh, fitted sphere tree, mass
-//! properties), the room, and scene files (TOML or JSON) built into a `World`.
+//! properties), the room, and scene files (TOML or JSON) built into a `World`,
+//! ribbons tied to the balloons; and the whole scene written out as OBJ.
 //!
 //! SI units, Y up, origin at the centre of the floor.
 
@@ -13,9 +14,11 @@ pub mod obj;
 pub mod obj_export;
 pub mod palette;
 pub mod room;
+pub mod scene_obj;
 
 // Scene files and building a world from them.
 pub mod bench_scene;
 pub mod build;
 pub mod error;
+pub mod ribbons;
 pub mod scene;

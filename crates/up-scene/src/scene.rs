@@ -3,7 +3,8 @@
 //!
 //! Every section and every key may be left out and takes its default; the
 //! defaults are the original project's scene: a 6 m × 6 m room with 3 m walls
-//! and a pyramidal ceiling, 50 balloons in six colours released from the floor.
+//! and a pyramidal ceiling, 50 balloons in six colours released from the floor,
+//! each on a 1.5 m ribbon.
 //! Unknown keys are errors, and so is a file of nothing but whitespace (what a
 //! failed write leaves). After parsing, `validate` checks every number is
 //! finite and within its documented range; errors name the file, the key path
@@ -24,8 +25,9 @@ mod validate;
 
 pub use lines::KeyLines;
 pub use validate::{
-    MAX_BALLOON_DIAMETER_M, MAX_BALLOON_GROUPS, MAX_GROUP_COLORS, MAX_ROOM_SIZE_M,
-    MAX_SCENE_LEAVES, MAX_SEED, MAX_TOTAL_BALLOONS, MIN_BALLOON_DIAMETER_M, MIN_ROOM_SIZE_M,
+    MAX_BALLOON_DIAMETER_M, MAX_BALLOON_GROUPS, MAX_GROUP_COLORS, MAX_RIBBON_LENGTH_M,
+    MAX_RIBBON_MASS_PER_M_G, MAX_RIBBON_WEIGHT_G, MAX_ROOM_SIZE_M, MAX_SCENE_LEAVES, MAX_SEED,
+    MAX_TOTAL_BALLOONS, MIN_BALLOON_DIAMETER_M, MIN_ROOM_SIZE_M,
 };
 
 /// Metres per inch: balloon sizes are sold in inches (11″ ≈ 0.28 m).
@@ -188,6 +190,9 @@ pub struct BalloonGroup {
     pub yaw_deg: f32,
     /// Leaf spheres of the fitted collision tree; 5 (the original's layout). Range 1..=32.
     pub leaves: u32,
+    /// A ribbon tied to every balloon of the group. Left out, or `length_m = 0`: none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ribbon: Option<RibbonSpec>,
 }
 
 impl Default for BalloonGroup {
@@ -206,6 +211,7 @@ impl Default for BalloonGroup {
             tilt_deg: 3.0,
             yaw_deg: 10.0,
             leaves: 5,
+            ribbon: None,
         }
     }
 }
@@ -232,6 +238,52 @@ impl BalloonGroup {
     /// kg of knot.
     pub fn knot_mass_kg(&self) -> f32 {
         self.knot_mass_g.unwrap_or(DEFAULT_KNOT_MASS_G) * 1e-3
+    }
+
+    /// The group's ribbon, if it has one (a table with `length_m > 0`).
+    pub fn tied_ribbon(&self) -> Option<&RibbonSpec> {
+        self.ribbon.as_ref().filter(|r| r.length_m > 0.0)
+    }
+}
+
+/// Length of the original room's ribbons, m: it hangs well clear of the
+/// floor from a pile under the 3 m ceiling (knots at about 2.6 m).
+pub const DEFAULT_RIBBON_LENGTH_M: f32 = 1.5;
+/// Mass per metre of curling ribbon, g/m: an estimate, no measured figure
+/// (5 mm of BOPP film 20–60 µm thick gives 0.1–0.3 g/m).
+pub const DEFAULT_RIBBON_MASS_PER_M_G: f32 = 0.25;
+/// Segments of a ribbon: 16 of 9.4 cm for 1.5 m.
+pub const DEFAULT_RIBBON_SEGMENTS: u32 = 16;
+/// Colour of a ribbon that names none.
+pub const DEFAULT_RIBBON_COLOR: &str = "white";
+
+/// A ribbon tied to each balloon of a group, at its knot, hanging from it;
+/// a weight at the free end if `weight_g > 0`.
+#[cfg_attr(feature = "tsify", derive(tsify_next::Tsify))]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RibbonSpec {
+    /// m; 1.5. Range [0, 20]; 0: no ribbon.
+    pub length_m: f32,
+    /// g per metre; 0.25 (an estimate). Range (0, 1000].
+    pub mass_per_m_g: f32,
+    /// Straight segments the ribbon is simulated as; 16. Range [2, 128].
+    pub segments: u32,
+    /// A colour name (`"white"`, ...) or `"#rrggbb"`; white.
+    pub color: String,
+    /// g: a balloon weight tied to the free end; 0 (none). Range [0, 1000].
+    pub weight_g: f32,
+}
+
+impl Default for RibbonSpec {
+    fn default() -> Self {
+        Self {
+            length_m: DEFAULT_RIBBON_LENGTH_M,
+            mass_per_m_g: DEFAULT_RIBBON_MASS_PER_M_G,
+            segments: DEFAULT_RIBBON_SEGMENTS,
+            color: DEFAULT_RIBBON_COLOR.to_string(),
+            weight_g: 0.0,
+        }
     }
 }
 
@@ -336,12 +388,14 @@ impl Default for SimSpec {
 
 impl Default for Scene {
     /// The original: 6 m × 6 m room, 3 m walls, pyramid apex 1.5 m above them,
-    /// 50 balloons in six colours released from the floor.
+    /// 50 balloons in six colours released from the floor, each on a 1.5 m
+    /// white ribbon.
     fn default() -> Self {
         Self {
             room: RoomSpec::default(),
             balloons: vec![BalloonGroup {
                 count: 50,
+                ribbon: Some(RibbonSpec::default()),
                 ..BalloonGroup::default()
             }],
             air: AirSpec::default(),

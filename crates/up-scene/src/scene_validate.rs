@@ -1,9 +1,10 @@
 //! Range checks on a parsed scene. The first problem found is returned, with
 //! the key path and line of the offending value and the documented range.
 
-use super::{parse_color, CeilingKind, Scene};
+use super::{parse_color, CeilingKind, RibbonSpec, Scene};
 use crate::error::SceneError;
 use up_physics::limits::{self, Limit};
+use up_physics::ribbon::{MAX_SEGMENTS, MIN_SEGMENTS};
 
 /// At most this many balloons over all groups: far below
 /// `up_physics::MAX_BODIES` (4 000 000), and about 0.2 GB of world and
@@ -29,6 +30,12 @@ pub const MAX_BALLOON_DIAMETER_M: f32 = 5.0;
 pub const MAX_SEED: u64 = (1 << 53) - 1;
 /// Fastest initial speed, m/s (the speed of sound).
 const MAX_SPEED: f32 = 343.0;
+/// Longest ribbon, m.
+pub const MAX_RIBBON_LENGTH_M: f32 = 20.0;
+/// Heaviest ribbon per metre, g/m (a string with beads; a weight is `weight_g`).
+pub const MAX_RIBBON_MASS_PER_M_G: f32 = 1000.0;
+/// Heaviest weight at a ribbon's end, g.
+pub const MAX_RIBBON_WEIGHT_G: f32 = 1000.0;
 
 struct Checker<'a> {
     scene: &'a Scene,
@@ -237,6 +244,9 @@ pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
             let expected = format!("an integer in [1, {MAX_SCENE_LEAVES}]");
             return Err(c.fail(&key("leaves"), expected, group.leaves.to_string()));
         }
+        if let Some(ribbon) = &group.ribbon {
+            check_ribbon(&c, &key("ribbon"), ribbon)?;
+        }
 
         // The balloon must fit in a box room (mesh rooms are checked when built).
         let d = group.diameter();
@@ -308,4 +318,48 @@ pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
         }
     }
     Ok(())
+}
+
+/// A group's `ribbon` table; `at` is its key path (`balloons[0].ribbon`).
+fn check_ribbon(c: &Checker, at: &str, ribbon: &RibbonSpec) -> Result<(), SceneError> {
+    let key = |k: &str| format!("{at}.{k}");
+    let length = ribbon.length_m;
+    if !(length.is_finite() && (0.0..=MAX_RIBBON_LENGTH_M).contains(&length)) {
+        return Err(c.fail(
+            &key("length_m"),
+            format!("a length in (0, {MAX_RIBBON_LENGTH_M}] m, or 0 for no ribbon"),
+            length.to_string(),
+        ));
+    }
+    c.range(
+        &key("mass_per_m_g"),
+        ribbon.mass_per_m_g,
+        0.0,
+        MAX_RIBBON_MASS_PER_M_G,
+        true,
+        "g/m",
+    )?;
+    if !(MIN_SEGMENTS..=MAX_SEGMENTS).contains(&ribbon.segments) {
+        return Err(c.fail(
+            &key("segments"),
+            format!("an integer in [{MIN_SEGMENTS}, {MAX_SEGMENTS}]"),
+            ribbon.segments.to_string(),
+        ));
+    }
+    if parse_color(&ribbon.color).is_none() {
+        let names: Vec<&str> = crate::palette::color_names().collect();
+        return Err(c.fail(
+            &key("color"),
+            format!("a colour name ({}) or \"#rrggbb\"", names.join(", ")),
+            format!("{:?}", ribbon.color),
+        ));
+    }
+    c.range(
+        &key("weight_g"),
+        ribbon.weight_g,
+        0.0,
+        MAX_RIBBON_WEIGHT_G,
+        false,
+        "g",
+    )
 }

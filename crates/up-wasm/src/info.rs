@@ -11,6 +11,7 @@ use up_scene::scene::{
 
 use crate::contacts::{CONTACT_FLOATS, MAX_CONTACTS};
 use crate::error::ERROR_KINDS;
+use crate::ribbons::{MAX_RIBBON_LENGTH_M, RIBBON_POINT_FLOATS};
 use crate::state::{CAPACITY, MAX_SPEED, MAX_SPIN, MAX_STEPS_PER_CALL, POSE_FLOATS, TREE_FLOATS};
 
 /// A colour a scene may name, with its RGB in 0–1.
@@ -70,6 +71,14 @@ pub struct Constants {
     pub contact_stride: u32,
     /// Floats per sphere-tree node: cx, cy, cz, radius, depth, leaf (0/1).
     pub tree_stride: u32,
+    /// Floats per ribbon point: x, y, z.
+    pub ribbon_point_stride: u32,
+    /// Width of the ribbon drawn, m (the engine's ribbon, 5 mm curling ribbon).
+    pub ribbon_width_m: f32,
+    /// Radius of a weight at a ribbon's free end, m (as it collides).
+    pub weight_radius_m: f32,
+    /// Longest ribbon `set_ribbon_length` ties, m.
+    pub max_ribbon_length_m: f32,
     /// Most balloons the page's world holds.
     pub capacity: u32,
     /// Most contacts one `write_contacts` writes.
@@ -100,6 +109,10 @@ impl Constants {
             pose_stride: POSE_FLOATS as u32,
             contact_stride: CONTACT_FLOATS as u32,
             tree_stride: TREE_FLOATS as u32,
+            ribbon_point_stride: RIBBON_POINT_FLOATS as u32,
+            ribbon_width_m: up_physics::ribbon::RIBBON_WIDTH,
+            weight_radius_m: up_physics::ribbon::WEIGHT_RADIUS,
+            max_ribbon_length_m: MAX_RIBBON_LENGTH_M,
             capacity: CAPACITY as u32,
             max_contacts: MAX_CONTACTS as u32,
             max_steps_per_call: MAX_STEPS_PER_CALL,
@@ -162,4 +175,7 @@ pub struct EngineStats {
     pub contacts: u32,
     /// m
     pub max_penetration: f32,
+    pub ribbons: u32,
+    /// Largest relative stretch any ribbon ended a step with since the world was built.
+    pub ribbon_max_stretch: f32,
 }

@@ -36,6 +36,7 @@ mod clock;
 mod contacts;
 mod error;
 mod info;
+mod ribbons;
 mod state;
 
 use glam::Vec3;
@@ -44,6 +45,7 @@ use wasm_bindgen::prelude::*;
 pub use contacts::{CONTACT_FLOATS, MAX_CONTACTS};
 pub use error::{CallError, WasmError, ERROR_KINDS};
 pub use info::{Constants, EngineStats, NamedColor, SceneLimits, WorldSummary};
+pub use ribbons::{pack_rgb, MAX_RIBBON_LENGTH_M, RIBBON_POINT_FLOATS};
 pub use state::{
     State, CAPACITY, MAX_SPEED, MAX_SPIN, MAX_STEPS_PER_CALL, POSE_FLOATS, TREE_FLOATS,
 };
@@ -61,6 +63,8 @@ export type PoseStride = 7;
 export type ContactStride = 8;
 /** Floats per sphere-tree node: cx, cy, cz, radius, depth, leaf (`constants().tree_stride`). */
 export type TreeStride = 6;
+/** Floats per ribbon point: x, y, z (`constants().ribbon_point_stride`). */
+export type RibbonPointStride = 3;
 "#;
 
 #[wasm_bindgen(typescript_custom_section)]
@@ -265,6 +269,87 @@ impl Engine {
         )
     }
 
+    /// Ribbons in the world (0 without one).
+    pub fn ribbon_count(&self) -> u32 {
+        self.state.ribbon_count() as u32
+    }
+
+    /// Points of all ribbons together (floats at `ribbon_points_ptr` after
+    /// `write_ribbon_points`: this times `RIBBON_POINT_FLOATS`).
+    pub fn ribbon_point_count(&self) -> u32 {
+        self.state
+            .world()
+            .map_or(0, |w| w.ribbon_point_count() as u32)
+    }
+
+    /// Writes every ribbon's points (`RIBBON_POINT_FLOATS` each, ribbon after
+    /// ribbon, the knot first) for `ribbon_points_ptr`; returns how many floats.
+    pub fn write_ribbon_points(&mut self) -> Result<u32, CallError> {
+        named("write_ribbon_points", self.state.write_ribbon_points())?;
+        Ok(self.state.ribbons.points.len() as u32)
+    }
+
+    pub fn ribbon_points_ptr(&self) -> *const f32 {
+        self.state.ribbons.points.as_ptr()
+    }
+
+    /// Writes, per ribbon in the order of the points: its first point
+    /// (`ribbon_offsets_ptr`, one more entry at the end: the total), the
+    /// dense index of its balloon (`ribbon_bodies_ptr`), its colour,
+    /// 0xRRGGBB sRGB (`ribbon_colors_ptr`) and the weight at its free end, kg,
+    /// 0 for none (`ribbon_weights_ptr`); returns the ribbon count.
+    pub fn write_ribbons(&mut self) -> Result<u32, CallError> {
+        named("write_ribbons", self.state.write_ribbon_tables())?;
+        Ok(self.state.ribbons.bodies.len() as u32)
+    }
+
+    pub fn ribbon_offsets_ptr(&self) -> *const u32 {
+        self.state.ribbons.offsets.as_ptr()
+    }
+
+    pub fn ribbon_bodies_ptr(&self) -> *const u32 {
+        self.state.ribbons.bodies.as_ptr()
+    }
+
+    pub fn ribbon_colors_ptr(&self) -> *const u32 {
+        self.state.ribbons.colors.as_ptr()
+    }
+
+    pub fn ribbon_weights_ptr(&self) -> *const f32 {
+        self.state.ribbons.weights.as_ptr()
+    }
+
+    /// Writes `length` m into every group's ribbon (the scene's other ribbon
+    /// keys kept) and re-ties a ribbon of that length on every balloon, and
+    /// on each added later (0: unties them all); at most
+    /// `constants().max_ribbon_length_m`.
+    pub fn set_ribbon_length(&mut self, length: f32) -> Result<(), CallError> {
+        named("set_ribbon_length", self.state.set_ribbon_length(length))
+    }
+
+    /// The first group's ribbon length, m (0: none), as the scene or
+    /// `set_ribbon_length` set it.
+    pub fn ribbon_length(&self) -> f32 {
+        self.state.ribbon_length()
+    }
+
+    /// Holds point `point` of ribbon `ribbon` (ribbon order; its free end is
+    /// its point count less one) and pulls it toward (x, y, z), m, then
+    /// toward each `drag_to`; `release` lets go. Its balloon follows.
+    pub fn grab_ribbon(
+        &mut self,
+        ribbon: u32,
+        point: u32,
+        x: f32,
+        y: f32,
+        z: f32,
+    ) -> Result<(), CallError> {
+        named(
+            "grab_ribbon",
+            self.state.grab_ribbon(ribbon, point, Vec3::new(x, y, z)),
+        )
+    }
+
     /// Holds the body at dense `index` by the world point (x, y, z) on it, m.
     pub fn grab(&mut self, index: u32, x: f32, y: f32, z: f32) -> Result<(), CallError> {
         named("grab", self.state.grab(index, Vec3::new(x, y, z)))
@@ -326,6 +411,7 @@ mod tests {
             ("PoseStride", POSE_FLOATS),
             ("ContactStride", CONTACT_FLOATS),
             ("TreeStride", TREE_FLOATS),
+            ("RibbonPointStride", RIBBON_POINT_FLOATS),
         ] {
             let line = format!("export type {name} = {value};");
             assert!(STRIDE_TYPES.contains(&line), "{line} in {STRIDE_TYPES}");

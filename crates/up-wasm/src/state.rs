@@ -11,6 +11,7 @@ use up_scene::scene::Scene;
 use crate::contacts::write_contacts;
 use crate::error::{finite, WasmError};
 use crate::info::{EngineStats, WorldSummary};
+use crate::ribbons::RibbonTables;
 
 /// Most steps one `step` call takes: a host asking for more has lost track of time.
 pub const MAX_STEPS_PER_CALL: u32 = 10_000;
@@ -60,6 +61,8 @@ pub struct State {
     /// browsers coarsen `performance.now()`, so one step's timings are noisy.
     stage_sums: Vec<(&'static str, f64)>,
     steps_summed: u32,
+    /// The ribbons' points and tables for the page (`ribbons.rs`).
+    pub ribbons: RibbonTables,
 }
 
 /// `Ok` when a velocity stays within `MAX_SPEED` and `MAX_SPIN`, else why not.
@@ -80,7 +83,7 @@ fn speed_limits(linear: Vec3, angular: Vec3) -> Result<(), String> {
 }
 
 impl State {
-    fn loaded(&self) -> Result<&Loaded, WasmError> {
+    pub(crate) fn loaded(&self) -> Result<&Loaded, WasmError> {
         self.loaded.as_ref().ok_or(WasmError::NoWorld)
     }
 
@@ -92,7 +95,7 @@ impl State {
         Ok(&self.loaded()?.built.world)
     }
 
-    fn world_mut(&mut self) -> Result<&mut World, WasmError> {
+    pub(crate) fn world_mut(&mut self) -> Result<&mut World, WasmError> {
         Ok(&mut self.loaded_mut()?.built.world)
     }
 
@@ -233,7 +236,12 @@ impl State {
         }
         let mut def = BodyDef::new(shape, Pose::new(position, Quat::IDENTITY));
         def.user_data = user_data_for(model as usize, color as usize);
-        loaded.built.world.add_body(&def)?;
+        let body = loaded.built.world.add_body(&def)?;
+        if let Err(e) = self.tie_added(body, model as usize) {
+            // A balloon the page cannot give its ribbon is not added.
+            let _ = self.world_mut()?.remove_body(body);
+            return Err(e);
+        }
         Ok(())
     }
 
@@ -432,6 +440,8 @@ impl State {
             pairs: s.pair_count,
             contacts: s.contact_count,
             max_penetration: s.max_penetration,
+            ribbons: world.ribbon_count() as u32,
+            ribbon_max_stretch: world.ribbon_max_stretch(),
         })
     }
 }

@@ -210,3 +210,185 @@ fn stage_times_are_averaged_over_the_steps_since_the_last_read() {
     assert_eq!(again.bodies, 50);
     assert_eq!(again.stages.len(), first.stages.len());
 }
+
+#[test]
+fn a_ribbon_length_ties_one_ribbon_to_every_balloon_and_to_those_added() {
+    let mut s = default_state();
+    let n = s.body_count();
+    s.set_ribbon_length(1.5).unwrap();
+    assert_eq!(s.ribbon_count(), n);
+    assert_eq!(s.ribbon_length(), 1.5);
+    s.write_ribbon_tables().unwrap();
+    s.write_ribbon_points().unwrap();
+    let t = &s.ribbons;
+    assert_eq!(t.offsets.len(), n + 1);
+    assert_eq!(t.offsets[0], 0);
+    assert_eq!(*t.offsets.last().unwrap() as usize * 3, t.points.len());
+    // Each ribbon's first point is its balloon's knot: below the balloon's centre, near it.
+    s.write_poses().unwrap();
+    let mut bodies = s.ribbons.bodies.clone();
+    bodies.sort_unstable();
+    assert_eq!(
+        bodies,
+        (0..n as u32).collect::<Vec<_>>(),
+        "one ribbon per balloon"
+    );
+    for (r, &b) in s.ribbons.bodies.iter().enumerate() {
+        let first = s.ribbons.offsets[r] as usize * 3;
+        let knot = Vec3::from_slice(&s.ribbons.points[first..first + 3]);
+        let pose = Vec3::from_slice(&s.poses[b as usize * POSE_FLOATS..][..3]);
+        assert!(
+            knot.y < pose.y && knot.distance(pose) < 0.4,
+            "knot {knot} of balloon at {pose}"
+        );
+        let count = (s.ribbons.offsets[r + 1] - s.ribbons.offsets[r]) as usize;
+        let points: Vec<Vec3> = s.ribbons.points[first..first + 3 * count]
+            .chunks(3)
+            .map(Vec3::from_slice)
+            .collect();
+        let along: f32 = points.windows(2).map(|p| p[0].distance(p[1])).sum();
+        assert!((along - 1.5).abs() < 0.015, "ribbon {r} is {along} m long");
+    }
+    assert!(s.ribbons.colors.iter().all(|&c| c <= 0xffffff));
+    s.add_balloon_on_floor(0.5, 0.5, 0).unwrap();
+    assert_eq!(
+        s.ribbon_count(),
+        n + 1,
+        "a balloon added later gets its ribbon"
+    );
+    s.step(30).unwrap();
+    let stats = s.stats().unwrap();
+    assert_eq!(stats.ribbons, n as u32 + 1);
+    let stretch = s.world().unwrap().ribbon_max_stretch();
+    assert_eq!(stats.ribbon_max_stretch, stretch);
+    assert!(stretch.is_finite() && stretch >= 0.0, "{stretch}");
+    s.set_ribbon_length(0.0).unwrap();
+    assert_eq!(s.ribbon_count(), 0);
+    s.add_balloon_on_floor(-0.5, 0.5, 0).unwrap();
+    assert_eq!(s.ribbon_count(), 0, "length 0: no ribbon");
+}
+
+#[test]
+fn a_bad_ribbon_length_or_grab_is_refused_and_changes_nothing() {
+    let mut s = default_state();
+    s.set_ribbon_length(1.0).unwrap();
+    let hash = s.world().unwrap().state_hash();
+    for bad in [f32::NAN, -1.0, crate::ribbons::MAX_RIBBON_LENGTH_M + 1.0] {
+        assert!(s.set_ribbon_length(bad).is_err(), "{bad}");
+    }
+    let ribbons = s.ribbon_count() as u32;
+    assert_eq!(
+        s.grab_ribbon(ribbons, 1, Vec3::ONE).unwrap_err().kind(),
+        "OutOfRange"
+    );
+    assert_eq!(
+        s.grab_ribbon(0, 0, Vec3::ONE).unwrap_err().kind(),
+        "OutOfRange"
+    );
+    assert_eq!(
+        s.grab_ribbon(0, 17, Vec3::ONE).unwrap_err().kind(),
+        "OutOfRange"
+    );
+    assert_eq!(
+        s.grab_ribbon(0, 16, Vec3::NAN).unwrap_err().kind(),
+        "BadArgument"
+    );
+    assert_eq!(s.world().unwrap().state_hash(), hash);
+    assert_eq!(s.ribbon_length(), 1.0);
+}
+
+#[test]
+fn pulling_a_ribbon_end_down_brings_its_balloon_down() {
+    let mut s = default_state();
+    s.step(600).unwrap(); // the balloons reach the ceiling
+    s.set_ribbon_length(1.0).unwrap();
+    s.step(60).unwrap();
+    s.write_ribbon_tables().unwrap();
+    let body = s.ribbons.bodies[0] as usize;
+    let end = s.ribbons.offsets[1] - s.ribbons.offsets[0] - 1;
+    s.write_poses().unwrap();
+    let before = s.poses[body * POSE_FLOATS + 1];
+    s.write_ribbon_points().unwrap();
+    let tip = Vec3::from_slice(&s.ribbons.points[end as usize * 3..][..3]);
+    s.grab_ribbon(0, end, tip).unwrap();
+    s.drag_to(Vec3::new(tip.x, 0.3, tip.z)).unwrap();
+    s.step(120).unwrap();
+    s.write_poses().unwrap();
+    let after = s.poses[body * POSE_FLOATS + 1];
+    assert!(
+        after < before - 1.0,
+        "the balloon came down from {before} to {after} m"
+    );
+    s.release().unwrap();
+    s.step(1).unwrap();
+}
+
+#[test]
+fn popping_a_balloon_takes_its_ribbon_and_the_tables_follow() {
+    let mut s = default_state();
+    s.set_ribbon_length(0.5).unwrap();
+    let n = s.body_count();
+    s.remove(0).unwrap();
+    assert_eq!(s.ribbon_count(), n - 1);
+    s.write_ribbon_tables().unwrap();
+    assert!(s.ribbons.bodies.iter().all(|&b| (b as usize) < n - 1));
+}
+
+#[test]
+fn the_scene_ties_its_ribbons_and_the_page_length_is_written_into_the_scene() {
+    let mut s = State::default();
+    let text = r##"{"balloons": [
+        {"count": 3, "ribbon": {"length_m": 0.9, "segments": 6, "color": "#ff00ff"}},
+        {"count": 2}
+    ]}"##;
+    s.load_json(text).unwrap();
+    assert_eq!(s.ribbon_count(), 3, "only the group with a ribbon table");
+    assert_eq!(s.ribbon_length(), 0.9);
+    s.write_ribbon_tables().unwrap();
+    assert!(s.ribbons.colors.iter().all(|&c| c == 0xff00ff));
+    assert_eq!(s.ribbons.weights, vec![0.0; 3]);
+    assert!(s.ribbons.offsets.windows(2).all(|w| w[1] - w[0] == 7));
+    // A balloon added to the first model gets that group's ribbon.
+    s.add_balloon(Vec3::new(0.0, 1.0, 0.0), 0, 0).unwrap();
+    assert_eq!(s.ribbon_count(), 4);
+    s.add_balloon(Vec3::new(0.5, 1.0, 0.0), 0, 1).unwrap();
+    assert_eq!(s.ribbon_count(), 4, "the second group has none");
+
+    s.set_ribbon_length(1.25).unwrap();
+    assert_eq!(s.ribbon_count(), s.body_count(), "every group gets one");
+    let scene = Scene::from_json_str(&s.scene_json().unwrap(), "t").unwrap();
+    let ribbons: Vec<_> = scene
+        .balloons
+        .iter()
+        .map(|g| g.ribbon.clone().unwrap())
+        .collect();
+    assert_eq!(ribbons[0].length_m, 1.25);
+    assert_eq!(ribbons[0].color, "#ff00ff", "its other keys kept");
+    assert_eq!(ribbons[0].segments, 6);
+    assert_eq!(ribbons[1].length_m, 1.25);
+    // What the page shares is a scene the engine builds the same.
+    let again = s.scene_json().unwrap();
+    let mut t = State::default();
+    t.load_json(&again).unwrap();
+    assert_eq!(t.ribbon_count(), t.body_count());
+
+    s.set_ribbon_length(0.0).unwrap();
+    assert_eq!(s.ribbon_count(), 0);
+    let scene = Scene::from_json_str(&s.scene_json().unwrap(), "t").unwrap();
+    assert_eq!(scene.balloons[0].ribbon.as_ref().unwrap().length_m, 0.0);
+}
+
+#[test]
+fn each_ribbon_says_the_weight_at_its_end() {
+    let mut s = State::default();
+    let text = r##"{"balloons": [
+        {"count": 2, "ribbon": {"length_m": 1.0, "weight_g": 12}},
+        {"count": 1, "ribbon": {"length_m": 1.0}}
+    ]}"##;
+    s.load_json(text).unwrap();
+    s.write_ribbon_tables().unwrap();
+    let mut weights = s.ribbons.weights.clone();
+    weights.sort_by(f32::total_cmp);
+    assert_eq!(weights, vec![0.0, 0.012, 0.012]);
+    assert_eq!(s.ribbons.weights.len(), s.ribbons.bodies.len());
+}

@@ -14,7 +14,7 @@ import { Hud } from "../ui/hud";
 import { Messages } from "../ui/messages";
 import { Panel, type PanelActions } from "../ui/panel";
 import type { KeyAction } from "../ui/input";
-import { applyParams, paramsFromScene, type PanelParams } from "../scene/sceneParams";
+import { applyParams, paramsFromScene, withRibbonLength, type PanelParams } from "../scene/sceneParams";
 import { ShareLink } from "./shareLink";
 import type { PageElements } from "./page";
 
@@ -150,6 +150,12 @@ export class App {
         this.bridge.load(json);
         this.link.set(json);
       });
+    },
+    ribbonLength: (params) => {
+      // Re-tied in the running world: the balloons stay where they are.
+      this.scene = withRibbonLength(this.scene, params.ribbonLength);
+      this.bridge.setRibbonLength(params.ribbonLength);
+      this.link.set(JSON.stringify(this.scene));
     },
     reset: () => {
       this.messages.clear();

@@ -28,6 +28,20 @@ export function createTestHook(app: App) {
       total: bridge.current?.contactTotal ?? 0,
     }),
     placement: () => controls.placement,
+    /** Ribbons in the current frame, and those the renderer draws. */
+    ribbonCount: () => bridge.ribbons.bodies.length,
+    ribbonsDrawn: () => world.ribbons?.count ?? 0,
+    /** Ribbon particles the debug view shows now. */
+    ribbonParticlesDrawn: () => (world.debug.visible ? world.debug.ribbonPointCount : 0),
+    /** Ribbon r's free end (world, m) and the dense index of its balloon, or null. */
+    ribbonEnd(r: number): { end: [number, number, number]; body: number } | null {
+      const { offsets, bodies } = bridge.ribbons;
+      if (r < 0 || r >= bodies.length) return null;
+      const e = (offsets[r + 1] - 1) * 3;
+      const p = bridge.ribbonsCurr;
+      if (p.length < e + 3) return null;
+      return { end: [p[e], p[e + 1], p[e + 2]], body: bodies[r] };
+    },
     steps: () => bridge.current?.steps ?? 0,
     version: () => bridge.current?.version ?? -1,
     sceneJson: () => JSON.stringify(app.scene),
@@ -77,6 +91,59 @@ export function createTestHook(app: App) {
       const n = w * h;
       const mean = sum / n;
       return { width: w, height: h, mean, std: Math.sqrt(Math.max(0, sum2 / n - mean * mean)), saturatedFraction: saturated / n, pixels: n };
+    },
+    /**
+     * Renders once (without the balloons or the ribbons when asked) and counts the
+     * pixels of hue within `hueDegrees` of `rgb`'s and saturated (over 0.35,
+     * not dark): a lit, shaded surface of that colour. In the client
+     * rectangle `region` (CSS pixels; the whole view when left out).
+     */
+    colorPixels(
+      rgb: [number, number, number],
+      hueDegrees: number,
+      region?: { left: number; top: number; right: number; bottom: number },
+      hide: { balloons?: boolean; ribbons?: boolean } = {},
+    ) {
+      const hue = (r: number, g: number, b: number) => {
+        const max = Math.max(r, g, b);
+        const d = max - Math.min(r, g, b);
+        if (d === 0) return 0;
+        const h = max === r ? ((g - b) / d) % 6 : max === g ? (b - r) / d + 2 : (r - g) / d + 4;
+        return (h * 60 + 360) % 360;
+      };
+      const target = hue(...rgb);
+      const balloons = world.balloons;
+      const ribbons = world.ribbons?.mesh;
+      const ribbonsShown = ribbons?.visible ?? false;
+      if (hide.balloons && balloons) balloons.setVisible(false);
+      if (hide.ribbons && ribbons) ribbons.visible = false;
+      renderer.render(scene, camera);
+      if (hide.balloons && balloons) balloons.setVisible(true);
+      if (ribbons) ribbons.visible = ribbonsShown;
+      const gl = renderer.getContext();
+      const w = gl.drawingBufferWidth;
+      const h = gl.drawingBufferHeight;
+      const rect = renderer.domElement.getBoundingClientRect();
+      const sx = w / rect.width;
+      const sy = h / rect.height;
+      const r = region ?? { left: rect.left, top: rect.top, right: rect.right, bottom: rect.bottom };
+      const x0 = Math.max(0, Math.floor((r.left - rect.left) * sx));
+      const x1 = Math.min(w, Math.ceil((r.right - rect.left) * sx));
+      // WebGL's rows start at the bottom.
+      const y0 = Math.max(0, Math.floor(h - (r.bottom - rect.top) * sy));
+      const y1 = Math.min(h, Math.ceil(h - (r.top - rect.top) * sy));
+      if (x1 <= x0 || y1 <= y0) return { matching: 0, pixels: 0 };
+      const px = new Uint8Array((x1 - x0) * (y1 - y0) * 4);
+      gl.readPixels(x0, y0, x1 - x0, y1 - y0, gl.RGBA, gl.UNSIGNED_BYTE, px);
+      let matching = 0;
+      for (let i = 0; i < px.length; i += 4) {
+        const max = Math.max(px[i], px[i + 1], px[i + 2]);
+        const min = Math.min(px[i], px[i + 1], px[i + 2]);
+        if (max < 40 || (max - min) / max < 0.35) continue;
+        const off = Math.abs(hue(px[i], px[i + 1], px[i + 2]) - target);
+        if (Math.min(off, 360 - off) <= hueDegrees) matching++;
+      }
+      return { matching, pixels: px.length / 4 };
     },
   };
 }

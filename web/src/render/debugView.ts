@@ -1,7 +1,8 @@
 // Debug view: every balloon's sphere tree (the report's Figure 2), drawn as
-// wireframe spheres coloured by depth, and the last step's contact points:
-// a dot at each and a short segment along its normal (red between balloons,
-// blue against the room), in preallocated buffers updated in place.
+// wireframe spheres coloured by depth, the last step's contact points (a dot
+// at each and a short segment along its normal: red between balloons, blue
+// against the room) and the ribbons' particles (a dot at each), in
+// preallocated buffers updated in place.
 
 import * as THREE from "three";
 import type { TreeNode } from "../sim/engine";
@@ -14,6 +15,9 @@ export const MAX_DRAWN_CONTACTS = 32_768;
 const NORMAL_LENGTH = 0.06;
 /** Size of a contact dot, CSS pixels. */
 const POINT_SIZE = 5;
+/** Size and colour of a ribbon particle's dot, CSS pixels. */
+const RIBBON_POINT_SIZE = 4;
+const RIBBON_POINT_COLOR = 0x39ff88;
 
 const DEPTH_COLORS = [0xffe066, 0x4dd2ff, 0x7cff6b, 0xff7ad9, 0xffffff];
 
@@ -32,8 +36,12 @@ export class DebugView {
   private readonly contactData: ContactArrays = contactArrays(MAX_DRAWN_CONTACTS);
   private readonly contactPoints: THREE.Points;
   private readonly contactLines: THREE.LineSegments;
+  private ribbonPoints: THREE.Points<THREE.BufferGeometry, THREE.PointsMaterial>;
+  private ribbonCapacity = 0;
   /** Contacts drawn now. */
   contactCount = 0;
+  /** Ribbon particles drawn now. */
+  ribbonPointCount = 0;
 
   constructor() {
     this.group.name = "debug";
@@ -52,7 +60,12 @@ export class DebugView {
     lines.setAttribute("color", new THREE.BufferAttribute(d.lineColors, 3).setUsage(THREE.DynamicDrawUsage));
     lines.setDrawRange(0, 0);
     this.contactLines = new THREE.LineSegments(lines, new THREE.LineBasicMaterial(onTop));
-    for (const o of [this.contactPoints, this.contactLines]) {
+    this.ribbonPoints = new THREE.Points(
+      new THREE.BufferGeometry(),
+      new THREE.PointsMaterial({ color: RIBBON_POINT_COLOR, size: RIBBON_POINT_SIZE, sizeAttenuation: false, depthTest: false, depthWrite: false, transparent: true }),
+    );
+    this.growRibbonPoints(1024);
+    for (const o of [this.contactPoints, this.contactLines, this.ribbonPoints]) {
       o.frustumCulled = false;
       o.renderOrder = 10;
       this.group.add(o);
@@ -76,6 +89,25 @@ export class DebugView {
         a.needsUpdate = true;
       }
     }
+  }
+
+  private growRibbonPoints(capacity: number): void {
+    const attribute = new THREE.BufferAttribute(new Float32Array(capacity * 3), 3).setUsage(THREE.DynamicDrawUsage);
+    this.ribbonPoints.geometry.setAttribute("position", attribute);
+    this.ribbonCapacity = capacity;
+  }
+
+  /** Shows a dot at each ribbon particle of `points` (x, y, z each). */
+  setRibbonPoints(points: Float32Array): void {
+    const n = Math.floor(points.length / 3);
+    if (n > this.ribbonCapacity) this.growRibbonPoints(Math.max(n, this.ribbonCapacity * 2));
+    const attribute = this.ribbonPoints.geometry.getAttribute("position") as THREE.BufferAttribute;
+    (attribute.array as Float32Array).set(points.subarray(0, n * 3));
+    attribute.clearUpdateRanges();
+    attribute.addUpdateRange(0, n * 3);
+    attribute.needsUpdate = true;
+    this.ribbonPoints.geometry.setDrawRange(0, n);
+    this.ribbonPointCount = n;
   }
 
   private makeSpheres(capacity: number): THREE.InstancedMesh {

@@ -1,23 +1,29 @@
 // What the stage draws of the simulated world: the room, the balloons (once
-// their model has loaded) and the debug view, updated from the physics
-// worker's newest frame every animation frame.
+// their model has loaded), their ribbons and the debug view, updated from the
+// physics worker's newest frame every animation frame.
 
 import * as THREE from "three";
 import { buildRoom } from "./room";
 import { Balloons, loadBalloonAssets, type BalloonAssets } from "./balloons";
 import { DebugView } from "./debugView";
+import { Ribbons } from "./ribbons";
+import { RIBBON_POINT_STRIDE } from "../sim/frameLayout";
 import type { SimBridge } from "../sim/bridge";
 import type { WorldInfo } from "../sim/protocol";
 
 export class WorldView {
   readonly debug = new DebugView();
   balloons: Balloons | null = null;
+  /** Made with the first world (its ribbon width comes from the engine). */
+  ribbons: Ribbons | null = null;
   assets: BalloonAssets | null = null;
   private room: THREE.Group | null = null;
   private roomKey = "";
   private info: WorldInfo | null = null;
   /** Frame version whose colours and models the balloons show (-1: none yet). */
   private drawnVersion = -1;
+  /** Frame version whose ribbon tables the ribbons show (-1: none yet). */
+  private ribbonVersion = -1;
   /** The frame whose contacts the debug view shows. */
   private contactsFrame: unknown = null;
 
@@ -46,6 +52,11 @@ export class WorldView {
       this.roomKey = roomKey;
     }
     this.debug.setTrees(info.trees);
+    if (!this.ribbons) {
+      this.ribbons = new Ribbons(info.constants.ribbon_width_m, info.constants.weight_radius_m);
+      this.scene.add(this.ribbons.group);
+    }
+    this.ribbonVersion = -1;
     this.balloons?.setWorld(info.palette, info.colorNames, info.diameters);
     this.drawnVersion = -1;
     return roomChanged;
@@ -68,8 +79,16 @@ export class WorldView {
       this.drawnVersion = f.version;
     }
     balloons.update(bridge.prev, bridge.curr, f.count, bridge.alpha(nowAbs));
+    const ribbons = this.ribbons;
+    const tables = bridge.ribbons;
+    if (ribbons && f.version !== this.ribbonVersion && (tables.offsets[tables.bodies.length] ?? 0) * RIBBON_POINT_STRIDE === f.ribbonFloats) {
+      ribbons.setRibbons(tables, bridge.ribbonsCurr);
+      this.ribbonVersion = f.version;
+    }
+    if (ribbons && this.ribbonVersion === f.version) ribbons.update(bridge.ribbonsPrev, bridge.ribbonsCurr, bridge.alpha(nowAbs));
     if (this.debug.visible) {
       this.debug.update(bridge.curr, 0, f.count, bridge.models);
+      this.debug.setRibbonPoints(bridge.ribbonsCurr);
       if (this.contactsFrame !== f) {
         this.debug.setContacts(bridge.contacts, f.contactCount);
         this.contactsFrame = f;

@@ -1,7 +1,7 @@
 import { beforeAll, describe, expect, it } from "vitest";
 import { loadBuiltEngine } from "../sim/builtEngine";
 import type { Engine } from "../sim/engine";
-import { applyParams, paramsFromScene, splitCount } from "./sceneParams";
+import { applyParams, paramsFromScene, splitCount, withRibbonLength } from "./sceneParams";
 import { setEngineConstants } from "./sceneSchema";
 
 let engine: Engine;
@@ -49,6 +49,20 @@ describe("panel parameters", () => {
   it("round-trips: reading what was written gives the same parameters", () => {
     const p = { ...paramsFromScene(scene), count: 123, width: 8, apexHeight: 2 };
     expect(paramsFromScene(applyParams(scene, p))).toEqual(p);
+  });
+
+  it("writes a ribbon length into every group, keeping the ribbons' other keys", () => {
+    const base = { balloons: [{ count: 2, ribbon: { length_m: 1.5, color: "red", segments: 8 } }, { count: 3 }] };
+    const longer = withRibbonLength(base, 2);
+    expect(longer.balloons).toEqual([
+      { count: 2, ribbon: { length_m: 2, color: "red", segments: 8 } },
+      { count: 3, ribbon: { length_m: 2 } },
+    ]);
+    expect(paramsFromScene(longer).ribbonLength).toBe(2);
+    const none = withRibbonLength(base, 0);
+    expect(none.balloons).toEqual([{ count: 2, ribbon: { length_m: 0, color: "red", segments: 8 } }, { count: 3 }]);
+    expect(paramsFromScene(none).ribbonLength).toBe(0);
+    expect(base.balloons[0].ribbon?.length_m, "the input is untouched").toBe(1.5);
   });
 
   it("splits a total over groups like the CLI", () => {

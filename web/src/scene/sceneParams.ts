@@ -10,6 +10,8 @@ export interface PanelParams {
   sizeIn: number;
   /** true: helium (rises); false: air (sinks). */
   helium: boolean;
+  /** Length of the ribbon on each balloon, m (0: none): the first group's. */
+  ribbonLength: number;
   /** Drag coefficient C_D. */
   drag: number;
   restitution: number;
@@ -56,6 +58,7 @@ export function paramsFromScene(scene: Json): PanelParams {
     count: groups.reduce((sum, g) => sum + num(g.count, 1), 0),
     sizeIn: Math.round((diameterOf(first) / sceneDefaults().metresPerInch) * 10) / 10,
     helium: first.gas !== "air",
+    ribbonLength: num(obj(first.ribbon).length_m, 0),
     drag: num(sim.drag_coefficient, 0.95),
     restitution: num(sim.restitution, 0.4),
     friction: num(sim.friction, 0.5),
@@ -74,6 +77,21 @@ export function splitCount(total: number, groups: number): number[] {
   return Array.from({ length: n }, (_, i) => Math.floor(total / n) + (i < total % n ? 1 : 0));
 }
 
+/**
+ * A copy of `scene` whose every group has ribbons of `length` m (0: none),
+ * their other keys (segments, colour, weight) kept; a group without a ribbon
+ * table stays without one at 0.
+ */
+export function withRibbonLength(scene: Json, length: number): Json {
+  const out: Json = structuredClone(scene);
+  const groups = groupsOf(out);
+  for (const g of groups) {
+    if (length > 0 || g.ribbon !== undefined) g.ribbon = { ...obj(g.ribbon), length_m: length };
+  }
+  if (groups.length > 0) out.balloons = groups;
+  return out;
+}
+
 /** A copy of `scene` with the panel's parameters written in; other keys are kept. */
 export function applyParams(scene: Json, p: PanelParams): Json {
   const out: Json = structuredClone(scene);
@@ -90,6 +108,8 @@ export function applyParams(scene: Json, p: PanelParams): Json {
     delete g.spawn;
   });
   out.balloons = groups;
+  const withRibbons = withRibbonLength(out, Math.max(0, p.ribbonLength));
+  out.balloons = withRibbons.balloons;
   out.sim = { ...obj(out.sim), drag_coefficient: p.drag, restitution: p.restitution, friction: p.friction, substeps: Math.round(p.substeps) };
   out.room = { ...obj(out.room), width: p.width, depth: p.depth, wall_height: p.wallHeight, ceiling: p.ceiling, apex_height: p.apexHeight };
   return out;

@@ -2,7 +2,7 @@
 // frame of poses, hands the previous buffer back (ping-pong), and tells how
 // far between the two steps of a frame the display is (interpolation).
 
-import type { EngineStats } from "./engine";
+import type { EngineStats, RibbonTables } from "./engine";
 import type { Frame, FromWorker, ToWorker, Vec3Tuple, WorldInfo } from "./protocol";
 import { frameViews } from "./frameLayout";
 import { setEngineConstants } from "../scene/sceneSchema";
@@ -24,6 +24,11 @@ export class SimBridge {
   contacts = new Float32Array(0);
   colors: Uint32Array = new Uint32Array(0);
   models: Uint32Array = new Uint32Array(0);
+  /** Every ribbon's points before and after the frame's last step (`RIBBON_POINT_STRIDE` each). */
+  ribbonsPrev = new Float32Array(0);
+  ribbonsCurr = new Float32Array(0);
+  /** Each ribbon's first point, balloon and colour,. */
+  ribbons: RibbonTables = { offsets: new Uint32Array(1), bodies: new Uint32Array(0), colors: new Uint32Array(0), weights: new Float32Array(0) };
   info: WorldInfo | null = null;
   paused = false;
   /** Validation requests waiting for the worker's answer, by id. */
@@ -50,12 +55,15 @@ export class SimBridge {
       case "frame": {
         const old = this.current;
         this.current = msg;
-        const views = frameViews(msg.buffer, msg.count, msg.contactCount);
+        const views = frameViews(msg.buffer, msg.count, msg.contactCount, msg.ribbonFloats);
         this.prev = views.prev;
         this.curr = views.curr;
         this.contacts = views.contacts;
+        this.ribbonsPrev = views.ribbonsPrev;
+        this.ribbonsCurr = views.ribbonsCurr;
         if (msg.colors) this.colors = msg.colors;
         if (msg.models) this.models = msg.models;
+        if (msg.ribbons) this.ribbons = msg.ribbons;
         this.paused = msg.paused;
         this.events.frame(msg);
         // The previous frame's buffer goes back to the worker for refilling.
@@ -127,6 +135,16 @@ export class SimBridge {
 
   grab(index: number, point: Vec3Tuple): void {
     if (this.current) this.send({ type: "grab", index, version: this.current.version, point });
+  }
+
+  /** Holds point `point` of ribbon `ribbon` (the current frame's ribbon order) and pulls it toward `target`. */
+  grabRibbon(ribbon: number, point: number, target: Vec3Tuple): void {
+    if (this.current) this.send({ type: "grabRibbon", ribbon, point, version: this.current.version, target });
+  }
+
+  /** Re-ties ribbons of `length` m on every balloon (0: none). */
+  setRibbonLength(length: number): void {
+    this.send({ type: "ribbonLength", length });
   }
 
   dragTo(point: Vec3Tuple): void {

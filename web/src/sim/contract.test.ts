@@ -9,7 +9,7 @@ import { applyParams, paramsFromScene } from "../scene/sceneParams";
 import { engineConstants, setEngineConstants } from "../scene/sceneSchema";
 import { loadBuiltEngine } from "./builtEngine";
 import { Engine, EngineError } from "./engine";
-import { CONTACT_STRIDE, checkLayout, frameFloats } from "./frameLayout";
+import { CONTACT_STRIDE, RIBBON_POINT_STRIDE, checkLayout, frameFloats } from "./frameLayout";
 
 let engine: Engine;
 
@@ -30,7 +30,11 @@ describe("strides", () => {
     expect(engine.constants.pose_stride).toBe(POSE_STRIDE);
     expect(engine.constants.contact_stride).toBe(CONTACT_STRIDE);
     expect(() => checkLayout(engine.constants)).not.toThrow();
-    expect(() => checkLayout({ pose_stride: POSE_STRIDE + 1, contact_stride: CONTACT_STRIDE })).toThrow(/floats per pose/);
+    expect(engine.constants.ribbon_point_stride).toBe(RIBBON_POINT_STRIDE);
+    expect(() => checkLayout(engine.constants)).not.toThrow();
+    const page = { pose_stride: POSE_STRIDE, contact_stride: CONTACT_STRIDE, ribbon_point_stride: RIBBON_POINT_STRIDE };
+    expect(() => checkLayout({ ...page, pose_stride: POSE_STRIDE + 1 })).toThrow(/floats per pose/);
+    expect(() => checkLayout({ ...page, ribbon_point_stride: RIBBON_POINT_STRIDE + 1 })).toThrow(/floats per ribbon point/);
   });
 
   it("poses and contacts come as views of exactly those strides", () => {
@@ -46,6 +50,111 @@ describe("strides", () => {
     const contacts = engine.contacts(1_000_000);
     expect(contacts.view.length).toBe(contacts.count * CONTACT_STRIDE);
     expect(frameFloats(n, contacts.count)).toBe(2 * poses.length + contacts.view.length);
+  });
+});
+
+describe("ribbons", () => {
+  /** Ribbon r's points as [x, y, z] triples. */
+  const pointsOf = (r: number) => {
+    const { offsets } = engine.ribbons();
+    const all = engine.ribbonPoints();
+    const out: number[][] = [];
+    for (let i = offsets[r]; i < offsets[r + 1]; i++) out.push(Array.from(all.subarray(i * RIBBON_POINT_STRIDE, (i + 1) * RIBBON_POINT_STRIDE)));
+    return out;
+  };
+
+  it("come in one array of points, with each ribbon's first point, balloon and colour", () => {
+    engine.loadDefaultScene();
+    engine.setRibbonLength(1.5);
+    const n = engine.bodyCount();
+    expect(engine.ribbonLength()).toBe(1.5);
+    expect(engine.ribbonCount()).toBe(n);
+    const tables = engine.ribbons();
+    expect(tables.offsets.length).toBe(n + 1);
+    expect(tables.offsets[0]).toBe(0);
+    expect(tables.offsets[n]).toBe(engine.ribbonPointCount());
+    const points = engine.ribbonPoints();
+    expect(points.length).toBe(engine.ribbonPointCount() * RIBBON_POINT_STRIDE);
+    expect(frameFloats(n, 0, points.length)).toBe(2 * n * POSE_STRIDE + 2 * points.length);
+    expect([...tables.bodies].sort((a, b) => a - b)).toEqual([...Array(n).keys()]);
+    for (const c of tables.colors) expect(c).toBeLessThanOrEqual(0xffffff);
+    expect(Array.from(tables.weights), "the default ribbons carry no weight").toEqual(Array(n).fill(0));
+    const poses = engine.poses().slice();
+    for (let r = 0; r < n; r++) {
+      const ribbon = pointsOf(r);
+      const b = tables.bodies[r] * POSE_STRIDE;
+      const knot = ribbon[0];
+      expect(knot[1], "the knot hangs below its balloon's centre").toBeLessThan(poses[b + 1]);
+      expect(Math.hypot(knot[0] - poses[b], knot[1] - poses[b + 1], knot[2] - poses[b + 2])).toBeLessThan(0.4);
+      let along = 0;
+      for (let i = 1; i < ribbon.length; i++) along += Math.hypot(...ribbon[i].map((v, k) => v - ribbon[i - 1][k]));
+      expect(along).toBeCloseTo(1.5, 2);
+    }
+    engine.step(10);
+    expect(engine.stats().ribbons).toBe(n);
+    const stretch = engine.stats().ribbon_max_stretch;
+    expect(Number.isFinite(stretch) && stretch >= 0).toBe(true);
+  });
+
+  it("are tied to balloons added later, and untied by a length of 0", () => {
+    engine.loadDefaultScene();
+    engine.setRibbonLength(0.8);
+    const n = engine.bodyCount();
+    engine.addBalloonOnFloor(0.5, 0.5, 0);
+    expect(engine.ribbonCount()).toBe(n + 1);
+    engine.remove(0);
+    expect(engine.ribbonCount(), "a popped balloon takes its ribbon").toBe(n);
+    engine.setRibbonLength(0);
+    expect(engine.ribbonCount()).toBe(0);
+    expect(engine.ribbonPoints().length).toBe(0);
+    engine.addBalloonOnFloor(-0.5, 0.5, 0);
+    expect(engine.ribbonCount()).toBe(0);
+  });
+
+  it("a ribbon's free end pulled down brings its balloon down", () => {
+    engine.loadDefaultScene();
+    engine.step(600); // to the ceiling
+    engine.setRibbonLength(1);
+    engine.step(30);
+    const { bodies } = engine.ribbons();
+    const ribbon = pointsOf(0);
+    const end = ribbon.length - 1;
+    const tip = ribbon[end];
+    const heightOf = () => engine.poses()[bodies[0] * POSE_STRIDE + 1];
+    const before = heightOf();
+    engine.grabRibbon(0, end, tip[0], tip[1], tip[2]);
+    engine.dragTo(tip[0], 0.3, tip[2]);
+    engine.step(120);
+    expect(heightOf()).toBeLessThan(before - 1);
+    engine.release();
+  });
+
+  it("refuses a bad length or grab, naming it, and keeps the world", () => {
+    engine.loadDefaultScene();
+    engine.setRibbonLength(1);
+    const hash = engine.stateHash();
+    const ribbons = engine.ribbonCount();
+    const calls: [() => void, string][] = [
+      [() => engine.setRibbonLength(engine.constants.max_ribbon_length_m + 1), "OutOfRange"],
+      [() => engine.setRibbonLength(-1), "OutOfRange"],
+      [() => engine.setRibbonLength(NaN), "BadArgument"],
+      [() => engine.grabRibbon(ribbons, 1, 0, 1, 0), "OutOfRange"],
+      [() => engine.grabRibbon(0, 0, 0, 1, 0), "OutOfRange"],
+      [() => engine.grabRibbon(0, 1, 0, NaN, 0), "BadArgument"],
+    ];
+    for (const [call, kind] of calls) {
+      let thrown: unknown = null;
+      try {
+        call();
+      } catch (e) {
+        thrown = e;
+      }
+      expect(thrown).toBeInstanceOf(EngineError);
+      expect((thrown as EngineError).kind).toBe(kind);
+      expect((thrown as EngineError).message).toMatch(/^(set_ribbon_length|grab_ribbon): /);
+    }
+    expect(engine.stateHash()).toBe(hash);
+    expect(engine.ribbonLength()).toBe(1);
   });
 });
 

@@ -50,6 +50,18 @@ export interface Contacts {
   total: number;
 }
 
+/** Each ribbon's place in the points, its balloon and its colour, in the order of the points. */
+export interface RibbonTables {
+  /** First point of each ribbon, then the total: ribbons + 1 entries. */
+  offsets: Uint32Array;
+  /** Dense index of the balloon each ribbon is tied to. */
+  bodies: Uint32Array;
+  /** Colour of each ribbon, 0xRRGGBB (sRGB). */
+  colors: Uint32Array;
+  /** The weight at each ribbon's free end, kg (0: none). */
+  weights: Float32Array;
+}
+
 /** The URL of the glue next to the module `up_wasm.wasm` (`up_wasm.js`). */
 export function glueUrl(wasmUrl: string): string {
   return wasmUrl.replace(/\.wasm(?=$|[?#])/, ".js");
@@ -204,6 +216,51 @@ export class Engine {
     const [vx, vy, vz] = linear;
     const [wx, wy, wz] = angular;
     this.call(() => this.e.set_velocity(index, vx, vy, vz, wx, wy, wz));
+  }
+
+  ribbonCount(): number {
+    return this.e.ribbon_count();
+  }
+
+  /** Points of all ribbons together. */
+  ribbonPointCount(): number {
+    return this.e.ribbon_point_count();
+  }
+
+  /**
+   * Every ribbon's points (`constants.ribbon_point_stride` floats each), ribbon
+   * after ribbon, the knot first: a view, valid until the next call.
+   */
+  ribbonPoints(): Float32Array {
+    const n = this.call(() => this.e.write_ribbon_points());
+    return new Float32Array(this.memory.buffer, this.e.ribbon_points_ptr(), n);
+  }
+
+  /** Where each ribbon's points start, its balloon and its colour (copies). */
+  ribbons(): RibbonTables {
+    const n = this.call(() => this.e.write_ribbons());
+    const buffer = this.memory.buffer;
+    return {
+      offsets: new Uint32Array(buffer, this.e.ribbon_offsets_ptr(), n + 1).slice(),
+      bodies: new Uint32Array(buffer, this.e.ribbon_bodies_ptr(), n).slice(),
+      colors: new Uint32Array(buffer, this.e.ribbon_colors_ptr(), n).slice(),
+      weights: new Float32Array(buffer, this.e.ribbon_weights_ptr(), n).slice(),
+    };
+  }
+
+  /** Re-ties a ribbon of `length` m on every balloon and on those added later (0: none). */
+  setRibbonLength(length: number): void {
+    this.call(() => this.e.set_ribbon_length(length));
+  }
+
+  /** The ribbon length last set, m (0 before `setRibbonLength`). */
+  ribbonLength(): number {
+    return this.e.ribbon_length();
+  }
+
+  /** Holds point `point` of ribbon `ribbon` and pulls it toward (x, y, z); `dragTo` moves it, `release` lets go. */
+  grabRibbon(ribbon: number, point: number, x: number, y: number, z: number): void {
+    this.call(() => this.e.grab_ribbon(ribbon, point, x, y, z));
   }
 
   /** Holds the body at dense `index` by the world point (x, y, z) on it. */

@@ -1,5 +1,5 @@
 import { describe, expect, it } from "vitest";
-import { CONTACT_STRIDE, frameFloats, frameViews } from "./frameLayout";
+import { CONTACT_STRIDE, RIBBON_POINT_STRIDE, frameFloats, frameViews } from "./frameLayout";
 
 describe("frame buffer layout", () => {
   it("lays out previous poses, current poses and contacts without overlap", () => {
@@ -26,6 +26,23 @@ describe("frame buffer layout", () => {
     const v = frameViews(buffer, 1, 0);
     expect(v.contacts.length).toBe(0);
     expect(v.curr[6]).toBe(2);
+  });
+
+  it("puts the ribbons' previous and current points after the contacts", () => {
+    const ribbonFloats = 2 * RIBBON_POINT_STRIDE;
+    expect(frameFloats(1, 2, ribbonFloats)).toBe(14 + 16 + 12);
+    const buffer = new ArrayBuffer(frameFloats(1, 2, ribbonFloats) * 4);
+    const w = frameViews(buffer, 1, 2, ribbonFloats);
+    w.ribbonsCurr.fill(9);
+    w.ribbonsPrev.fill(8);
+    w.contacts.fill(7);
+    w.curr.fill(6);
+    const v = frameViews(buffer, 1, 2, ribbonFloats);
+    expect(v.ribbonsPrev.byteOffset).toBe((14 + 16) * 4);
+    expect(Array.from(v.ribbonsPrev)).toEqual(Array(6).fill(8));
+    expect(Array.from(v.ribbonsCurr)).toEqual(Array(6).fill(9));
+    expect(v.contacts[15]).toBe(7);
+    expect(() => frameViews(buffer, 1, 2, ribbonFloats + 3)).toThrow(/ribbon points/);
   });
 
   it("refuses a buffer too small for what the frame claims", () => {

@@ -1,11 +1,12 @@
 // Layout of one frame buffer from the worker: the poses before and after the
-// last step, then (only while the debug view is on) the step's contacts.
+// last step, then (only while the debug view is on) the step's contacts, then
+// the ribbons' points before and after the last step.
 //
-//   [ previous poses | current poses | contacts ]
-//     count × 7        count × 7       contactCount × 8   floats
+//   [ previous poses | current poses | contacts          | previous ribbons | current ribbons ]
+//     count × 7        count × 7       contactCount × 8    ribbonFloats       ribbonFloats      floats
 
 import { POSE_STRIDE } from "../render/poseMath";
-import type { ContactStride, PoseStride } from "../../public/wasm/up_wasm";
+import type { ContactStride, PoseStride, RibbonPointStride } from "../../public/wasm/up_wasm";
 import type { Constants } from "./engine";
 
 /**
@@ -17,18 +18,26 @@ import type { Constants } from "./engine";
  */
 export const CONTACT_STRIDE: ContactStride = 8;
 
+/** Floats per ribbon point, x, y, z, as up-wasm writes them (`constants().ribbon_point_stride`). */
+export const RIBBON_POINT_STRIDE: RibbonPointStride = 3;
+
 /** The strides the page reads with, typed by the module's .d.ts: a page built against other strides does not compile. */
-const PAGE_STRIDES: { pose: PoseStride; contact: ContactStride } = { pose: POSE_STRIDE, contact: CONTACT_STRIDE };
+const PAGE_STRIDES: { pose: PoseStride; contact: ContactStride; ribbon: RibbonPointStride } = {
+  pose: POSE_STRIDE,
+  contact: CONTACT_STRIDE,
+  ribbon: RIBBON_POINT_STRIDE,
+};
 
 /**
  * Throws unless the strides the page reads frames with are the module's own
  * (`constants()` of up-wasm): a page built against another engine stops at
  * start with a message instead of drawing garbage.
  */
-export function checkLayout(constants: Pick<Constants, "pose_stride" | "contact_stride">): void {
+export function checkLayout(constants: Pick<Constants, "pose_stride" | "contact_stride" | "ribbon_point_stride">): void {
   const wrong = [
     ["pose", constants.pose_stride, PAGE_STRIDES.pose],
     ["contact", constants.contact_stride, PAGE_STRIDES.contact],
+    ["ribbon point", constants.ribbon_point_stride, PAGE_STRIDES.ribbon],
   ].filter(([, engine, page]) => engine !== page);
   if (wrong.length > 0) {
     const say = wrong.map(([what, engine, page]) => `${engine} floats per ${what}, the page reads ${page}`).join("; ");
@@ -40,22 +49,31 @@ export interface FrameViews {
   prev: Float32Array<ArrayBuffer>;
   curr: Float32Array<ArrayBuffer>;
   contacts: Float32Array<ArrayBuffer>;
+  /** Every ribbon's points before and after the last step, `RIBBON_POINT_STRIDE` each. */
+  ribbonsPrev: Float32Array<ArrayBuffer>;
+  ribbonsCurr: Float32Array<ArrayBuffer>;
 }
 
-/** Floats a frame of `count` bodies and `contactCount` contacts needs. */
-export function frameFloats(count: number, contactCount: number): number {
-  return 2 * count * POSE_STRIDE + contactCount * CONTACT_STRIDE;
+/** Floats a frame of `count` bodies, `contactCount` contacts and `ribbonFloats` floats of ribbon points needs. */
+export function frameFloats(count: number, contactCount: number, ribbonFloats = 0): number {
+  return 2 * count * POSE_STRIDE + contactCount * CONTACT_STRIDE + 2 * ribbonFloats;
 }
 
-/** Views of the three parts of a frame buffer (no copy). */
-export function frameViews(buffer: ArrayBuffer, count: number, contactCount: number): FrameViews {
+/** Views of the parts of a frame buffer (no copy). */
+export function frameViews(buffer: ArrayBuffer, count: number, contactCount: number, ribbonFloats = 0): FrameViews {
   const poses = count * POSE_STRIDE;
-  if (buffer.byteLength < frameFloats(count, contactCount) * 4) {
-    throw new RangeError(`a frame of ${count} bodies and ${contactCount} contacts needs ${frameFloats(count, contactCount) * 4} bytes; the buffer has ${buffer.byteLength}`);
+  const floats = frameFloats(count, contactCount, ribbonFloats);
+  if (buffer.byteLength < floats * 4) {
+    throw new RangeError(
+      `a frame of ${count} bodies, ${contactCount} contacts and ${ribbonFloats / RIBBON_POINT_STRIDE} ribbon points needs ${floats * 4} bytes; the buffer has ${buffer.byteLength}`,
+    );
   }
+  const ribbons = 2 * poses + contactCount * CONTACT_STRIDE;
   return {
     prev: new Float32Array(buffer, 0, poses),
     curr: new Float32Array(buffer, poses * 4, poses),
     contacts: new Float32Array(buffer, poses * 8, contactCount * CONTACT_STRIDE),
+    ribbonsPrev: new Float32Array(buffer, ribbons * 4, ribbonFloats),
+    ribbonsCurr: new Float32Array(buffer, (ribbons + ribbonFloats) * 4, ribbonFloats),
   };
 }

@@ -1,5 +1,5 @@
 import { describe, expect, it } from "vitest";
-import { pickBalloon, rayHorizontalPlane, raySphere } from "./pick";
+import { pickBalloon, pickRibbonEnd, rayHorizontalPlane, raySphere } from "./pick";
 
 const ray = (origin: [number, number, number], direction: [number, number, number]) => {
   const l = Math.hypot(...direction);
@@ -32,5 +32,22 @@ describe("picking", () => {
     expect(p).toEqual([6, 0, 1]);
     expect(rayHorizontalPlane(ray([0, 5, 0], [1, 0, 0]), 0)).toBeNull();
     expect(rayHorizontalPlane(ray([0, 5, 0], [0, 1, 0]), 0)).toBeNull();
+  });
+
+  it("picks the ribbon free end nearest the ray within a few pixels, never a knot", () => {
+    // Two ribbons of 3 and 2 points hanging down the z = 0 plane; the camera 5 m away on z.
+    const points = new Float32Array([0, 2, 0, 0, 1.5, 0, 0, 1, 0, 1, 2, 0, 1, 1.2, 0]);
+    const offsets = new Uint32Array([0, 3, 5]);
+    const perPixel = 0.001; // rad
+    const at = (x: number, y: number) => ray([0, 1, -5], [x, y - 1, 5]);
+    expect(pickRibbonEnd(at(0.01, 1), points, offsets, perPixel, 4)).toMatchObject({ ribbon: 0, point: 2, position: [0, 1, 0] });
+    expect(pickRibbonEnd(at(1, 1.2), points, offsets, perPixel, 4)).toMatchObject({ ribbon: 1, point: 1 });
+    expect(pickRibbonEnd(at(1, 1.2), points, offsets, perPixel, 4)!.distance).toBeCloseTo(Math.hypot(1, 0.2, 5), 4);
+    // 0.05 m off at 5 m is 10 mrad: 10 pixels, beyond 4.
+    expect(pickRibbonEnd(at(0.05, 1), points, offsets, perPixel, 4)).toBeNull();
+    // The knots (first points) are not ends.
+    expect(pickRibbonEnd(at(0, 2), points, offsets, perPixel, 4)).toBeNull();
+    // Behind the camera: nothing.
+    expect(pickRibbonEnd(ray([0, 1, 5], [0, 0, 1]), points, offsets, perPixel, 4)).toBeNull();
   });
 });

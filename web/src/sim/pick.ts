@@ -84,3 +84,47 @@ export function rayHorizontalPlane(ray: Ray, height: number): [number, number, n
   if (t < 0) return null;
   return [ray.origin[0] + ray.direction[0] * t, height, ray.origin[2] + ray.direction[2] * t];
 }
+
+/** A ribbon's free end near the pointer's ray. */
+export interface RibbonEndHit {
+  /** Ribbon index (the frame's ribbon order). */
+  ribbon: number;
+  /** The end's point index within its ribbon (its point count less one). */
+  point: number;
+  /** Distance along the ray to the end's nearest approach, m. */
+  distance: number;
+  /** The end, world frame, m. */
+  position: [number, number, number];
+}
+
+/**
+ * The ribbon free end nearest the ray (by angle) among those within
+ * `radiansPerPixel × pixels` of it as seen from the ray's origin, or `null`.
+ * `points` are all ribbons' points (x, y, z each); `offsets` each ribbon's
+ * first point, then the total.
+ */
+export function pickRibbonEnd(ray: Ray, points: Float32Array, offsets: Uint32Array, radiansPerPixel: number, pixels: number): RibbonEndHit | null {
+  const [ox, oy, oz] = ray.origin;
+  const [dx, dy, dz] = ray.direction;
+  const reach = radiansPerPixel * pixels;
+  let best: RibbonEndHit | null = null;
+  let bestAngle = Infinity;
+  for (let r = 0; r + 1 < offsets.length; r++) {
+    const count = offsets[r + 1] - offsets[r];
+    if (count < 2) continue;
+    const e = (offsets[r + 1] - 1) * 3;
+    if (e + 2 >= points.length) break;
+    const x = points[e] - ox;
+    const y = points[e + 1] - oy;
+    const z = points[e + 2] - oz;
+    const t = x * dx + y * dy + z * dz;
+    if (t <= 0) continue;
+    const off = Math.hypot(x - t * dx, y - t * dy, z - t * dz);
+    const angle = off / t;
+    if (angle <= reach && angle < bestAngle) {
+      bestAngle = angle;
+      best = { ribbon: r, point: count - 1, distance: t, position: [points[e], points[e + 1], points[e + 2]] };
+    }
+  }
+  return best;
+}

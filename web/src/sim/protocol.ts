@@ -4,7 +4,7 @@
 // transfers it; the main thread keeps the newest frame and hands the previous
 // buffer back. No typed array is allocated per frame on either side.
 
-import type { Constants, EngineStats, RoomMesh, TreeNode } from "./engine";
+import type { Constants, EngineStats, RibbonTables, RoomMesh, TreeNode } from "./engine";
 
 export type Vec3Tuple = [number, number, number];
 
@@ -18,6 +18,10 @@ export type ToWorker =
   | { type: "addOnFloor"; x: number; z: number }
   | { type: "pop"; index: number; version: number }
   | { type: "grab"; index: number; version: number; point: Vec3Tuple }
+  /** Holds point `point` of ribbon `ribbon` (ribbon order of frame `version`) and pulls it toward `target`. */
+  | { type: "grabRibbon"; ribbon: number; point: number; version: number; target: Vec3Tuple }
+  /** Re-ties ribbons of `length` m on every balloon (0: none). */
+  | { type: "ribbonLength"; length: number }
   | { type: "dragTo"; point: Vec3Tuple }
   | { type: "release" }
   | { type: "return"; buffer: ArrayBuffer }
@@ -47,18 +51,22 @@ export interface WorldInfo {
 
 export interface Frame {
   type: "frame";
-  /** `[previous poses | current poses | contacts]`: see sim/frameLayout.ts. */
+  /** `[previous poses | current poses | contacts | previous ribbons | current ribbons]`: see sim/frameLayout.ts. */
   buffer: ArrayBuffer;
   count: number;
+  /** Floats of ribbon points in each of the two ribbon parts. */
+  ribbonFloats: number;
   /** Contacts in the buffer (0 unless the debug view is on). */
   contactCount: number;
   /** Contacts the step had in all, written or not (0 unless the debug view is on). */
   contactTotal: number;
-  /** Changes whenever bodies are added or removed (dense order may change). */
+  /** Changes whenever bodies or ribbons are added or removed (dense order may change). */
   version: number;
   /** Colour and model index per body; sent only when `version` changed. */
   colors?: Uint32Array;
   models?: Uint32Array;
+  /** Each ribbon's first point, balloon and colour; sent only when `version` changed. */
+  ribbons?: RibbonTables;
   /** Absolute time (timeOrigin + now) the current step was taken, ms. */
   stepTime: number;
   /** Simulated seconds since the world was built. */

@@ -4,7 +4,7 @@
 // and the page still draws and answers input.
 
 import { Engine, glueUrl, type GlueModule } from "./engine";
-import { checkLayout, frameFloats, frameViews } from "./frameLayout";
+import { RIBBON_POINT_STRIDE, checkLayout, frameFloats, frameViews } from "./frameLayout";
 import type { FromWorker, ToWorker, WorldInfo } from "./protocol";
 
 /** Most steps taken in one tick; beyond that the simulation runs slow rather than spiral. */
@@ -54,6 +54,8 @@ class WorkerState {
   lastStepTime = now();
   /** Poses before the last step of a tick, for interpolation; reused, grown only with the world. */
   previousPoses = new Float32Array(0);
+  /** Ribbon points before the last step of a tick, likewise. */
+  previousRibbons = new Float32Array(0);
 }
 
 const state = new WorkerState();
@@ -111,24 +113,34 @@ function takeBuffer(bytes: number): ArrayBuffer | null {
   return new ArrayBuffer(Math.ceil(bytes * 1.5));
 }
 
-function sendFrame(previous: Float32Array | null): void {
+interface Previous {
+  poses: Float32Array;
+  ribbons: Float32Array;
+}
+
+function sendFrame(previous: Previous | null): void {
   if (!state.engine) return;
   const count = state.engine.bodyCount();
+  const ribbonFloats = state.engine.ribbonPointCount() * RIBBON_POINT_STRIDE;
   const contacts = state.sendContacts ? state.engine.contacts(MAX_DRAWN_CONTACTS) : null;
   const contactCount = contacts?.count ?? 0;
-  const buffer = takeBuffer(Math.max(4, frameFloats(count, contactCount) * 4));
+  const buffer = takeBuffer(Math.max(4, frameFloats(count, contactCount, ribbonFloats) * 4));
   if (!buffer) return; // the main thread still holds every buffer: send on return
-  const out = frameViews(buffer, count, contactCount);
-  // Copy the contacts before asking for poses: writing poses may grow wasm memory,
-  // which detaches the contacts view.
+  const out = frameViews(buffer, count, contactCount, ribbonFloats);
+  // Copy each view before the next call: writing poses or ribbon points may
+  // grow wasm memory, which detaches the views taken before.
   if (contacts) out.contacts.set(contacts.view);
   const current = state.engine.poses();
-  out.prev.set(previous && previous.length === current.length ? previous : current);
+  out.prev.set(previous && previous.poses.length === current.length ? previous.poses : current);
   out.curr.set(current);
+  const ribbons = state.engine.ribbonPoints();
+  out.ribbonsPrev.set(previous && previous.ribbons.length === ribbons.length ? previous.ribbons : ribbons);
+  out.ribbonsCurr.set(ribbons);
   const frame: FromWorker = {
     type: "frame",
     buffer,
     count,
+    ribbonFloats,
     contactCount,
     contactTotal: contacts?.total ?? 0,
     version: state.version,
@@ -140,6 +152,7 @@ function sendFrame(previous: Float32Array | null): void {
   if (state.versionSent !== state.version) {
     frame.colors = state.engine.colors().slice();
     frame.models = state.engine.models().slice();
+    frame.ribbons = state.engine.ribbons();
     state.versionSent = state.version;
   }
   state.dirty = false;
@@ -178,13 +191,23 @@ function restartAfterTrap(error: unknown): boolean {
   return true;
 }
 
-function stepN(n: number): Float32Array | null {
+/** A reused array of at least `length` floats (grown only with the world). */
+function grown(array: Float32Array<ArrayBuffer>, length: number): Float32Array<ArrayBuffer> {
+  return array.length < length ? new Float32Array(Math.ceil(length * 1.5)) : array;
+}
+
+function stepN(n: number): Previous | null {
   if (!state.engine || n <= 0) return null;
   if (n > 1) state.engine.step(n - 1);
   const poses = state.engine.poses();
-  if (state.previousPoses.length < poses.length) state.previousPoses = new Float32Array(Math.ceil(poses.length * 1.5));
-  const previous = state.previousPoses.subarray(0, poses.length);
-  previous.set(poses);
+  state.previousPoses = grown(state.previousPoses, poses.length);
+  const previousPoses = state.previousPoses.subarray(0, poses.length);
+  previousPoses.set(poses);
+  const ribbons = state.engine.ribbonPoints();
+  state.previousRibbons = grown(state.previousRibbons, ribbons.length);
+  const previousRibbons = state.previousRibbons.subarray(0, ribbons.length);
+  previousRibbons.set(ribbons);
+  const previous = { poses: previousPoses, ribbons: previousRibbons };
   state.engine.step(1);
   state.steps += n;
   state.stepsSinceStats += n;
@@ -317,6 +340,14 @@ function handle(msg: ToWorker): void {
         break;
       case "grab":
         if (msg.version === state.version) state.engine.grab(msg.index, ...msg.point);
+        break;
+      case "grabRibbon":
+        if (msg.version === state.version) state.engine.grabRibbon(msg.ribbon, msg.point, ...msg.target);
+        break;
+      case "ribbonLength":
+        state.engine.setRibbonLength(msg.length);
+        state.version++;
+        state.dirty = true;
         break;
       case "dragTo":
         state.engine.dragTo(...msg.point);

@@ -1,13 +1,14 @@
 // Camera and pointer controls: arrow-key orbit at constant distance around the
 // centre of the room, OrbitControls for the mouse, CTRL placement mode (the
-// camera below the room looking up, a click adds a balloon on the floor), and
-// grab / drag / throw / pop of balloons.
+// camera below the room looking up, a click adds a balloon on the floor),
+// grab / drag / throw / pop of balloons, and grab / drag of a ribbon by its
+// free end.
 
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
 import { anyArrowHeld, orbitAngles, orbitPosition, stepOrbit, type ArrowState } from "./orbit";
 import { arrowDirection, isClick, mapKeyDown, mapPointerDown, type KeyAction } from "./input";
-import { pickBalloon, rayHorizontalPlane, type BodySphere, type Ray } from "../sim/pick";
+import { pickBalloon, pickRibbonEnd, rayHorizontalPlane, type BodySphere, type Ray } from "../sim/pick";
 import type { SimBridge } from "../sim/bridge";
 import type { TreeNode } from "../sim/engine";
 
@@ -17,6 +18,9 @@ export interface ControlEvents {
   /** Placement mode was entered or left. */
   placement(on: boolean): void;
 }
+
+/** How near the pointer, in CSS pixels, a ribbon's free end is grabbed. */
+export const RIBBON_END_PIXELS = 8;
 
 interface RoomBox {
   halfWidth: number;
@@ -182,17 +186,38 @@ export class Controls {
     return pickBalloon(this.ray(clientX, clientY), b.curr, b.current.count, this.roots, this.leaves, b.models);
   }
 
+  /** The ribbon free end within `RIBBON_END_PIXELS` of the pointer, if any. */
+  private pickRibbonEnd(clientX: number, clientY: number) {
+    const b = this.bridge;
+    if (!b.current || b.ribbons.bodies.length === 0) return null;
+    const height = this.canvas.getBoundingClientRect().height || 1;
+    const radiansPerPixel = (2 * Math.tan(THREE.MathUtils.degToRad(this.camera.fov / 2))) / height;
+    return pickRibbonEnd(this.ray(clientX, clientY), b.ribbonsCurr, b.ribbons.offsets, radiansPerPixel, RIBBON_END_PIXELS);
+  }
+
+  /** Starts dragging on the plane facing the camera through `point`. */
+  private startDrag(e: PointerEvent, point: [number, number, number]): void {
+    this.orbit.enabled = false;
+    this.grabbing = true;
+    this.canvas.setPointerCapture(e.pointerId);
+    this.hitPoint.set(...point);
+    const normal = this.camera.getWorldDirection(new THREE.Vector3());
+    this.dragPlane.setFromNormalAndCoplanarPoint(normal, this.hitPoint);
+  }
+
   private pointerDown(e: PointerEvent): void {
     this.down = { x: e.clientX, y: e.clientY };
-    const hit = !this.placement && e.button === 0 ? this.pick(e.clientX, e.clientY) : null;
-    const action = mapPointerDown({ button: e.button, shiftKey: e.shiftKey, altKey: e.altKey, overBalloon: !!hit, placementMode: this.placement });
-    if (action === "grab" && hit) {
-      this.orbit.enabled = false;
-      this.grabbing = true;
-      this.canvas.setPointerCapture(e.pointerId);
-      this.hitPoint.set(...hit.point);
-      const normal = this.camera.getWorldDirection(new THREE.Vector3());
-      this.dragPlane.setFromNormalAndCoplanarPoint(normal, this.hitPoint);
+    const picking = !this.placement && e.button === 0;
+    const hit = picking ? this.pick(e.clientX, e.clientY) : null;
+    const end = picking ? this.pickRibbonEnd(e.clientX, e.clientY) : null;
+    // A free end hidden behind a balloon is not grabbed through it.
+    const overRibbonEnd = !!end && (!hit || end.distance <= hit.distance);
+    const action = mapPointerDown({ button: e.button, shiftKey: e.shiftKey, altKey: e.altKey, overBalloon: !!hit, overRibbonEnd, placementMode: this.placement });
+    if (action === "grabRibbon" && end) {
+      this.startDrag(e, end.position);
+      this.bridge.grabRibbon(end.ribbon, end.point, end.position);
+    } else if (action === "grab" && hit) {
+      this.startDrag(e, hit.point);
       this.bridge.grab(hit.index, hit.point);
     } else if (action === "pop" && hit) {
       this.orbit.enabled = false;

@@ -46,7 +46,7 @@ export class Hud {
 
   setStats(stats: EngineStats, stepsPerSecond: number): void {
     const total = stats.stages.find(([name]) => name === "total")?.[1] ?? 0;
-    this.physics.textContent = `Physics: ${total.toFixed(2)} ms/step · ${stepsPerSecond.toFixed(0)} steps/s · ${stats.contacts} contacts`;
+    this.physics.textContent = `Physics: ${total.toFixed(2)} ms/step · ${stepsPerSecond.toFixed(0)} steps/s · ${stats.contacts} contacts${stats.ribbons > 0 ? ` · ${stats.ribbons} ribbons` : ""}`;
     const rows = stats.stages
       .filter(([name]) => name !== "total")
       .map(([name, ms]) => `<tr><td>${name}</td><td>${ms.toFixed(2)}</td></tr>`)

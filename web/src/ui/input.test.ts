@@ -53,6 +53,14 @@ describe("pointer mapping", () => {
     expect(mapPointerDown({ ...pointer, overBalloon: true, altKey: true })).toBe("pop");
   });
 
+  it("grabs a ribbon by its free end with a left press, and pops its balloon with shift", () => {
+    expect(mapPointerDown({ ...pointer, overRibbonEnd: true })).toBe("grabRibbon");
+    expect(mapPointerDown({ ...pointer, overRibbonEnd: true, overBalloon: true })).toBe("grabRibbon");
+    expect(mapPointerDown({ ...pointer, overRibbonEnd: true, overBalloon: true, shiftKey: true })).toBe("pop");
+    expect(mapPointerDown({ ...pointer, overRibbonEnd: true, button: 2 })).toBe("camera");
+    expect(mapPointerDown({ ...pointer, overRibbonEnd: true, placementMode: true })).toBe("place");
+  });
+
   it("leaves everything else to the camera controls", () => {
     expect(mapPointerDown(pointer)).toBe("camera");
     expect(mapPointerDown({ ...pointer, overBalloon: true, button: 2 })).toBe("camera");

@@ -57,7 +57,7 @@ export function arrowDirection(key: string): "left" | "right" | "up" | "down" | 
   return ARROWS[key] ?? null;
 }
 
-export type PointerAction = "place" | "grab" | "pop" | "camera" | "none";
+export type PointerAction = "place" | "grab" | "grabRibbon" | "pop" | "camera" | "none";
 
 /** The fields of a pointer-down the mapping reads. */
 export interface PointerFields {
@@ -67,6 +67,8 @@ export interface PointerFields {
   altKey: boolean;
   /** Whether the pointer is over a balloon. */
   overBalloon: boolean;
+  /** Whether the pointer is over a ribbon's free end (nearer than any balloon under it). */
+  overRibbonEnd?: boolean;
   /** Whether placement mode (CTRL) is on. */
   placementMode: boolean;
 }
@@ -74,12 +76,14 @@ export interface PointerFields {
 /**
  * Maps a pointer-down to what it starts:
  * - placement mode: a left click places a balloon on the floor; nothing else;
+ * - a left press on a ribbon's free end grabs the ribbon by it (its balloon follows);
  * - shift- or alt-click on a balloon pops it;
  * - left press on a balloon grabs it (drag, release to throw);
  * - anything else goes to the camera (OrbitControls: orbit, pan, zoom).
  */
 export function mapPointerDown(e: PointerFields): PointerAction {
   if (e.placementMode) return e.button === 0 ? "place" : "none";
+  if (e.button === 0 && e.overRibbonEnd && !e.shiftKey && !e.altKey) return "grabRibbon";
   if (e.button === 0 && e.overBalloon) return e.shiftKey || e.altKey ? "pop" : "grab";
   return "camera";
 }

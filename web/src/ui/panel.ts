@@ -1,13 +1,19 @@
 // The lil-gui panel: the scene's parameters (any change rebuilds the world
-// from the edited scene), reset, pause / single step, the debug view, a
+// from the edited scene, but the ribbon length, which re-ties the ribbons in
+// the running world), reset, pause / single step, the debug view, a
 // screenshot and the share link.
 
 import GUI from "lil-gui";
 import type { PanelParams } from "../scene/sceneParams";
 
+/** Longest ribbon the panel's slider offers, m (a scene may tie longer ones). */
+const PANEL_MAX_RIBBON_M = 4;
+
 export interface PanelActions {
   /** A scene parameter changed (on finish: release of a slider, Enter in a box). */
   change(params: PanelParams): void;
+  /** The ribbon length changed (`params.ribbonLength`, m; 0: none). */
+  ribbonLength(params: PanelParams): void;
   reset(): void;
   togglePause(): void;
   step(): void;
@@ -48,6 +54,9 @@ export class Panel {
     tag(balloons.add(p, "count", 0, maxBalloons, 1), "count").name("balloons").onFinishChange(changed);
     balloons.add(p, "sizeIn", 5, 36, 0.5).name("size (inches)").onFinishChange(changed);
     balloons.add(p, "helium").name("helium (else air)").onFinishChange(changed);
+    tag(balloons.add(p, "ribbonLength", 0, PANEL_MAX_RIBBON_M, 0.05), "ribbonLength")
+      .name("ribbon length (m, 0: none)")
+      .onFinishChange(() => actions.ribbonLength({ ...p }));
 
     const physics = this.gui.addFolder("Physics");
     physics.add(p, "drag", 0, 3, 0.01).name("drag coefficient").onFinishChange(changed);

@@ -2,6 +2,7 @@
 //! and JSON formats, and that failed runs leave no half-written files.
 //! Simulations stay short (a few balloons, at most a simulated second).
 
+mod ribbons;
 mod run;
 mod saved_state;
 mod scene_errors;
