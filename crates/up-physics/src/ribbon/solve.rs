@@ -182,7 +182,7 @@ pub(crate) fn substep(active: &mut [ActiveRibbon], input: &SubstepInput, states:
     });
     let inv_h = 1.0 / input.h;
     for r in active.iter() {
-        states[r.state as usize].apply_impulse(r.impulse * inv_h, r.arm);
+        states[r.state as usize].apply_pull(r.impulse, r.arm, inv_h);
         for &(state, impulse, arm) in &r.reactions {
             states[state as usize].apply_impulse(impulse * inv_h, arm);
         }

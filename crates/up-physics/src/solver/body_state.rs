@@ -125,6 +125,22 @@ impl BodyState {
         self.w += inv_h * turn;
     }
 
+    /// A ribbon's pull, a position impulse `p` (kg·m) at `r`: moves the body
+    /// as `apply_position_correction` does, but turns it only through its
+    /// angular velocity, which the contacts' relax pass and friction see
+    /// next. Turned directly, a balloon wedged in a pile would creep round
+    /// under its ribbon's steady torque, no friction holding it.
+    #[inline]
+    pub fn apply_pull(&mut self, p: Vec3, r: Vec3, inv_h: f32) {
+        if self.inv_mass == 0.0 {
+            return;
+        }
+        let dp = self.inv_mass * p;
+        self.dp += dp;
+        self.v += inv_h * dp;
+        self.w += inv_h * (self.inv_inertia * r.cross(p));
+    }
+
     /// Advances position and orientation by substep `h` (the step's start pose stays put;
     /// `dp`/`dq` carry the motion).
     #[inline]

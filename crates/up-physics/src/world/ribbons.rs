@@ -240,7 +240,7 @@ impl World {
         self.ribbon_grab.map(|g| (g.ribbon, g.point as usize))
     }
 
-    /// Wakes the balloons whose sleeping ribbons an awake balloon reaches
+    /// Wakes the balloons whose sleeping ribbons a moving balloon reaches
     /// (its bounding sphere, widened by its motion this step, meets a point),
     /// so that the ribbon is pushed aside instead of passed through. Before
     /// the broadphase, from where the last step left the bodies.
@@ -250,7 +250,15 @@ impl World {
         stage.bound_center.clear();
         stage.bound_radius.clear();
         stage.awake_bodies.clear();
-        for i in (0..b.len()).filter(|&i| b.awake[i]) {
+        // A balloon slower than the sleep speed pushes no ribbon aside to
+        // speak of: waking a ribbon for it would keep a pile awake for ever,
+        // each group woken by its neighbours as it falls asleep.
+        let (slow, turning) = (self.def.sleep_linear_speed, self.def.sleep_angular_speed);
+        let restless = |i: usize| {
+            b.awake[i]
+                && (b.linear_velocity[i].norm() >= slow || b.angular_velocity[i].norm() >= turning)
+        };
+        for i in (0..b.len()).filter(|&i| restless(i)) {
             let shape = &self.shapes[b.shape[i] as usize];
             let reach = b.linear_velocity[i].norm() * self.def.dt + self.def.speculative_distance;
             stage.bound_center.push(b.center[i]);
