@@ -13,6 +13,7 @@ use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
 use crate::body::BodyId;
+use crate::slots::Slots;
 
 /// Generational handle of a joint; stale once the joint is removed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -82,53 +83,22 @@ pub(crate) struct Joint {
     pub tension: f32,
 }
 
+/// The world's joints, in generational slots (`crate::slots`).
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
-struct Slot {
-    generation: u32,
-    joint: Option<Joint>,
-}
-
-/// The world's joints: slots reused through a free list, handles with
-/// generations (as bodies' are).
-#[derive(Clone, Debug, Default, Serialize, Deserialize)]
-pub(crate) struct Joints {
-    slots: Vec<Slot>,
-    free: Vec<u32>,
-}
+pub(crate) struct Joints(Slots<Joint>);
 
 impl Joints {
     pub fn add(&mut self, joint: Joint) -> JointId {
-        let index = match self.free.pop() {
-            Some(index) => index,
-            None => {
-                self.slots.push(Slot::default());
-                self.slots.len() as u32 - 1
-            }
-        };
-        let slot = &mut self.slots[index as usize];
-        slot.joint = Some(joint);
-        JointId {
-            index,
-            generation: slot.generation,
-        }
+        let (index, generation) = self.0.add(joint);
+        JointId { index, generation }
     }
 
     pub fn get(&self, id: JointId) -> Option<&Joint> {
-        let slot = self.slots.get(id.index as usize)?;
-        (slot.generation == id.generation)
-            .then_some(slot.joint.as_ref())
-            .flatten()
+        self.0.get(id.index, id.generation)
     }
 
     pub fn remove(&mut self, id: JointId) -> Option<Joint> {
-        let slot = self.slots.get_mut(id.index as usize)?;
-        if slot.generation != id.generation {
-            return None;
-        }
-        let joint = slot.joint.take()?;
-        slot.generation = slot.generation.wrapping_add(1);
-        self.free.push(id.index);
-        Some(joint)
+        self.0.remove(id.index, id.generation)
     }
 
     /// Removes every joint with an end on `body`.
@@ -145,24 +115,18 @@ impl Joints {
 
     /// Live joints in slot order (the solver's order before colouring).
     pub fn iter(&self) -> impl Iterator<Item = (JointId, &Joint)> + '_ {
-        self.slots.iter().enumerate().filter_map(|(index, slot)| {
-            slot.joint.as_ref().map(|joint| {
-                let id = JointId {
-                    index: index as u32,
-                    generation: slot.generation,
-                };
-                (id, joint)
-            })
-        })
+        self.0
+            .iter()
+            .map(|(index, generation, joint)| (JointId { index, generation }, joint))
     }
 
     pub fn len(&self) -> usize {
-        self.slots.len() - self.free.len()
+        self.0.len()
     }
 
     /// Writes the tension of the joint in slot `index`.
     pub fn set_tension(&mut self, index: u32, tension: f32) {
-        if let Some(joint) = self.slots[index as usize].joint.as_mut() {
+        if let Some(joint) = self.0.slot_mut(index) {
             joint.tension = tension;
         }
     }

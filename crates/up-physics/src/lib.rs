@@ -21,6 +21,7 @@ mod narrow_phase;
 mod quarantine;
 pub mod ribbon;
 mod sleep;
+mod slots;
 mod snapshot;
 mod solver;
 mod spare;

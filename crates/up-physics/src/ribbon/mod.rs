@@ -27,6 +27,7 @@ use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
 use crate::body::BodyId;
+use crate::slots::Slots;
 
 /// Mass per metre of 5 mm polypropylene curling ribbon, kg/m. No measured
 /// figure was found: BOPP film of 20–60 µm gives 0.1–0.3 g/m; an estimate.
@@ -168,18 +169,10 @@ impl Ribbon {
     }
 }
 
-#[derive(Clone, Debug, Default, Serialize, Deserialize)]
-struct Slot {
-    generation: u32,
-    ribbon: Option<Ribbon>,
-}
-
-/// The world's ribbons: slots reused through a free list, handles with
-/// generations (as bodies' and joints' are).
+/// The world's ribbons, in generational slots (`crate::slots`).
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub(crate) struct Ribbons {
-    slots: Vec<Slot>,
-    free: Vec<u32>,
+    slots: Slots<Ribbon>,
     /// The largest stretch any ribbon ended a step with since the world was
     /// made (`World::ribbon_max_stretch`).
     pub max_stretch: f32,
@@ -187,37 +180,16 @@ pub(crate) struct Ribbons {
 
 impl Ribbons {
     pub fn add(&mut self, ribbon: Ribbon) -> RibbonId {
-        let index = match self.free.pop() {
-            Some(index) => index,
-            None => {
-                self.slots.push(Slot::default());
-                self.slots.len() as u32 - 1
-            }
-        };
-        let slot = &mut self.slots[index as usize];
-        slot.ribbon = Some(ribbon);
-        RibbonId {
-            index,
-            generation: slot.generation,
-        }
+        let (index, generation) = self.slots.add(ribbon);
+        RibbonId { index, generation }
     }
 
     pub fn get(&self, id: RibbonId) -> Option<&Ribbon> {
-        let slot = self.slots.get(id.index as usize)?;
-        (slot.generation == id.generation)
-            .then_some(slot.ribbon.as_ref())
-            .flatten()
+        self.slots.get(id.index, id.generation)
     }
 
     pub fn remove(&mut self, id: RibbonId) -> Option<Ribbon> {
-        let slot = self.slots.get_mut(id.index as usize)?;
-        if slot.generation != id.generation {
-            return None;
-        }
-        let ribbon = slot.ribbon.take()?;
-        slot.generation = slot.generation.wrapping_add(1);
-        self.free.push(id.index);
-        Some(ribbon)
+        self.slots.remove(id.index, id.generation)
     }
 
     /// The ribbon tied to `body`.
@@ -227,28 +199,22 @@ impl Ribbons {
 
     /// Live ribbons in slot order (the solver's order).
     pub fn iter(&self) -> impl Iterator<Item = (RibbonId, &Ribbon)> + '_ {
-        self.slots.iter().enumerate().filter_map(|(index, slot)| {
-            slot.ribbon.as_ref().map(|ribbon| {
-                let id = RibbonId {
-                    index: index as u32,
-                    generation: slot.generation,
-                };
-                (id, ribbon)
-            })
-        })
+        self.slots
+            .iter()
+            .map(|(index, generation, ribbon)| (RibbonId { index, generation }, ribbon))
     }
 
     pub fn slot_mut(&mut self, index: u32) -> Option<&mut Ribbon> {
-        self.slots.get_mut(index as usize)?.ribbon.as_mut()
+        self.slots.slot_mut(index)
     }
 
     /// Every slot's ribbon, in slot order, for the solve to change in place.
     pub fn slots_mut(&mut self) -> impl Iterator<Item = Option<&mut Ribbon>> + '_ {
-        self.slots.iter_mut().map(|s| s.ribbon.as_mut())
+        self.slots.slots_mut()
     }
 
     pub fn len(&self) -> usize {
-        self.slots.len() - self.free.len()
+        self.slots.len()
     }
 
     pub fn is_empty(&self) -> bool {
