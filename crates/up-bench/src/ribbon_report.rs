@@ -241,8 +241,7 @@ pub fn ribbon_section(results: &[EngineResult], commands: &[(String, Option<f64>
     let _ = writeln!(
         md,
         "\nWhere UP's time goes (`World::counters`, ms per step over the run; the ribbons are \
-         solved inside the substeps, so their cost shows in `solve`, and their preparation in \
-         `prepare`):\n"
+         solved in `solve`, their neighbours found in `prepare`):\n"
     );
     let mut header = false;
     for r in results.iter().filter(|r| r.engine == "up") {

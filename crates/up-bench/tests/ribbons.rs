@@ -24,7 +24,7 @@ fn engines(
 fn the_knot_is_the_tip_of_the_balloons_knot() {
     let (data, _) = SceneData::build(1, 1).unwrap();
     // On the axis, at the bottom of the lowest leaf sphere (the knot's own),
-    // well below the centre of mass.
+    // well below the centre of mass (the balloon is 39 cm tall).
     assert_eq!((data.knot.x, data.knot.z), (0.0, 0.0));
     let lowest = data
         .leaves
@@ -36,11 +36,8 @@ fn the_knot_is_the_tip_of_the_balloons_knot() {
         "{} {lowest}",
         data.knot.y
     );
-    assert!(
-        data.knot.y < data.shape.center_of_mass.y - 0.2,
-        "{:?}",
-        data.knot
-    );
+    let com = data.shape.center_of_mass;
+    assert!(data.knot.y < com.y - 0.15, "{:?} {com:?}", data.knot);
 }
 
 #[test]
