@@ -2,7 +2,8 @@
 //! compliance, all constraints at once).
 //!
 //! Constraint j holds points j and j+1 at the segment length:
-//! C_j = |x_{j+1} − x_j| − l. Linearised about the current points, the
+//! C_j = |x_{j+1} − x_j| − l (at the knot, only while taut: a ribbon pulls
+//! its balloon and never pushes it). Linearised about the current points, the
 //! multipliers that bring every C_j to zero together solve
 //! (J·W·Jᵀ)·λ = −C, and for a chain that matrix is tridiagonal: row j has
 //! w_j + w_{j+1} on the diagonal and −w_{j+1}·(n_j·n_{j+1}) beside it (w the
@@ -25,6 +26,9 @@ use super::MAX_SEGMENTS;
 /// A diagonal below this is a constraint between two immovable points: it is
 /// left out (its multiplier 0).
 const TINY: f32 = 1e-20;
+/// The knot's segment shorter than its length by more than this fraction is
+/// slack (a taut one is within float rounding of it).
+const SLACK: f32 = 1e-3;
 
 /// The knot's body, as the solve sees it.
 #[derive(Clone, Copy, Debug)]
@@ -38,6 +42,11 @@ pub(crate) struct KnotBody {
 }
 
 impl KnotBody {
+    /// How far a position impulse `p` at the knot moves it, m (linearised).
+    pub fn point_motion(&self, p: Vec3) -> Vec3 {
+        self.inv_mass * p + (self.inv_inertia * self.arm.cross(p)).cross(self.arm)
+    }
+
     /// Effective inverse mass of the knot along unit `n`.
     fn inv_mass_along(&self, n: Vec3) -> f32 {
         let rn = self.arm.cross(n);
@@ -48,20 +57,23 @@ impl KnotBody {
 /// Brings the chain `points` (point 0 at the knot) back to `segment_length`
 /// between neighbours. `inv_mass[i]` is point i's inverse mass for i ≥ 1
 /// (0: held); `inv_mass[0]` is unused. Moves points 1.. and returns the
-/// position impulse (kg·m) to apply to the knot's body at its arm; the knot
-/// in `points[0]` is left where it is (the body carries it).
+/// position impulse (kg·m) to apply to the knot's body at its arm, and the
+/// largest |C_j| it started from (m); the knot in `points[0]` is left where
+/// it is (the body carries it).
 pub(crate) fn solve_chain(
     points: &mut [Vec3],
     inv_mass: &[f32],
     segment_length: f32,
     knot: &KnotBody,
-) -> Vec3 {
+) -> (Vec3, f32) {
     let n = points.len() - 1;
     debug_assert!(n as u32 <= MAX_SEGMENTS && inv_mass.len() == points.len());
     const CAP: usize = MAX_SEGMENTS as usize;
     let mut dir = [Vec3::ZERO; CAP];
     let mut upper = [0.0f32; CAP];
     let mut rhs = [0.0f32; CAP];
+    let mut taut = [false; CAP];
+    let mut worst = 0.0f32;
     for j in 0..n {
         let d = points[j + 1] - points[j];
         let len = d.norm();
@@ -73,7 +85,12 @@ pub(crate) fn solve_chain(
         } else {
             Vec3::NEG_Y
         };
-        rhs[j] = segment_length - len;
+        // The ribbon keeps its length along itself, both ways (it bends at
+        // its points); its segment at the knot pulls the balloon but never
+        // pushes it: slack, its row is left out (λ_0 = 0).
+        taut[j] = j > 0 || len > (1.0 - SLACK) * segment_length;
+        rhs[j] = if taut[j] { segment_length - len } else { 0.0 };
+        worst = worst.max(rhs[j].abs());
     }
     let w = |i: usize| {
         if i == 0 {
@@ -86,18 +103,19 @@ pub(crate) fn solve_chain(
     let mut previous_upper = 0.0;
     let mut previous_rhs = 0.0;
     for j in 0..n {
-        let lower = if j > 0 {
+        let coupled = |a: usize, b: usize| taut[a] && taut[b];
+        let lower = if j > 0 && coupled(j - 1, j) {
             -w(j) * dir[j - 1].dot(dir[j])
         } else {
             0.0
         };
-        let c = if j + 1 < n {
+        let c = if j + 1 < n && coupled(j, j + 1) {
             -w(j + 1) * dir[j].dot(dir[j + 1])
         } else {
             0.0
         };
         let pivot = w(j) + w(j + 1) - lower * previous_upper;
-        if pivot.abs() < TINY {
+        if !taut[j] || pivot.abs() < TINY {
             upper[j] = 0.0;
             rhs[j] = 0.0;
         } else {
@@ -118,7 +136,7 @@ pub(crate) fn solve_chain(
         points[i] += inv_mass[i] * (pull_back - pull_on);
     }
     // The knot's share: Δx_0 = −w_0·λ_0·n_0, an impulse −λ_0·n_0.
-    -rhs[0] * dir[0]
+    (-rhs[0] * dir[0], worst)
 }
 
 #[cfg(test)]
@@ -146,7 +164,7 @@ mod tests {
             .map(|i| Vec3::new(0.0, -0.101 * i as f32, 0.0))
             .collect();
         let inv_mass = vec![1.0 / 25e-6; 17];
-        let impulse = solve_chain(&mut points, &inv_mass, 0.1, &fixed_knot());
+        let (impulse, _) = solve_chain(&mut points, &inv_mass, 0.1, &fixed_knot());
         for l in lengths(&points) {
             assert!((l - 0.1).abs() < 1e-6, "{l}");
         }
@@ -188,7 +206,7 @@ mod tests {
             .map(|i| Vec3::new(0.0, -0.1 * i as f32 - if i > 0 { delta } else { 0.0 }, 0.0))
             .collect();
         let inv_mass = vec![1.0 / m; points_n + 1];
-        let impulse = solve_chain(&mut points, &inv_mass, 0.1, &fixed_knot());
+        let (impulse, _) = solve_chain(&mut points, &inv_mass, 0.1, &fixed_knot());
         // Each point moves back up δ; the knot's impulse is the chain's momentum change.
         let expected = points_n as f32 * m * delta;
         assert!(
@@ -212,13 +230,34 @@ mod tests {
         };
         let mut points = vec![Vec3::ZERO, Vec3::new(0.0, -0.101, 0.0)];
         let inv_mass = vec![0.0, 1.0 / 25e-6];
-        let impulse = solve_chain(&mut points, &inv_mass, 0.1, &knot);
+        let (impulse, _) = solve_chain(&mut points, &inv_mass, 0.1, &knot);
         let knot_moves = impulse * knot.inv_mass;
         let gap = (points[1] - knot_moves).length();
         assert!((gap - 0.1).abs() < 1e-6, "{gap}");
         // Momentum: what the point gained the knot's body lost.
         let point_moves = points[1].y + 0.101;
         assert!((point_moves * 25e-6 + impulse.y).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_slack_ribbon_pushes_nothing() {
+        // The knot's body moved 3 cm toward the ribbon: nothing pushes it back.
+        let knot = KnotBody {
+            inv_mass: 1.0 / 0.014,
+            inv_inertia: Mat3::ZERO,
+            arm: Vec3::ZERO,
+        };
+        let mut points: Vec<Vec3> = (0..5)
+            .map(|i| Vec3::new(0.0, -0.1 * i as f32, 0.0))
+            .collect();
+        points[0].y -= 0.03;
+        let before = points.clone();
+        let (impulse, _) = solve_chain(&mut points, &[0.0, 4e4, 4e4, 4e4, 4e4], 0.1, &knot);
+        assert_eq!(impulse, Vec3::ZERO);
+        assert_eq!(
+            points, before,
+            "the ribbon's own segments were at their length"
+        );
     }
 
     #[test]

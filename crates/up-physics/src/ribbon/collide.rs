@@ -2,7 +2,8 @@
 //!
 //! The room: a point closer to a triangle's inner face than its radius, or
 //! one that crossed the face this substep, goes back to the radius in front
-//! of it, and friction takes back up to μ times that push from its slide
+//! of it along the face's normal (also within a radius past its border, so
+//! the seams between the triangles of a flat floor are not edges), and friction takes back up to μ times that push from its slide
 //! along the face (Coulomb at position level, as in Müller et al. 2020). So
 //! a ribbon cannot tunnel out through a wall at any speed it reaches, and it
 //! lies on the floor instead of sliding off it.
@@ -10,9 +11,9 @@
 //! Balloons: a point inside a balloon's leaf sphere goes out to its surface
 //! along the line from the sphere's centre. The balloon is not pushed back.
 
-use glam::Vec3;
+use glam::{Quat, Vec3};
 use up_geom::norm::Norm;
-use up_geom::{closest_point_triangle, Sphere, TriangleRegion};
+use up_geom::{closest_point_triangle, Sphere};
 
 /// A room triangle near a ribbon this step, with its unit inward normal.
 #[derive(Clone, Copy, Debug)]
@@ -36,23 +37,19 @@ pub(crate) fn push_out_of_room(
         if height >= radius {
             continue;
         }
-        let (closest, region) = closest_point_triangle(*point, a, b, c);
-        let push = if region == TriangleRegion::Face {
-            // In front of the face at the substep's start: it may not cross.
-            let was_in_front = (start - a).dot(t.normal) > -radius;
-            if !was_in_front {
-                continue;
-            }
-            (radius - height) * t.normal
-        } else {
-            // An edge or a corner: only from the front, as a rounded edge.
-            let away = *point - closest;
-            let distance = away.norm();
-            if height < 0.0 || distance >= radius || distance <= 1e-9 {
-                continue;
-            }
-            (radius - distance) * (away / distance)
-        };
+        // Over the face, or over its border by less than the radius: a room
+        // is flat across the seams of its triangles (an edge pushes along the
+        // face normal, never sideways, as a ribbon lying over a seam needs).
+        let on_plane = *point - height * t.normal;
+        let (closest, _) = closest_point_triangle(on_plane, a, b, c);
+        if closest.distance_squared(on_plane) > radius * radius {
+            continue;
+        }
+        // In front of the face at the substep's start: it may not cross.
+        if (start - a).dot(t.normal) <= -radius {
+            continue;
+        }
+        let push = (radius - height) * t.normal;
         *point += push;
         let depth = push.norm();
         let normal = push / depth;
@@ -62,6 +59,46 @@ pub(crate) fn push_out_of_room(
         if slide_len > 0.0 {
             *point -= slide * (mu * depth / slide_len).min(1.0);
         }
+    }
+}
+
+/// A balloon near a ribbon at this substep's pose: its bounding sphere, and
+/// its leaf spheres once a point has come within that.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct NearBalloon {
+    pub bound: Sphere,
+    pub center: Vec3,
+    pub rotation: Quat,
+    pub tree: u32,
+    /// Where its placed leaves are in the list beside it; empty until placed.
+    pub leaves: (u32, u32),
+}
+
+/// Pushes `point` out of the leaf spheres of each balloon of `near` whose
+/// bounding sphere it is in (most points are in none: one test a balloon),
+/// placing a balloon's leaves (`place`) the first time a point needs them.
+pub(crate) fn push_out_of_balloons(
+    point: &mut Vec3,
+    radius: f32,
+    near: &mut [NearBalloon],
+    leaves: &mut Vec<Sphere>,
+    place: impl Fn(&NearBalloon, &mut Vec<Sphere>),
+) {
+    for b in near {
+        let reach = b.bound.radius + radius;
+        if point.distance_squared(b.bound.center) >= reach * reach {
+            continue;
+        }
+        if b.leaves.0 == b.leaves.1 {
+            let first = leaves.len() as u32;
+            place(b, leaves);
+            b.leaves = (first, leaves.len() as u32);
+        }
+        push_out_of_spheres(
+            point,
+            radius,
+            &leaves[b.leaves.0 as usize..b.leaves.1 as usize],
+        );
     }
 }
 

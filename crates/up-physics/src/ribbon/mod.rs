@@ -107,7 +107,7 @@ pub(crate) struct Ribbon {
     pub weight: f32,
     pub points: Vec<Vec3>,
     pub velocities: Vec<Vec3>,
-    /// The ribbon's pull on the knot over the last substep of the last step, N.
+    /// The ribbon's mean pull on the knot over the last step it was awake, N.
     pub pull: Vec3,
 }
 

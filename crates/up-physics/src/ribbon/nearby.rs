@@ -16,6 +16,9 @@ pub(crate) struct NearbyBodies {
     bodies: Vec<u32>,
     /// Each sphere's cell range, kept between the counting pass and the filling one.
     ranges: Vec<[[i32; 3]; 2]>,
+    /// Per sphere: the last query that found it (each is reported once).
+    seen: Vec<u32>,
+    query: u32,
 }
 
 fn bucket(ix: i32, iy: i32, iz: i32, mask: u32) -> u32 {
@@ -36,6 +39,9 @@ impl NearbyBodies {
         self.start.resize(buckets + 1, 0);
         self.ranges.clear();
         let inv = 1.0 / self.cell;
+        self.seen.clear();
+        self.seen.resize(centers.len(), 0);
+        self.query = 0;
         for (c, &r) in centers.iter().zip(radii) {
             let lo = ((*c - r) * inv).floor().as_ivec3().to_array();
             let hi = ((*c + r) * inv).floor().as_ivec3().to_array();
@@ -67,13 +73,13 @@ impl NearbyBodies {
         }
     }
 
-    /// Appends to `out` each body whose sphere overlaps `aabb`, once, in
-    /// increasing order.
-    pub fn query(&self, aabb: &Aabb, centers: &[Vec3], radii: &[f32], out: &mut Vec<u32>) {
+    /// Appends to `out` each body whose sphere overlaps `aabb`, once, in the
+    /// order the grid holds them.
+    pub fn query(&mut self, aabb: &Aabb, centers: &[Vec3], radii: &[f32], out: &mut Vec<u32>) {
         if self.start.is_empty() {
             return;
         }
-        let first = out.len();
+        self.query += 1;
         let inv = 1.0 / self.cell;
         let lo = (aabb.min * inv).floor().as_ivec3();
         let hi = (aabb.max * inv).floor().as_ivec3();
@@ -91,22 +97,17 @@ impl NearbyBodies {
                 for iz in lo.z..=hi.z {
                     let b = bucket(ix, iy, iz, self.mask) as usize;
                     for &i in &self.bodies[self.start[b] as usize..self.start[b + 1] as usize] {
-                        if sphere_meets_box(centers[i as usize], radii[i as usize], aabb) {
+                        let seen = &mut self.seen[i as usize];
+                        if *seen != self.query
+                            && sphere_meets_box(centers[i as usize], radii[i as usize], aabb)
+                        {
+                            *seen = self.query;
                             out.push(i);
                         }
                     }
                 }
             }
         }
-        out[first..].sort_unstable();
-        let mut kept = first;
-        for k in first..out.len() {
-            if k == first || out[k] != out[kept - 1] {
-                out[kept] = out[k];
-                kept += 1;
-            }
-        }
-        out.truncate(kept);
     }
 }
 
@@ -133,6 +134,7 @@ mod tests {
             let aabb = Aabb::new(lo, lo + Vec3::splat(0.1 + 0.05 * k as f32));
             let mut found = Vec::new();
             grid.query(&aabb, &centers, &radii, &mut found);
+            found.sort_unstable();
             let expected: Vec<u32> = (0..500u32)
                 .filter(|&i| sphere_meets_box(centers[i as usize], radii[i as usize], &aabb))
                 .collect();

@@ -19,15 +19,24 @@ use up_geom::norm::Norm;
 use up_geom::Sphere;
 
 use super::chain::{solve_chain, KnotBody};
-use super::collide::{push_out_of_room, push_out_of_spheres, NearTriangle};
+use super::collide::{push_out_of_balloons, push_out_of_room, NearBalloon, NearTriangle};
 use super::nearby::NearbyBodies;
 use super::{
-    Ribbon, GRAB_MAX_SPEED, NORMAL_DRAG_COEFFICIENT, RIBBON_WIDTH, ROOM_FRICTION,
-    TANGENT_DRAG_COEFFICIENT, WEIGHT_DRAG_COEFFICIENT, WEIGHT_RADIUS,
+    Ribbon, NORMAL_DRAG_COEFFICIENT, RIBBON_WIDTH, ROOM_FRICTION, TANGENT_DRAG_COEFFICIENT,
+    WEIGHT_DRAG_COEFFICIENT, WEIGHT_RADIUS,
 };
 use crate::body::ShapeData;
 use crate::solver::body_state::BodyState;
 use crate::tasks::fill_chunks;
+
+/// Most direct solves of a ribbon's chain a substep. Each takes out what the
+/// last one's linearisation left (a taut ribbon whose light points swing
+/// across it, jerked by its balloon, needs several; left alone, that error
+/// grows into a stretched ribbon); a calm ribbon needs one or two.
+const CHAIN_ITERATIONS: usize = 8;
+/// A solve that started within this fraction of the segment length of every
+/// length ends them: what it leaves is of the order of its square.
+const CHAIN_TOLERANCE: f32 = 2e-3;
 
 /// Ribbons one task takes.
 const RIBBON_CHUNK: usize = 64;
@@ -56,26 +65,31 @@ pub(crate) struct ActiveRibbon {
     /// Room triangles and balloons near it this step, in the stage's lists.
     pub triangles: Range<u32>,
     pub bodies: Range<u32>,
-    /// A grabbed point and where it is carried.
+    /// A grabbed point and where it is carried, and how fast, m/s.
     pub grab: Option<(usize, Vec3)>,
+    pub grab_speed: f32,
     /// This substep's position impulse on the balloon (kg·m) and the knot's
     /// arm it acts at, world frame, m.
     pub impulse: Vec3,
     pub arm: Vec3,
-    /// The knot's pull on the balloon over the last substep, N.
-    pub pull: Vec3,
+    /// The knot's position impulses on the balloon summed over the step's
+    /// substeps so far (kg·m), and those substeps' count and length (s).
+    step_impulse: Vec3,
+    substeps: u32,
+    h: f32,
     pub segment_length: f32,
-    /// The leaf spheres of the balloons near it, at this substep's poses.
+    /// The balloons near it and their leaf spheres, at this substep's poses.
+    near: Vec<NearBalloon>,
     spheres: Vec<Sphere>,
 }
 
 impl ActiveRibbon {
     /// Takes `ribbon`'s points for the step (`give_back` returns them).
     pub fn take(&mut self, ribbon: &mut Ribbon, air_density: f32) {
-        self.points = std::mem::take(&mut ribbon.points);
-        self.velocities = std::mem::take(&mut ribbon.velocities);
+        self.step_impulse = Vec3::ZERO;
+        self.substeps = 0;
         self.segment_length = ribbon.segment_length;
-        let n = self.points.len() - 1;
+        let n = ribbon.segments();
         self.inv_mass.clear();
         self.drag.clear();
         self.radius.clear();
@@ -94,13 +108,20 @@ impl ActiveRibbon {
             self.drag.push([across, along]);
             self.radius.push(ribbon.radius(i));
         }
+        // Last: a ribbon without its points has no segments to ask about.
+        self.points = std::mem::take(&mut ribbon.points);
+        self.velocities = std::mem::take(&mut ribbon.velocities);
     }
 
-    /// Returns the points to `ribbon`, with the pull the step ended with.
+    /// Returns the points to `ribbon`, with its mean pull over the step: the
+    /// impulses' sum over h² per substep (a single substep's swings as the
+    /// weight on the floor takes turns with gravity).
     pub fn give_back(&mut self, ribbon: &mut Ribbon) {
         ribbon.points = std::mem::take(&mut self.points);
         ribbon.velocities = std::mem::take(&mut self.velocities);
-        ribbon.pull = self.pull;
+        if self.substeps > 0 {
+            ribbon.pull = self.step_impulse / (self.h * self.h * self.substeps as f32);
+        }
     }
 }
 
@@ -157,14 +178,29 @@ fn substep_one(r: &mut ActiveRibbon, input: &SubstepInput, states: &[BodyState])
     r.start.extend_from_slice(&r.points);
     fall(r, input.gravity, h);
     if let Some((k, target)) = r.grab {
-        let to = target - r.points[k];
-        let reach = GRAB_MAX_SPEED * h;
+        // Carried at the speed that reaches the target by the step's end.
+        let to = target - r.start[k];
         let len = to.norm();
-        r.points[k] = r.start[k] + if len > reach { to * (reach / len) } else { to };
+        let reach = (r.grab_speed * h).min(len);
+        if len > 0.0 {
+            r.points[k] = r.start[k] + to * (reach / len);
+        }
     }
     place_near_spheres(r, input, states);
-    for i in 1..=n {
-        push_out_of_spheres(&mut r.points[i], r.radius[i], &r.spheres);
+    let place = |b: &NearBalloon, out: &mut Vec<Sphere>| {
+        let tree = &input.shapes[b.tree as usize].tree;
+        let nodes = tree.nodes();
+        for &leaf in tree.leaves() {
+            let node = &nodes[leaf as usize];
+            out.push(Sphere::new(
+                b.center + b.rotation * node.center,
+                node.radius,
+            ));
+        }
+    };
+    for i in (1..=n).filter(|&i| r.inv_mass[i] > 0.0) {
+        let point = &mut r.points[i];
+        push_out_of_balloons(point, r.radius[i], &mut r.near, &mut r.spheres, place);
     }
     let triangles = &input.triangles[r.triangles.start as usize..r.triangles.end as usize];
     push_out_of_room_all(r, triangles);
@@ -173,13 +209,21 @@ fn substep_one(r: &mut ActiveRibbon, input: &SubstepInput, states: &[BodyState])
         inv_inertia: s.inv_inertia,
         arm: r.arm,
     };
-    if let Some((k, _)) = r.grab {
-        r.inv_mass[k] = 0.0;
+    r.impulse = Vec3::ZERO;
+    for _ in 0..CHAIN_ITERATIONS {
+        let (impulse, worst) = solve_chain(&mut r.points, &r.inv_mass, r.segment_length, &knot);
+        // The knot moves with its body's share before the next solve.
+        r.points[0] += knot.point_motion(impulse);
+        r.impulse += impulse;
+        if worst < CHAIN_TOLERANCE * r.segment_length {
+            break;
+        }
     }
-    r.impulse = solve_chain(&mut r.points, &r.inv_mass, r.segment_length, &knot);
     push_out_of_room_all(r, triangles);
+    r.step_impulse += r.impulse;
+    r.substeps += 1;
+    r.h = h;
     let inv_h = 1.0 / h;
-    r.pull = r.impulse * (inv_h * inv_h);
     for i in 1..=n {
         r.velocities[i] = (r.points[i] - r.start[i]) * inv_h;
     }
@@ -209,10 +253,11 @@ fn fall(r: &mut ActiveRibbon, gravity: Vec3, h: f32) {
     }
 }
 
-/// The leaf spheres of the balloons near `r` whose roots reach its points, at
-/// this substep's poses.
+/// The balloons near `r` whose roots reach its points' bounds, at this
+/// substep's poses (their leaves are placed when a point comes near).
 fn place_near_spheres(r: &mut ActiveRibbon, input: &SubstepInput, states: &[BodyState]) {
     r.spheres.clear();
+    r.near.clear();
     let bodies = &input.bodies[r.bodies.start as usize..r.bodies.end as usize];
     if bodies.is_empty() {
         return;
@@ -234,12 +279,13 @@ fn place_near_spheres(r: &mut ActiveRibbon, input: &SubstepInput, states: &[Body
         if closest.distance_squared(root_center) > (root.radius + reach).powi(2) {
             continue;
         }
-        let nodes = tree.nodes();
-        for &leaf in tree.leaves() {
-            let node = &nodes[leaf as usize];
-            r.spheres
-                .push(Sphere::new(center + s.q * node.center, node.radius));
-        }
+        r.near.push(NearBalloon {
+            bound: Sphere::new(root_center, root.radius),
+            center,
+            rotation: s.q,
+            tree: input.shape_of[b as usize],
+            leaves: (0, 0),
+        });
     }
 }
 

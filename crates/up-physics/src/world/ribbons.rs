@@ -9,7 +9,10 @@ use super::{PhysicsError, World};
 use crate::body::BodyId;
 use crate::ribbon::collide::NearTriangle;
 use crate::ribbon::solve::ActiveRibbon;
-use crate::ribbon::{Ribbon, RibbonDef, RibbonId, MAX_SEGMENTS, MIN_SEGMENTS};
+use crate::ribbon::{
+    Ribbon, RibbonDef, RibbonId, GRAB_MAX_SPEED, MAX_SEGMENTS, MIN_SEGMENTS, RIBBON_RADIUS,
+    WEIGHT_RADIUS,
+};
 
 /// A ribbon point held by the pointer.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -74,7 +77,7 @@ impl World {
             velocities: vec![Vec3::ZERO; segments + 1],
             pull: Vec3::ZERO,
         };
-        ribbon.points = self.hang(knot, &ribbon);
+        ribbon.points = self.hang(knot, &ribbon, segments);
         self.wake(def.body)?;
         Ok(self.ribbons.add(ribbon))
     }
@@ -82,11 +85,15 @@ impl World {
     /// Points straight down from `knot` (along gravity), turning along the
     /// floor toward the room's middle where they reach it, and round its
     /// walls: a ribbon laid out inside the room.
-    fn hang(&self, knot: Vec3, ribbon: &Ribbon) -> Vec<Vec3> {
-        let n = ribbon.segments();
+    fn hang(&self, knot: Vec3, ribbon: &Ribbon, n: usize) -> Vec<Vec3> {
         let down = self.def.gravity.try_normalize().unwrap_or(Vec3::NEG_Y);
         let bounds = self.def.room.as_ref().map(|room| {
-            let margin = ribbon.radius(n).max(ribbon.radius(1)) + 1e-3;
+            let end_radius = if ribbon.weight > 0.0 {
+                WEIGHT_RADIUS
+            } else {
+                RIBBON_RADIUS
+            };
+            let margin = end_radius + 1e-3;
             let b = room.aabb();
             (b.min + margin, b.max - margin)
         });
@@ -175,8 +182,8 @@ impl World {
         }
     }
 
-    /// What the ribbon pulls its knot with, N, world frame, over the last
-    /// substep (zero while its balloon sleeps... its last pull is kept).
+    /// What the ribbon pulls its knot with, N, world frame: the mean over the
+    /// last step its balloon was awake.
     pub fn ribbon_pull(&self, id: RibbonId) -> Option<Vec3> {
         self.ribbons.get(id).map(|r| r.pull)
     }
@@ -250,7 +257,8 @@ impl World {
             stage.bound_radius.push(shape.bound_radius + reach);
             stage.awake_bodies.push(i as u32);
         }
-        if stage.awake_bodies.is_empty() || self.ribbons.is_empty() {
+        let asleep = |body| self.handles.dense(body).is_some_and(|i| !b.awake[i]);
+        if stage.awake_bodies.is_empty() || !self.ribbons.iter().any(|(_, r)| asleep(r.body)) {
             return;
         }
         stage.nearby.build(&stage.bound_center, &stage.bound_radius);
@@ -297,12 +305,13 @@ impl World {
         stage.active.truncate(0);
         stage.triangles.clear();
         stage.bodies.clear();
-        if self.ribbons.is_empty() {
-            return;
+        let b = &self.bodies;
+        let awake = |body| self.handles.dense(body).is_some_and(|i| b.awake[i]);
+        if !self.ribbons.iter().any(|(_, r)| awake(r.body)) {
+            return; // every ribbon sleeps, or there are none
         }
         let n = self.bodies.len();
         let dt = self.def.dt;
-        let b = &self.bodies;
         let fall = 0.5 * self.def.gravity.norm() * dt * dt;
         let margin = self.def.speculative_distance + fall;
         stage.bound_center.clear();
@@ -327,8 +336,9 @@ impl World {
             let Some(i) = self.handles.dense(ribbon.body) else {
                 continue;
             };
+            // A sleeper's ribbon keeps its points and the (sleep-slow)
+            // velocities it fell asleep with, as they are, until it wakes.
             if !b.awake[i] {
-                ribbon.velocities.fill(Vec3::ZERO);
                 continue;
             }
             if stage.active.len() == count {
@@ -340,10 +350,13 @@ impl World {
             r.state = i as u32;
             r.origin = b.center[i];
             r.arm0 = b.rotation[i] * ribbon.arm;
-            r.pull = ribbon.pull;
             r.grab = grab
                 .filter(|g| g.ribbon.index as usize == slot)
                 .map(|g| (g.point as usize, g.target));
+            if let Some((k, target)) = r.grab {
+                let distance = target.distance(ribbon.points[k]);
+                r.grab_speed = (distance / dt).min(GRAB_MAX_SPEED);
+            }
             let speed = ribbon
                 .velocities
                 .iter()
@@ -351,6 +364,9 @@ impl World {
             let reach = speed * dt + margin + ribbon.radius(ribbon.segments());
             let aabb = Aabb::from_points(&ribbon.points).expanded(reach);
             r.take(ribbon, air_density);
+            if let Some((k, _)) = r.grab {
+                r.inv_mass[k] = 0.0; // carried, not pushed
+            }
             let first = stage.bodies.len() as u32;
             stage.nearby.query(
                 &aabb,

@@ -228,7 +228,10 @@ impl World {
     }
 
     fn update_sleep(&mut self) {
-        let grabbed = self.grab.and_then(|g| self.handles.dense(g.body));
+        // A balloon held, or held by its ribbon, does not rest.
+        let held = self.grab.map(|g| g.body);
+        let held = held.or_else(|| self.ribbon_grab.and_then(|g| self.ribbon_body(g.ribbon)));
+        let grabbed = held.and_then(|body| self.handles.dense(body));
         let rules = self.sleep_rules();
         let (input, buffers) = self.stages.for_sleep(rules, &self.shapes, &self.handles);
         let (bodies, sleeping) = (&mut self.bodies, &mut self.sleeping);
