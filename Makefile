@@ -111,10 +111,10 @@ bench: setup-rust setup-bench $(WASM_OUT)
 	target/release/up-bench report --node
 
 # 10,000 balloons for 300 steps: the start, the rise and the first arrivals (Rapier takes
-# seconds a step there); Rapier's multibody chains at 1,000 for one second.
+# seconds a step there); Rapier's multibody chains at 100 balloons for two seconds.
 bench-ribbons: setup-rust
 	$(CARGO) build --release -p up-bench
-	target/release/up-bench report --ribbons --sizes 1000,10000 --multibody-sizes 1000 --steps 600,300,60
+	target/release/up-bench report --ribbons --sizes 1000,10000 --multibody-sizes 100 --steps 600,300,120
 
 # The page with 5,000 balloons in headless Chromium: frame intervals, input delay, physics per step.
 measure: setup-browser build
