@@ -3,6 +3,8 @@
 #   make test   set up, lint, run every test (Rust, web unit, browser end-to-end)
 #   make bench  UP against Rapier (native and in Node) at 1k and 10k balloons, UP alone at 100k;
 #               writes docs/benchmarks.md and docs/benchmarks.svg (tens of minutes)
+#   make bench-ribbons  the same with a ribbon on every balloon (Rapier: chains of balls);
+#               writes the ribbons' table at the end of docs/benchmarks.md (half an hour or more)
 #   make measure  the web app with 5,000 balloons in headless Chromium (frames, input, physics)
 #   make fuzz   run every cargo-fuzz target for FUZZ_SECONDS each (nightly + cargo-fuzz)
 #   make soak   the long run of issue 7: 10,000 balloons for an hour of simulated time
@@ -21,7 +23,7 @@ RUST_SOURCES := $(shell find crates -name '*.rs' -o -name Cargo.toml) Cargo.toml
 export PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD := 1
 WEB_SOURCES := $(shell find web/src web/index.html web/vite.config.* web/tsconfig*.json web/scripts -type f 2>/dev/null) $(shell find assets -type f 2>/dev/null)
 
-.PHONY: run build test lint test-rust test-web test-e2e test-determinism bench measure fuzz soak setup setup-rust setup-web setup-browser setup-bench serve clean
+.PHONY: run build test lint test-rust test-web test-e2e test-determinism bench bench-ribbons measure fuzz soak setup setup-rust setup-web setup-browser setup-bench serve clean
 
 run: build
 	@echo "UP is being served on http://localhost:$(PORT)  (Ctrl-C stops it)"
@@ -107,6 +109,12 @@ bench: setup-rust setup-bench $(WASM_OUT)
 	$(CARGO) build --release -p up-bench -p up-cli
 	target/release/up bench --balloons 1000 --steps 600
 	target/release/up-bench report --node
+
+# 10,000 balloons for 300 steps: the start, the rise and the first arrivals (Rapier takes
+# seconds a step there); Rapier's multibody chains at 100 balloons for two seconds.
+bench-ribbons: setup-rust
+	$(CARGO) build --release -p up-bench
+	target/release/up-bench report --ribbons --sizes 1000,10000 --multibody-sizes 100 --steps 600,300,120
 
 # The page with 5,000 balloons in headless Chromium: frame intervals, input delay, physics per step.
 measure: setup-browser build

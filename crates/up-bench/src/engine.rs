@@ -1,6 +1,8 @@
 //! What the harness needs from an engine: step it, read its poses.
 
+use glam::Vec3;
 use up_geom::Pose;
+use up_physics::Counters;
 
 /// One physics engine holding the benchmark scene.
 pub trait Engine {
@@ -16,6 +18,20 @@ pub trait Engine {
     fn awake_count(&self) -> usize;
     /// kg: the translational mass of all balloons, added mass included.
     fn total_translational_mass(&self) -> f64;
+    /// Ribbons tied to the balloons.
+    fn ribbon_count(&self) -> usize {
+        0
+    }
+    /// The largest relative stretch of any ribbon now (`ribbons::stretch`),
+    /// NaN if any went non-finite; `None` without ribbons. `scratch` is for
+    /// the points.
+    fn max_ribbon_stretch(&self, _scratch: &mut Vec<Vec3>) -> Option<f32> {
+        None
+    }
+    /// The engine's own timing of its last step's stages (UP's `World::counters`).
+    fn counters(&self) -> Option<Counters> {
+        None
+    }
 }
 
 /// Which engines a run compares.

@@ -9,6 +9,8 @@ pub mod output;
 pub mod plot;
 pub mod rapier_engine;
 pub mod report;
+pub mod ribbon_report;
+pub mod ribbons;
 pub mod rss;
 pub mod run;
 pub mod scene_data;

@@ -2,9 +2,11 @@
 //!
 //!   up-bench --balloons 1000 --steps 600 --json        both engines, JSON lines
 //!   up-bench --balloons 1000 --print-scene > s.json    the scene for web/bench
+//!   up-bench --ribbons --balloons 1000 --steps 300     with ribbons in both, and UP without
 //!   up-bench measure --balloons 1000 --poses p.f32     overlap of poses from Node
 //!   up-bench report                                    the sweep → docs/benchmarks.md
 //!   up-bench report --keep-results                     its method rewritten, results kept
+//!   up-bench report --ribbons --steps 600,120          the ribbons' sweep → docs/benchmarks.md
 
 use std::path::PathBuf;
 
@@ -12,9 +14,10 @@ use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand};
 use up_bench::engine::EngineKind;
 use up_bench::measure::measure_frames;
-use up_bench::output::{self, json_lines, ratio, EngineResult};
-use up_bench::rapier_engine::RapierShape;
+use up_bench::output::{self, json_lines, ratio, ribbon_ratio, EngineResult};
+use up_bench::rapier_engine::{RapierJoints, RapierShape};
 use up_bench::report::{self, ReportOptions};
+use up_bench::ribbon_report::{ribbon_report, RibbonReportOptions};
 use up_bench::run::{default_steps, rss_probe, run, RunOptions};
 use up_bench::scene_data::SceneData;
 use up_bench::scene_export::{export, read_poses};
@@ -83,6 +86,13 @@ struct RunArgs {
     /// Write every step's wall time, ms, per engine, as CSV (`step,up,rapier`).
     #[arg(long, value_name = "FILE.csv")]
     step_times: Option<PathBuf>,
+    /// Tie a ribbon (1.5 m, 16 segments, 0.25 g/m) to every balloon in every
+    /// engine, and run UP without ribbons beside them.
+    #[arg(long)]
+    ribbons: bool,
+    /// How Rapier joints a ribbon's balls: impulse or multibody.
+    #[arg(long, default_value = "impulse")]
+    rapier_joints: String,
 }
 
 #[derive(Args, Debug)]
@@ -110,9 +120,19 @@ struct ReportArgs {
     /// Sizes UP runs at alone (`--up-only-sizes` with no value: none).
     #[arg(long, value_delimiter = ',', num_args = 0.., default_value = "100000")]
     up_only_sizes: Vec<u64>,
-    /// Steps at every size (default: each size's own, see `--steps` of a run).
+    /// Steps at every size, or one count per size (`--sizes`, then
+    /// `--up-only-sizes` or `--multibody-sizes`); default: each size's own,
+    /// see `--steps` of a run.
+    #[arg(long, value_delimiter = ',')]
+    steps: Vec<u64>,
+    /// Run the ribbons' sweep instead (`--ribbons` at `--sizes`, Rapier on
+    /// impulse joints, and at `--multibody-sizes` on multibody joints), and
+    /// write its results after the main ones, which are kept.
     #[arg(long)]
-    steps: Option<u64>,
+    ribbons: bool,
+    /// With `--ribbons`: sizes where Rapier's ribbons are multibody chains.
+    #[arg(long, value_delimiter = ',', num_args = 0..)]
+    multibody_sizes: Vec<u64>,
     /// Threads for UP where both engines run.
     #[arg(long, default_value_t = 1)]
     threads: usize,
@@ -150,6 +170,12 @@ fn run_options(args: &RunArgs) -> Result<RunOptions> {
             args.rapier_shape
         )
     })?;
+    let rapier_joints = RapierJoints::parse(&args.rapier_joints).with_context(|| {
+        format!(
+            "--rapier-joints: expected impulse or multibody, found {:?}",
+            args.rapier_joints
+        )
+    })?;
     let steps = match args.steps {
         Some(steps) => steps,
         None => {
@@ -166,6 +192,8 @@ fn run_options(args: &RunArgs) -> Result<RunOptions> {
         rapier_shape,
         rss: !args.no_rss,
         step_times: args.step_times.clone(),
+        ribbons: args.ribbons,
+        rapier_joints,
     })
 }
 
@@ -183,13 +211,27 @@ fn print_table(results: &[EngineResult]) {
         "awake",
         "peak MB"
     );
+    let ribbons = results.iter().any(|r| r.ribbons > 0);
     for r in results {
         let rss = r
             .peak_rss_mb
             .map_or("-".to_string(), |mb| format!("{mb:.1}"));
+        let stretch = match (r.max_ribbon_stretch, r.max_ribbon_stretch_after_start) {
+            (Some(all), late) => format!(
+                " {:>9.3} % (step {}), after 1 s {}",
+                all * 100.0,
+                r.max_ribbon_stretch_step.unwrap_or(0),
+                late.map_or("-".into(), |s| format!("{:.3} %", s * 100.0))
+            ),
+            _ => String::new(),
+        };
+        let engine = match (ribbons, r.ribbons) {
+            (true, 0) => format!("{} bare", r.engine),
+            _ => r.engine.clone(),
+        };
         println!(
-            "{:<8} {:>9} {:>6} {:>10.3} {:>10.3} {:>10.3} {:>12.3} {:>8} {:>7} {:>9}",
-            r.engine,
+            "{:<8} {:>9} {:>6} {:>10.3} {:>10.3} {:>10.3} {:>12.3} {:>8} {:>7} {:>9}{stretch}",
+            engine,
             r.balloons,
             r.steps,
             r.ms_per_step_median,
@@ -201,6 +243,19 @@ fn print_table(results: &[EngineResult]) {
             rss
         );
     }
+    if ribbons {
+        println!("(bare: UP without ribbons; the last column: worst ribbon stretch)");
+        for r in results.iter().filter(|r| r.engine == "up") {
+            if let Some(stages) = &r.stage_ms_mean {
+                let stages: Vec<String> = stages
+                    .iter()
+                    .map(|(name, ms)| format!("{name} {ms:.3}"))
+                    .collect();
+                let which = if r.ribbons > 0 { "with" } else { "without" };
+                println!("UP {which} ribbons, ms per step: {}", stages.join(", "));
+            }
+        }
+    }
     if let (Some(by_median), Some(by_mean)) =
         (ratio(results, output::median), ratio(results, output::mean))
     {
@@ -208,12 +263,25 @@ fn print_table(results: &[EngineResult]) {
             "Rapier / UP (median ms per step): {by_median:.2}; mean (total time): {by_mean:.2}"
         );
     }
+    if let (Some(by_median), Some(by_mean)) = (
+        ribbon_ratio(results, output::median),
+        ribbon_ratio(results, output::mean),
+    ) {
+        println!("UP with ribbons / without (median): {by_median:.2}; mean: {by_mean:.2}");
+    }
 }
 
 fn main() -> Result<()> {
     let cli = Cli::parse();
     match cli.command {
         Some(Cmd::Report(args)) if args.keep_results => report::keep_results(&args.markdown),
+        Some(Cmd::Report(args)) if args.ribbons => ribbon_report(&RibbonReportOptions {
+            sizes: args.sizes,
+            multibody_sizes: args.multibody_sizes,
+            steps: args.steps,
+            threads: args.threads,
+            markdown: args.markdown,
+        }),
         Some(Cmd::Report(args)) => report::report(&ReportOptions {
             sizes: args.sizes,
             up_only_sizes: args.up_only_sizes,

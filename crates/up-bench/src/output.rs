@@ -35,6 +35,30 @@ pub struct EngineResult {
     /// Rapier only: `"compound"` or `"balls"`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rapier_shape: Option<String>,
+    /// Ribbons tied to the balloons (`--ribbons`; 0: none).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub ribbons: usize,
+    /// The largest relative stretch of any ribbon after any step (length
+    /// along the chain from the knot over the ribbon's length, less one).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_ribbon_stretch: Option<f32>,
+    /// The step that stretch was measured after (1 is the first).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_ribbon_stretch_step: Option<u64>,
+    /// The same after the start (`run::RIBBON_START_S`): the steps after the
+    /// first second.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_ribbon_stretch_after_start: Option<f32>,
+    /// Rapier with ribbons: `"impulse"` or `"multibody"` joints.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rapier_joints: Option<String>,
+    /// UP: its own stage timers (`World::counters`), ms per step over the run.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stage_ms_mean: Option<Vec<(String, f64)>>,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 /// The last line: Rapier's whole-run median over UP's, and its mean (total
@@ -45,12 +69,31 @@ pub struct EngineResult {
 pub struct RatioLine {
     pub ratio_rapier_over_up: f64,
     pub ratio_rapier_over_up_mean: f64,
+    /// With ribbons: UP with them over UP without, median and mean.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ratio_up_ribbons_over_up: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ratio_up_ribbons_over_up_mean: Option<f64>,
 }
 
-/// Rapier's `stat` over UP's, when both ran.
+/// Rapier's `stat` over UP's, when both ran (with ribbons: both with them).
 pub fn ratio(results: &[EngineResult], stat: fn(&EngineResult) -> f64) -> Option<f64> {
-    let of = |name: &str| results.iter().find(|r| r.engine == name).map(stat);
-    Some(of("rapier")? / of("up")?)
+    let rapier = results.iter().find(|r| r.engine == "rapier")?;
+    let up = results
+        .iter()
+        .find(|r| r.engine == "up" && (r.ribbons > 0) == (rapier.ribbons > 0))?;
+    Some(stat(rapier) / stat(up))
+}
+
+/// UP's `stat` with ribbons over its `stat` without, when both ran.
+pub fn ribbon_ratio(results: &[EngineResult], stat: fn(&EngineResult) -> f64) -> Option<f64> {
+    let up = |ribbons: bool| {
+        results
+            .iter()
+            .find(|r| r.engine == "up" && (r.ribbons > 0) == ribbons)
+            .map(stat)
+    };
+    Some(up(true)? / up(false)?)
 }
 
 /// The whole-run median ms per step.
@@ -73,6 +116,8 @@ pub fn json_lines(results: &[EngineResult]) -> Result<Vec<String>, serde_json::E
         lines.push(serde_json::to_string(&RatioLine {
             ratio_rapier_over_up: by_median,
             ratio_rapier_over_up_mean: by_mean,
+            ratio_up_ribbons_over_up: ribbon_ratio(results, median),
+            ratio_up_ribbons_over_up_mean: ribbon_ratio(results, mean),
         })?);
     }
     Ok(lines)
@@ -101,6 +146,12 @@ mod tests {
             rss_bytes_per_balloon: Some(900.0),
             room_width_m: 5.3,
             rapier_shape: None,
+            ribbons: 0,
+            max_ribbon_stretch: None,
+            max_ribbon_stretch_step: None,
+            max_ribbon_stretch_after_start: None,
+            rapier_joints: None,
+            stage_ms_mean: None,
         }
     }
 
@@ -135,6 +186,31 @@ mod tests {
         // A line reads back as it was written.
         let back: EngineResult = serde_json::from_str(&lines[0]).unwrap();
         assert_eq!(back, result("up", 2.0, 4.0));
+    }
+
+    #[test]
+    fn with_ribbons_rapier_is_compared_with_up_with_ribbons() {
+        let with = |mut r: EngineResult, stretch: f32| {
+            r.ribbons = 1000;
+            r.max_ribbon_stretch = Some(stretch);
+            r
+        };
+        let results = [
+            with(result("up", 2.4, 5.0), 0.001),
+            with(result("rapier", 12.0, 20.0), 0.05),
+            result("up", 2.0, 4.0),
+        ];
+        let lines = json_lines(&results).unwrap();
+        assert_eq!(lines.len(), 4);
+        let ratio: RatioLine = serde_json::from_str(&lines[3]).unwrap();
+        assert_eq!(ratio.ratio_rapier_over_up, 5.0);
+        assert_eq!(ratio.ratio_rapier_over_up_mean, 4.0);
+        assert_eq!(ratio.ratio_up_ribbons_over_up, Some(1.2));
+        assert_eq!(ratio.ratio_up_ribbons_over_up_mean, Some(1.25));
+        let back: EngineResult = serde_json::from_str(&lines[1]).unwrap();
+        assert_eq!(back, results[1]);
+        // Without ribbons the line is as before.
+        assert!(!lines[2].contains("ribbon"), "{}", lines[2]);
     }
 
     #[test]

@@ -20,6 +20,17 @@
 //!   speed is the same, the approach to it 1–2 % brisker. Angular damping is Rapier's own
 //!   (ω ← ω/(1 + h·c) per substep, UP's formula). Sleeping bodies are left
 //!   alone (their forces stay set and are not integrated).
+//! - Ribbons (`--ribbons`, `with_ribbons`): each a chain of small dynamic
+//!   balls (radius `RIBBON_RADIUS`, one per UP point after the knot, each of
+//!   UP's point mass), started at UP's start points. Spherical joints tie
+//!   each ball to the one before at the segment's length (anchor at the
+//!   previous ball's centre, and one segment up the ball's own axis), the
+//!   first to the balloon's knot: impulse joints, or multibody joints
+//!   (`RapierJoints`). Their weight is a constant force (world gravity is
+//!   zero); linear damping stands in for the quadratic drag across the
+//!   ribbon, matched at its terminal speed (`ribbons::matched_linear_damping`).
+//!   Collision groups let the balls meet the room and the balloons but not
+//!   one another, as UP's ribbon points do.
 
 use anyhow::{anyhow, Result};
 use glam::{Mat3, Quat, Vec3};
@@ -27,7 +38,10 @@ use rapier3d::glamx;
 use rapier3d::prelude::*;
 use up_geom::Pose as UpPose;
 
+use up_physics::ribbon::{NORMAL_DRAG_COEFFICIENT, RIBBON_RADIUS, RIBBON_WIDTH, ROOM_FRICTION};
+
 use crate::engine::Engine;
+use crate::ribbons::{matched_linear_damping, stretch, BenchRibbons};
 use crate::scene_data::SceneData;
 
 type RVec = rapier3d::math::Vector;
@@ -72,9 +86,51 @@ struct AirForces {
     drag_factor: f32,
 }
 
+/// How a ribbon's balls are jointed in Rapier.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RapierJoints {
+    /// `ImpulseJointSet`: each joint a constraint solved with the contacts.
+    Impulse,
+    /// `MultibodyJointSet`: each balloon and its balls one articulation in
+    /// reduced coordinates (the balloon its root).
+    Multibody,
+}
+
+impl RapierJoints {
+    pub fn parse(name: &str) -> Option<RapierJoints> {
+        match name {
+            "impulse" => Some(RapierJoints::Impulse),
+            "multibody" => Some(RapierJoints::Multibody),
+            _ => None,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            RapierJoints::Impulse => "impulse",
+            RapierJoints::Multibody => "multibody",
+        }
+    }
+}
+
+/// `user_data` of a balloon's body (a ribbon's balls have 0): the air forces
+/// are for balloons only.
+const BALLOON: u128 = 1;
+
+/// The ribbons as Rapier holds them.
+struct RapierRibbons {
+    /// Balloon `b`'s balls are `balls[b·segments..(b+1)·segments]`, knot end first.
+    balls: Vec<RigidBodyHandle>,
+    segments: usize,
+    /// Body frame, m.
+    knot: Vec3,
+    length: f32,
+}
+
 pub struct RapierEngine {
     world: PhysicsWorld,
     bodies: Vec<RigidBodyHandle>,
+    ribbons: Option<RapierRibbons>,
     forces: AirForces,
     /// Reused list of the awake bodies.
     active: Vec<RigidBodyHandle>,
@@ -139,6 +195,24 @@ pub fn sleep_speed(data: &SceneData) -> f32 {
 
 impl RapierEngine {
     pub fn new(data: &SceneData, shape: RapierShape) -> Result<RapierEngine> {
+        Self::build(data, shape, None)
+    }
+
+    /// The balloons with `ribbons` tied to them, jointed as `joints` says.
+    pub fn with_ribbons(
+        data: &SceneData,
+        shape: RapierShape,
+        ribbons: &BenchRibbons,
+        joints: RapierJoints,
+    ) -> Result<RapierEngine> {
+        Self::build(data, shape, Some((ribbons, joints)))
+    }
+
+    fn build(
+        data: &SceneData,
+        shape: RapierShape,
+        ribbons: Option<(&BenchRibbons, RapierJoints)>,
+    ) -> Result<RapierEngine> {
         let def = &data.def;
         let mut world = PhysicsWorld::new();
         // Gravity acts through the explicit weight force (it must not act on the added mass).
@@ -155,7 +229,16 @@ impl RapierEngine {
         .friction(def.friction)
         .restitution(def.restitution)
         .build();
-        world.colliders.insert(room);
+        // With ribbons the room goes in last. Rapier looks a new contact pair
+        // up among the edges of its lower-handle collider; the room first
+        // would have one edge per ball lying on the floor, and the first step
+        // at 1,000 balloons with ribbons would take 4 s instead of 0.2.
+        let mut room = Some(room);
+        if ribbons.is_none() {
+            if let Some(room) = room.take() {
+                world.colliders.insert(room);
+            }
+        }
 
         let mass = mass_properties(data);
         let sleep_speed = sleep_speed(data);
@@ -184,6 +267,7 @@ impl RapierEngine {
                 .angular_damping(def.angular_damping)
                 .ccd_enabled(def.enable_continuous)
                 .can_sleep(def.enable_sleep)
+                .user_data(BALLOON)
                 .build();
             let handle = world.bodies.insert(body);
             if let Some(b) = world.bodies.get_mut(handle) {
@@ -213,6 +297,13 @@ impl RapierEngine {
             }
             bodies.push(handle);
         }
+        let ribbons = match ribbons {
+            Some((r, joints)) => Some(add_ribbons(&mut world, data, &bodies, r, joints)?),
+            None => None,
+        };
+        if let Some(room) = room.take() {
+            world.colliders.insert(room);
+        }
         let forces = AirForces {
             weight: rvec(data.weight()),
             buoyancy: rvec(data.buoyancy()),
@@ -222,6 +313,7 @@ impl RapierEngine {
         Ok(RapierEngine {
             world,
             bodies,
+            ribbons,
             forces,
             active: Vec::new(),
             stepped: false,
@@ -242,6 +334,9 @@ impl RapierEngine {
             let Some(body) = self.world.bodies.get_mut(handle) else {
                 continue;
             };
+            if body.user_data != BALLOON {
+                continue;
+            }
             let v = body.linvel();
             let drag = -f.drag_factor * v.length() * v;
             let center_of_buoyancy = body.position() * f.center_of_buoyancy;
@@ -255,6 +350,151 @@ impl RapierEngine {
     pub fn body(&self, i: usize) -> Option<&RigidBody> {
         self.world.bodies.get(*self.bodies.get(i)?)
     }
+
+    /// Balloon `i`'s ribbon: the knot, then its balls' centres, world frame.
+    pub fn ribbon_points(&self, i: usize, out: &mut Vec<Vec3>) {
+        out.clear();
+        let (Some(r), Some(balloon)) = (&self.ribbons, self.body(i)) else {
+            return;
+        };
+        out.push(uvec(balloon.position() * rvec(r.knot)));
+        let balls = r.balls.get(i * r.segments..(i + 1) * r.segments);
+        for &h in balls.unwrap_or_default() {
+            if let Some(ball) = self.world.bodies.get(h) {
+                out.push(uvec(ball.translation()));
+            }
+        }
+    }
+
+    /// kg: the mass of balloon `i`'s ribbon (its balls).
+    pub fn ribbon_mass(&self, i: usize) -> f32 {
+        let Some(r) = &self.ribbons else {
+            return 0.0;
+        };
+        r.balls
+            .get(i * r.segments..(i + 1) * r.segments)
+            .unwrap_or_default()
+            .iter()
+            .filter_map(|&h| self.world.bodies.get(h))
+            .map(|b| b.mass())
+            .sum()
+    }
+
+    /// Bodies and impulse and multibody joints in the world.
+    pub fn counts(&self) -> (usize, usize, usize) {
+        (
+            self.world.bodies.len(),
+            self.world.impulse_joints.len(),
+            self.world.multibody_joints.multibodies().count(),
+        )
+    }
+}
+
+/// Adds a chain of balls for each balloon's ribbon, from UP's start points.
+fn add_ribbons(
+    world: &mut PhysicsWorld,
+    data: &SceneData,
+    balloons: &[RigidBodyHandle],
+    ribbons: &BenchRibbons,
+    joints: RapierJoints,
+) -> Result<RapierRibbons> {
+    let def = &data.def;
+    let segments = ribbons.segments as usize;
+    if ribbons.starts.len() != balloons.len() {
+        return Err(anyhow!(
+            "{} ribbons for {} balloons",
+            ribbons.starts.len(),
+            balloons.len()
+        ));
+    }
+    let segment = ribbons.segment_length();
+    let mass = ribbons.point_mass();
+    let weight = rvec(def.gravity * mass);
+    let g = def.gravity.length();
+    // UP's drag across the ribbon, ½·ρ·C·A on each point's share of ribbon
+    // (the last point carries half a segment), as linear damping.
+    let across = |share: f32| {
+        0.5 * data.air_density() * NORMAL_DRAG_COEFFICIENT * share * segment * RIBBON_WIDTH
+    };
+    let damping_inner = matched_linear_damping(mass, across(1.0), g);
+    let damping_end = matched_linear_damping(mass, across(0.5), g);
+    // A 2.5 mm ball's own inertia, 2/5·m·r², is 1/1400 of the segment's as
+    // a rod, m·ℓ²/12: with the joint's anchor a segment away, the joint then
+    // turns the ball instead of moving it and the chain flies apart within a
+    // second. Each ball gets the inertia of the segment it stands for.
+    let inertia = mass * segment * segment / 12.0;
+    let link = MassProperties::new(RVec::ZERO, mass, RVec::splat(inertia));
+    let groups = InteractionGroups::new(Group::GROUP_2, Group::GROUP_1, InteractionTestMode::And);
+    let mut balls = Vec::with_capacity(balloons.len() * segments);
+    for (&balloon, start) in balloons.iter().zip(&ribbons.starts) {
+        if start.len() != segments + 1 {
+            return Err(anyhow!(
+                "a ribbon of {} points, expected {}",
+                start.len(),
+                segments + 1
+            ));
+        }
+        let mut previous = balloon;
+        let mut anchor = rvec(ribbons.knot);
+        for i in 1..=segments {
+            // The ball's +Y points at the point before it: its joint anchor.
+            let up = (start[i - 1] - start[i]).try_normalize().unwrap_or(Vec3::Y);
+            let rotation = Quat::from_rotation_arc(Vec3::Y, up);
+            let body = RigidBodyBuilder::dynamic()
+                .pose(RPose::from_parts(rvec(start[i]), rquat(rotation)))
+                .additional_mass_properties(link)
+                .linear_damping(if i == segments {
+                    damping_end
+                } else {
+                    damping_inner
+                })
+                .ccd_enabled(def.enable_continuous)
+                .can_sleep(def.enable_sleep)
+                .build();
+            let handle = world.bodies.insert(body);
+            let collider = ColliderBuilder::ball(RIBBON_RADIUS)
+                .density(0.0)
+                .friction(ROOM_FRICTION)
+                .restitution(0.0)
+                .collision_groups(groups)
+                .build();
+            world
+                .colliders
+                .insert_with_parent(collider, handle, &mut world.bodies);
+            if let Some(b) = world.bodies.get_mut(handle) {
+                b.recompute_mass_properties_from_colliders(&world.colliders);
+                // Constant: the user force stays until reset.
+                b.add_force(weight, false);
+                let activation = b.activation_mut();
+                activation.normalized_linear_threshold = def.sleep_linear_speed;
+                activation.time_until_sleep = def.time_to_sleep;
+            }
+            let joint = SphericalJointBuilder::new()
+                .local_anchor1(anchor)
+                .local_anchor2(RVec::new(0.0, segment, 0.0))
+                .build();
+            match joints {
+                RapierJoints::Impulse => {
+                    world.impulse_joints.insert(previous, handle, joint, true);
+                }
+                RapierJoints::Multibody => {
+                    world
+                        .multibody_joints
+                        .insert(previous, handle, joint, true)
+                        .ok_or_else(|| anyhow!("Rapier refused a multibody joint"))?;
+                }
+            }
+            balls.push(handle);
+            previous = handle;
+            anchor = RVec::ZERO;
+        }
+    }
+    Ok(RapierRibbons {
+        balls,
+        segments,
+        knot: ribbons.knot,
+        length: ribbons.length,
+    })
 }
 
 impl Engine for RapierEngine {
@@ -285,7 +525,12 @@ impl Engine for RapierEngine {
     }
 
     fn awake_count(&self) -> usize {
-        self.world.islands.num_active_bodies()
+        // Balloons only: a ribbon's balls are bodies too.
+        self.bodies
+            .iter()
+            .filter_map(|&h| self.world.bodies.get(h))
+            .filter(|b| !b.is_sleeping())
+            .count()
     }
 
     fn total_translational_mass(&self) -> f64 {
@@ -294,5 +539,23 @@ impl Engine for RapierEngine {
             .filter_map(|&h| self.world.bodies.get(h))
             .map(|b| f64::from(b.mass()))
             .sum()
+    }
+
+    fn ribbon_count(&self) -> usize {
+        self.ribbons.as_ref().map_or(0, |_| self.bodies.len())
+    }
+
+    fn max_ribbon_stretch(&self, scratch: &mut Vec<Vec3>) -> Option<f32> {
+        let length = self.ribbons.as_ref()?.length;
+        let mut worst = f32::NEG_INFINITY;
+        for i in 0..self.bodies.len() {
+            self.ribbon_points(i, scratch);
+            let s = stretch(scratch.iter().copied(), length);
+            if s.is_nan() {
+                return Some(s);
+            }
+            worst = worst.max(s);
+        }
+        Some(worst)
     }
 }

@@ -29,11 +29,15 @@ pub const METHOD: &str = include_str!("method.md");
 
 pub const BEGIN: &str = "<!-- up-bench report: results begin -->";
 pub const END: &str = "<!-- up-bench report: results end -->";
+/// The ribbons' results (`report --ribbons`), after the main results.
+pub const RIBBONS_BEGIN: &str = "<!-- up-bench report: ribbon results begin -->";
+pub const RIBBONS_END: &str = "<!-- up-bench report: ribbon results end -->";
 
 pub struct ReportOptions {
     pub sizes: Vec<u64>,
     pub up_only_sizes: Vec<u64>,
-    pub steps: Option<u64>,
+    /// Steps: one for every size, or one per size of `sizes` then `up_only_sizes`.
+    pub steps: Vec<u64>,
     /// Threads for UP where both engines run (Rapier runs on one).
     pub threads: usize,
     /// Threads for UP where it runs alone.
@@ -80,7 +84,27 @@ pub fn parse_results(text: &str) -> Result<Vec<EngineResult>> {
     Ok(results)
 }
 
-fn bench_step(exe: &str, n: u64, engines: &str, threads: usize, opts: &ReportOptions) -> Step {
+/// The steps of the `i`-th size: `--steps` K for all, or its own of a list.
+pub fn steps_of(steps: &[u64], i: usize) -> Option<u64> {
+    match steps {
+        [] => None,
+        [all] => Some(*all),
+        each => each.get(i).copied(),
+    }
+}
+
+/// `--steps` must give one count, or one per size.
+pub fn check_steps(steps: &[u64], sizes: usize) -> Result<()> {
+    if steps.len() > 1 && steps.len() != sizes {
+        bail!(
+            "--steps: expected one count, or one per size ({sizes}), found {}",
+            steps.len()
+        );
+    }
+    Ok(())
+}
+
+fn bench_step(exe: &str, n: u64, engines: &str, threads: usize, steps: Option<u64>) -> Step {
     let mut args = vec![
         "--balloons".to_string(),
         n.to_string(),
@@ -90,7 +114,7 @@ fn bench_step(exe: &str, n: u64, engines: &str, threads: usize, opts: &ReportOpt
         threads.to_string(),
         "--json".into(),
     ];
-    if let Some(steps) = opts.steps {
+    if let Some(steps) = steps {
         args.extend(["--steps".to_string(), steps.to_string()]);
     }
     Step {
@@ -100,14 +124,14 @@ fn bench_step(exe: &str, n: u64, engines: &str, threads: usize, opts: &ReportOpt
     }
 }
 
-fn node_step(script: &Path, n: u64, opts: &ReportOptions) -> Step {
+fn node_step(script: &Path, n: u64, steps: Option<u64>) -> Step {
     let mut args = vec![
         script.display().to_string(),
         "--balloons".to_string(),
         n.to_string(),
         "--json".into(),
     ];
-    if let Some(steps) = opts.steps {
+    if let Some(steps) = steps {
         args.extend(["--steps".to_string(), steps.to_string()]);
     }
     Step {
@@ -123,21 +147,33 @@ fn node_version() -> Option<String> {
 }
 
 pub fn report(opts: &ReportOptions) -> Result<()> {
+    check_steps(&opts.steps, opts.sizes.len() + opts.up_only_sizes.len())?;
     let exe = std::env::current_exe().context("finding the up-bench executable")?;
     let exe = exe.display().to_string();
     let mut steps: Vec<Step> = opts
         .sizes
         .iter()
-        .map(|&n| bench_step(&exe, n, "up,rapier", opts.threads, opts))
+        .enumerate()
+        .map(|(i, &n)| bench_step(&exe, n, "up,rapier", opts.threads, steps_of(&opts.steps, i)))
         .collect();
-    steps.extend(
-        opts.up_only_sizes
-            .iter()
-            .map(|&n| bench_step(&exe, n, "up", opts.up_only_threads, opts)),
-    );
+    let first = opts.sizes.len();
+    steps.extend(opts.up_only_sizes.iter().enumerate().map(|(i, &n)| {
+        let k = steps_of(&opts.steps, first + i);
+        bench_step(&exe, n, "up", opts.up_only_threads, k)
+    }));
     if let Some(script) = &opts.node {
-        steps.extend(opts.sizes.iter().map(|&n| node_step(script, n, opts)));
+        steps.extend(
+            opts.sizes
+                .iter()
+                .enumerate()
+                .map(|(i, &n)| node_step(script, n, steps_of(&opts.steps, i))),
+        );
     }
+    // The ribbons' results of an earlier `report --ribbons` stay.
+    let kept = std::fs::read_to_string(&opts.markdown).ok();
+    let ribbons = kept
+        .as_deref()
+        .and_then(|md| section_of(md, RIBBONS_BEGIN, RIBBONS_END));
     let mut results = Vec::new();
     for step in &steps {
         results.extend(run_child(step)?);
@@ -145,7 +181,7 @@ pub fn report(opts: &ReportOptions) -> Result<()> {
     let commands: Vec<String> = steps.iter().map(|s| s.shown.clone()).collect();
     let node = opts.node.as_ref().and_then(|_| node_version());
     let section = results_section(&results, &commands, node.as_deref(), &opts.svg);
-    write_whole(&opts.markdown, &document(&section))
+    write_whole(&opts.markdown, &document(&section, ribbons))
         .with_context(|| format!("writing {}", opts.markdown.display()))?;
     plot_svg(&opts.svg, &series(&results))?;
     eprintln!(
@@ -285,29 +321,45 @@ pub fn results_section(
     md
 }
 
-/// The whole markdown: the header, the method, then `section` (`results_section`).
-pub fn document(section: &str) -> String {
-    format!("{HEADER}{METHOD}{}\n", section.trim_end())
+/// The whole markdown: the header, the method, then `section`
+/// (`results_section`) and the ribbons' results if there are any
+/// (`ribbon_report::ribbon_section`).
+pub fn document(section: &str, ribbons: Option<&str>) -> String {
+    let ribbons = ribbons.map_or(String::new(), |r| format!("\n{}\n", r.trim_end()));
+    format!("{HEADER}{METHOD}{}\n{ribbons}", section.trim_end())
+}
+
+/// The part of `markdown` from `begin` to `end`, markers included.
+pub fn section_of<'a>(markdown: &'a str, begin: &str, end: &str) -> Option<&'a str> {
+    let from = markdown.find(begin)?;
+    let to = markdown[from..].find(end)? + from + end.len();
+    Some(&markdown[from..to])
 }
 
 /// The results section of a document `document` wrote, markers included.
 pub fn results_of(markdown: &str) -> Option<&str> {
-    let begin = markdown.find(BEGIN)?;
-    let end = markdown[begin..].find(END)? + begin + END.len();
-    Some(&markdown[begin..end])
+    section_of(markdown, BEGIN, END)
+}
+
+/// The main results of the document at `path`, which must have them.
+pub fn main_results(path: &Path, markdown: &str) -> Result<String> {
+    match results_of(markdown) {
+        Some(section) => Ok(section.to_string()),
+        None => bail!(
+            "{}: no results to keep (expected a section from {BEGIN} to {END}); run `up-bench report`",
+            path.display()
+        ),
+    }
 }
 
 /// Writes the method again around the results already in `path`.
 pub fn keep_results(path: &Path) -> Result<()> {
     let old =
         std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
-    let Some(section) = results_of(&old) else {
-        bail!(
-            "{}: no results to keep (expected a section from {BEGIN} to {END}); run `up-bench report`",
-            path.display()
-        );
-    };
-    write_whole(path, &document(section)).with_context(|| format!("writing {}", path.display()))
+    let section = main_results(path, &old)?;
+    let ribbons = section_of(&old, RIBBONS_BEGIN, RIBBONS_END);
+    write_whole(path, &document(&section, ribbons))
+        .with_context(|| format!("writing {}", path.display()))
 }
 
 #[cfg(test)]
@@ -317,15 +369,24 @@ mod tests {
     #[test]
     fn the_document_is_the_method_then_the_results() {
         let section = format!("{BEGIN}\n## Latest results\n\nnew table\n{END}\n");
-        let doc = document(&section);
+        let doc = document(&section, None);
         assert!(doc.starts_with(HEADER));
         assert_eq!(doc[HEADER.len()..].find(METHOD), Some(0));
         assert!(doc.ends_with(&format!("{END}\n")));
         assert_eq!(results_of(&doc), Some(section.trim_end()));
         // Written again around its own results, it is the same text.
-        assert_eq!(document(results_of(&doc).unwrap()), doc);
+        assert_eq!(document(results_of(&doc).unwrap(), None), doc);
         assert_eq!(results_of("# no results\n"), None);
         assert_eq!(results_of(&format!("{END}\n{BEGIN}\n")), None);
+        // The ribbons' results come after the main ones, and are read back apart.
+        let ribbons = format!("{RIBBONS_BEGIN}\n## Ribbons\n{RIBBONS_END}");
+        let doc = document(&section, Some(&ribbons));
+        assert!(doc.ends_with(&format!("{END}\n\n{ribbons}\n")), "{doc}");
+        assert_eq!(results_of(&doc), Some(section.trim_end()));
+        assert_eq!(
+            section_of(&doc, RIBBONS_BEGIN, RIBBONS_END),
+            Some(ribbons.as_str())
+        );
     }
 
     /// docs/benchmarks.md is what the generator writes: the method as in
@@ -335,8 +396,9 @@ mod tests {
         let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/benchmarks.md");
         let committed = std::fs::read_to_string(&path).unwrap();
         let section = results_of(&committed).expect("docs/benchmarks.md has its results");
+        let ribbons = section_of(&committed, RIBBONS_BEGIN, RIBBONS_END);
         assert!(
-            committed == document(section),
+            committed == document(section, ribbons),
             "docs/benchmarks.md differs from crates/up-bench/src/method.md and its results: \
              run `up-bench report --keep-results`"
         );
@@ -354,7 +416,18 @@ mod tests {
         )
         .unwrap();
         keep_results(&path).unwrap();
-        assert_eq!(std::fs::read_to_string(&path).unwrap(), document(&section));
+        assert_eq!(
+            std::fs::read_to_string(&path).unwrap(),
+            document(&section, None)
+        );
+        // The ribbons' results are kept too.
+        let ribbons = format!("{RIBBONS_BEGIN}\n| r | 2 |\n{RIBBONS_END}");
+        std::fs::write(&path, format!("# old\n{section}\n{ribbons}\n## more\n")).unwrap();
+        keep_results(&path).unwrap();
+        assert_eq!(
+            std::fs::read_to_string(&path).unwrap(),
+            document(&section, Some(&ribbons))
+        );
         assert!(!dir.join("b.md.partial").exists());
         // A file without results is refused by name and left as it was.
         std::fs::write(&path, "# no results\n").unwrap();

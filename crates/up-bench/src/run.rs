@@ -4,6 +4,12 @@
 //! poses at every step (see `measure`), measure overlap and escapes from them
 //! once the timed loop is done, and take each engine's peak memory from a
 //! child process that runs it alone.
+//!
+//! With ribbons (`--ribbons`), UP and Rapier both hold them, and a third
+//! engine joins the same loop: UP on the same scene without ribbons, for the
+//! cost of the ribbons themselves. Every ribbon's stretch is measured after
+//! every step (outside the timed step: a pass over the points, too small to
+//! record them all instead).
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -16,7 +22,8 @@ use up_geom::Pose;
 use crate::engine::{Engine, EngineKind};
 use crate::measure::{measure_every, measure_frames};
 use crate::output::EngineResult;
-use crate::rapier_engine::{RapierEngine, RapierShape};
+use crate::rapier_engine::{RapierEngine, RapierJoints, RapierShape};
+use crate::ribbons::{tie_ribbons, BenchRibbons};
 use crate::rss::peak_rss_mb;
 use crate::scene_data::SceneData;
 use crate::stats::{mean, median, quantile, settled};
@@ -25,6 +32,11 @@ use crate::up_engine::UpEngine;
 
 /// Most steps a run takes.
 pub const MAX_STEPS: u64 = 1_000_000;
+
+/// s: the start of a run with ribbons, reported apart. The scene lays each
+/// ribbon straight down from its knot, through the balloons packed below
+/// it, and both engines first push the ribbons out of them.
+pub const RIBBON_START_S: f32 = 1.0;
 
 #[derive(Clone, Debug)]
 pub struct RunOptions {
@@ -39,6 +51,10 @@ pub struct RunOptions {
     pub rss: bool,
     /// Where to write every step's time (`step_times`), if anywhere.
     pub step_times: Option<PathBuf>,
+    /// Tie the default ribbon to every balloon (`ribbons`), in every engine.
+    pub ribbons: bool,
+    /// How Rapier joints a ribbon's balls.
+    pub rapier_joints: RapierJoints,
 }
 
 /// What a memory probe child prints.
@@ -59,20 +75,92 @@ pub fn default_steps(top_m: f32, dt: f32) -> u64 {
     ((seconds / dt).ceil() as u64).max(600)
 }
 
-fn build_engine(
+/// One engine of a run: which, and whether its balloons have ribbons.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Slot {
     kind: EngineKind,
+    ribbons: bool,
+}
+
+/// The engines a run steps: those asked for, with ribbons if asked, and then
+/// UP without ribbons when UP runs with them.
+fn slots(opts: &RunOptions) -> Vec<Slot> {
+    let mut slots: Vec<Slot> = opts
+        .engines
+        .iter()
+        .map(|&kind| Slot {
+            kind,
+            ribbons: opts.ribbons,
+        })
+        .collect();
+    if opts.ribbons && opts.engines.contains(&EngineKind::Up) {
+        slots.push(Slot {
+            kind: EngineKind::Up,
+            ribbons: false,
+        });
+    }
+    slots
+}
+
+/// UP's world, taken once, with the ribbons (built once, from it) or without.
+struct UpWorlds {
+    with_ribbons: Option<up_physics::World>,
+    ribbons: Option<BenchRibbons>,
+}
+
+fn build_engine(
+    slot: Slot,
     data: &SceneData,
-    up_world: &mut Option<up_physics::World>,
+    worlds: &mut UpWorlds,
     opts: &RunOptions,
 ) -> Result<Box<dyn Engine>> {
-    Ok(match kind {
-        EngineKind::Up => {
-            let world = up_world
+    Ok(match (slot.kind, slot.ribbons) {
+        (EngineKind::Up, true) => {
+            let world = worlds
+                .with_ribbons
                 .take()
                 .context("UP may appear only once in --engines")?;
             Box::new(UpEngine::new(world, opts.threads)?)
         }
-        EngineKind::Rapier => Box::new(RapierEngine::new(data, opts.rapier_shape)?),
+        (EngineKind::Up, false) if opts.ribbons => {
+            let built = up_scene::build::build_world(&data.scene)
+                .context("building the benchmark scene again, without ribbons")?;
+            Box::new(UpEngine::new(built.world, opts.threads)?)
+        }
+        (EngineKind::Up, false) => {
+            let world = worlds
+                .with_ribbons
+                .take()
+                .context("UP may appear only once in --engines")?;
+            Box::new(UpEngine::new(world, opts.threads)?)
+        }
+        (EngineKind::Rapier, true) => {
+            let ribbons = worlds.ribbons.as_ref().context("ribbons not tied")?;
+            Box::new(RapierEngine::with_ribbons(
+                data,
+                opts.rapier_shape,
+                ribbons,
+                opts.rapier_joints,
+            )?)
+        }
+        (EngineKind::Rapier, false) => Box::new(RapierEngine::new(data, opts.rapier_shape)?),
+    })
+}
+
+/// UP's world from the scene builder, with ribbons tied if the run has them.
+fn up_worlds(
+    data: &SceneData,
+    mut world: up_physics::World,
+    opts: &RunOptions,
+) -> Result<UpWorlds> {
+    let ribbons = if opts.ribbons {
+        Some(tie_ribbons(&mut world, data.knot)?)
+    } else {
+        None
+    };
+    Ok(UpWorlds {
+        with_ribbons: Some(world),
+        ribbons,
     })
 }
 
@@ -96,19 +184,25 @@ fn check(opts: &RunOptions) -> Result<()> {
 pub fn run(opts: &RunOptions) -> Result<Vec<EngineResult>> {
     check(opts)?;
     let (data, built) = SceneData::build(opts.balloons, opts.seed)?;
-    let mut up_world = Some(built.world);
-    let mut engines = opts
-        .engines
+    let mut worlds = up_worlds(&data, built.world, opts)?;
+    let slots = slots(opts);
+    let mut engines = slots
         .iter()
-        .map(|&kind| build_engine(kind, &data, &mut up_world, opts))
+        .map(|&slot| build_engine(slot, &data, &mut worlds, opts))
         .collect::<Result<Vec<_>>>()?;
-    drop(up_world);
+    drop(worlds);
 
     let steps = opts.steps as usize;
     let every = measure_every(opts.balloons, opts.steps);
     let mut times: Vec<Vec<f64>> = vec![Vec::with_capacity(steps); engines.len()];
     let mut frames: Vec<Vec<Vec<Pose>>> = vec![Vec::new(); engines.len()];
     let mut poses: Vec<Pose> = Vec::new();
+    let mut stretch: Vec<Option<f32>> = vec![None; engines.len()];
+    let mut stretch_late: Vec<Option<f32>> = vec![None; engines.len()];
+    let mut stretch_step: Vec<u64> = vec![0; engines.len()];
+    let late_from = (RIBBON_START_S / data.def.dt).round() as u64;
+    let mut stages: Vec<Vec<(&'static str, f64)>> = vec![Vec::new(); engines.len()];
+    let mut scratch = Vec::new();
     let order: Vec<usize> = (0..engines.len()).collect();
     for step in 1..=opts.steps {
         // Alternate who goes first.
@@ -122,6 +216,21 @@ pub fn run(opts: &RunOptions) -> Result<Vec<EngineResult>> {
             let started = Instant::now();
             engines[i].step();
             times[i].push(started.elapsed().as_secs_f64() * 1e3);
+        }
+        for (i, engine) in engines.iter().enumerate() {
+            if let Some(now) = engine.max_ribbon_stretch(&mut scratch) {
+                let worst = worse(stretch[i], now);
+                if Some(worst) != stretch[i] {
+                    stretch_step[i] = step;
+                }
+                stretch[i] = Some(worst);
+                if step > late_from {
+                    stretch_late[i] = Some(worse(stretch_late[i], now));
+                }
+            }
+            if let Some(counters) = engine.counters() {
+                add_stages(&mut stages[i], &counters.stages());
+            }
         }
         if step % every == 0 || step == opts.steps {
             for (i, engine) in engines.iter().enumerate() {
@@ -139,8 +248,9 @@ pub fn run(opts: &RunOptions) -> Result<Vec<EngineResult>> {
     let mut results = Vec::with_capacity(engines.len());
     for (i, engine) in engines.iter().enumerate() {
         let measured = measure_frames(&data, &std::mem::take(&mut frames[i]))?;
-        let kind = opts.engines[i];
-        let rss = if opts.rss {
+        let Slot { kind, ribbons } = slots[i];
+        // Memory is probed for the engines asked for, not UP's bare reference.
+        let rss = if opts.rss && ribbons == opts.ribbons {
             Some(probe_in_child(kind, opts)?)
         } else {
             None
@@ -169,9 +279,39 @@ pub fn run(opts: &RunOptions) -> Result<Vec<EngineResult>> {
                 .map(|r| (r.peak_rss_mb - r.baseline_rss_mb) * 1e6 / opts.balloons as f64),
             room_width_m: data.layout.room_width_m,
             rapier_shape: (kind == EngineKind::Rapier).then(|| opts.rapier_shape.name().into()),
+            ribbons: engine.ribbon_count(),
+            max_ribbon_stretch: stretch[i],
+            max_ribbon_stretch_step: stretch[i].map(|_| stretch_step[i]),
+            max_ribbon_stretch_after_start: stretch_late[i],
+            rapier_joints: (kind == EngineKind::Rapier && ribbons)
+                .then(|| opts.rapier_joints.name().into()),
+            stage_ms_mean: (!stages[i].is_empty()).then(|| {
+                stages[i]
+                    .iter()
+                    .map(|&(name, total)| (name.to_string(), total / opts.steps as f64))
+                    .collect()
+            }),
         });
     }
     Ok(results)
+}
+
+/// The larger stretch, NaN (a ribbon gone non-finite) the largest.
+fn worse(so_far: Option<f32>, now: f32) -> f32 {
+    match so_far {
+        Some(s) if s.is_nan() || s >= now => s,
+        _ => now,
+    }
+}
+
+/// Adds a step's stage times to the run's totals.
+fn add_stages(totals: &mut Vec<(&'static str, f64)>, step: &[(&'static str, f64)]) {
+    if totals.is_empty() {
+        totals.extend(step.iter().map(|&(name, _)| (name, 0.0)));
+    }
+    for (total, &(_, ms)) in totals.iter_mut().zip(step) {
+        total.1 += ms;
+    }
 }
 
 /// The memory probe, run in a child: builds the scene and `kind` alone, takes
@@ -180,14 +320,17 @@ pub fn rss_probe(kind: EngineKind, opts: &RunOptions) -> Result<RssProbe> {
     check(opts)?;
     let baseline_rss_mb = peak_rss_mb().context("reading /proc/self/status")?;
     let (data, built) = SceneData::build(opts.balloons, opts.seed)?;
-    let mut engine: Box<dyn Engine> = match kind {
-        EngineKind::Up => Box::new(UpEngine::new(built.world, opts.threads)?),
-        EngineKind::Rapier => {
-            // UP's world is not kept while Rapier runs.
-            drop(built);
-            Box::new(RapierEngine::new(&data, opts.rapier_shape)?)
-        }
+    let mut worlds = up_worlds(&data, built.world, opts)?;
+    if kind == EngineKind::Rapier {
+        // UP's world is not kept while Rapier runs.
+        worlds.with_ribbons = None;
+    }
+    let slot = Slot {
+        kind,
+        ribbons: opts.ribbons,
     };
+    let mut engine = build_engine(slot, &data, &mut worlds, opts)?;
+    drop(worlds);
     for _ in 0..opts.steps {
         engine.step();
     }
@@ -207,6 +350,8 @@ fn probe_in_child(kind: EngineKind, opts: &RunOptions) -> Result<RssProbe> {
         .args(["--seed", &opts.seed.to_string()])
         .args(["--threads", &opts.threads.to_string()])
         .args(["--rapier-shape", opts.rapier_shape.name()])
+        .args(["--rapier-joints", opts.rapier_joints.name()])
+        .args(opts.ribbons.then_some("--ribbons"))
         .output()
         .with_context(|| format!("running {}", exe.display()))?;
     if !output.status.success() {

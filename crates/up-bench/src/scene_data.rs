@@ -28,6 +28,9 @@ pub struct SceneData {
     pub leaves: Vec<Sphere>,
     /// Start pose of each balloon's body frame.
     pub start_poses: Vec<Pose>,
+    /// Body frame, m: where a ribbon is tied, the bottom of the knot that
+    /// closes the neck (on the axis, `knot_radius` below the knot ball's centre).
+    pub knot: Vec3,
 }
 
 impl SceneData {
@@ -45,6 +48,12 @@ impl SceneData {
         let added_mass = world.added_mass(shape_id).context("missing shape")?;
         let leaves = shape.tree.leaf_spheres().collect();
         let start_poses = world.poses().map(|(_, pose)| pose).collect();
+        let model = built
+            .balloon_models
+            .first()
+            .context("the benchmark scene has no balloon model")?;
+        let dims = &model.mesh.dimensions;
+        let knot = dims.knot_center - Vec3::Y * dims.knot_radius;
         let data = SceneData {
             def: world.def().clone(),
             room: built.room.clone(),
@@ -52,6 +61,7 @@ impl SceneData {
             added_mass,
             leaves,
             start_poses,
+            knot,
             scene,
             layout,
         };

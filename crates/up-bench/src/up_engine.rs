@@ -2,11 +2,13 @@
 //! the requested size (the engine's own parallel stages use it).
 
 use anyhow::{Context, Result};
+use glam::Vec3;
 use rayon::ThreadPool;
 use up_geom::Pose;
-use up_physics::World;
+use up_physics::{Counters, World};
 
 use crate::engine::Engine;
+use crate::ribbons::stretch;
 
 pub struct UpEngine {
     world: World,
@@ -62,5 +64,35 @@ impl Engine for UpEngine {
             .filter_map(|&id| self.world.effective_mass(id))
             .map(f64::from)
             .sum()
+    }
+
+    fn ribbon_count(&self) -> usize {
+        self.world.ribbon_count()
+    }
+
+    fn max_ribbon_stretch(&self, _scratch: &mut Vec<Vec3>) -> Option<f32> {
+        let world = &self.world;
+        let ids = world.ribbon_ids();
+        if ids.is_empty() {
+            return None;
+        }
+        let mut worst = f32::NEG_INFINITY;
+        for id in ids {
+            let (Some(points), Some((length, _))) =
+                (world.ribbon_points(id), world.ribbon_length_and_mass(id))
+            else {
+                continue;
+            };
+            let s = stretch(points.iter().copied(), length);
+            if s.is_nan() {
+                return Some(s);
+            }
+            worst = worst.max(s);
+        }
+        Some(worst)
+    }
+
+    fn counters(&self) -> Option<Counters> {
+        Some(*self.world.counters())
     }
 }
