@@ -40,10 +40,10 @@ pub const RIBBON_WIDTH: f32 = 0.005;
 pub const WEIGHT_RADIUS: f32 = 0.025;
 /// Drag coefficient of the ribbon moving across its length at high Reynolds
 /// numbers (a flat strip broadside, ≈ 1.2; a guess for a strip that twists).
-/// Slow, the air is viscous: the coefficient grows as White's fit for a
-/// cylinder across a flow, C = C∞ + 10·Re^(−2/3) (Re on the width), which
-/// is what stills a ribbon's last swing (quadratic drag alone would take
-/// minutes to damp a 1 cm/s sway).
+/// Slow, the air is viscous: the coefficient grows as C = C∞ + 10/Re (Re on
+/// the width; the order of Lamb's drag on a cylinder at Re ≈ 1, a viscous
+/// force linear in the speed), which is what stills a ribbon's last swing
+/// (quadratic drag alone would take minutes to damp a 1 cm/s sway).
 pub const NORMAL_DRAG_COEFFICIENT: f32 = 1.2;
 /// Viscosity of air at 20 °C, Pa·s.
 pub const AIR_VISCOSITY: f32 = 1.81e-5;

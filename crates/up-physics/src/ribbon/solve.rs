@@ -62,8 +62,8 @@ pub(crate) struct ActiveRibbon {
     pub inv_mass: Vec<f32>,
     /// Per point: drag across and along the ribbon (½·ρ·C∞·A, kg/m), and
     /// across at low Reynolds numbers: the drag factor times the speed is
-    /// `drag[0]·|v| + drag[2]·|v|^(1/3) + drag[3]`.
-    pub drag: Vec<[f32; 4]>,
+    /// `drag[0]·|v| + drag[2]` (a viscous force, linear in the speed).
+    pub drag: Vec<[f32; 3]>,
     /// Per point: its radius, m.
     pub radius: Vec<f32>,
     /// Where each point began the substep.
@@ -114,16 +114,15 @@ impl ActiveRibbon {
             let nu = AIR_VISCOSITY / air_density;
             let mut across = q * NORMAL_DRAG_COEFFICIENT;
             let along = q * TANGENT_DRAG_COEFFICIENT;
-            // 10·Re^(−2/3)·|v| = 10·(ν/w)^(2/3)·|v|^(1/3).
-            let viscous = q * 10.0 * (nu / RIBBON_WIDTH).powf(2.0 / 3.0);
-            let mut stokes = 0.0;
+            // 10/Re·|v| = 10·ν/w.
+            let mut viscous = q * 10.0 * nu / RIBBON_WIDTH;
             if i == n && ribbon.weight > 0.0 {
                 let disc = 0.5 * air_density * std::f32::consts::PI * WEIGHT_RADIUS * WEIGHT_RADIUS;
                 across += disc * WEIGHT_DRAG_COEFFICIENT;
                 // 24/Re·|v| = 24·ν/D.
-                stokes = disc * 24.0 * nu / (2.0 * WEIGHT_RADIUS);
+                viscous += disc * 24.0 * nu / (2.0 * WEIGHT_RADIUS);
             }
-            self.drag.push([across, along, viscous, stokes]);
+            self.drag.push([across, along, viscous]);
             self.radius.push(ribbon.radius(i));
         }
         // Last: a ribbon without its points has no segments to ask about.
@@ -305,11 +304,10 @@ fn fall(r: &mut ActiveRibbon, gravity: Vec3, h: f32) {
         let t = if len > 1e-9 { along / len } else { Vec3::ZERO };
         let v_along = v.dot(t) * t;
         let v_across = v - v_along;
-        let [k_across, k_along, viscous, stokes] = r.drag[i];
+        let [k_across, k_along, viscous] = r.drag[i];
         let w = h * r.inv_mass[i];
         let v_along = v_along / (1.0 + w * k_along * v_along.norm());
-        let speed = v_across.norm();
-        let across = k_across * speed + viscous * speed.cbrt() + stokes;
+        let across = k_across * v_across.norm() + viscous;
         let v_across = v_across / (1.0 + w * across);
         r.velocities[i] = v_along + v_across;
         r.points[i] += h * r.velocities[i];
