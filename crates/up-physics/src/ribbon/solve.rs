@@ -4,17 +4,20 @@
 //! 1. each point falls under gravity and air drag (drag taken implicitly, as
 //!    the bodies' is, across and along the ribbon apart, viscous when slow);
 //! 2. points are pushed out of the balloons near the ribbon and out of the room;
-//! 3. the chain, knot included, is brought back to its lengths in one direct
-//!    solve (`chain`), and the room's push repeated for what that moved;
-//! 4. each point's velocity is what it moved over the substep.
+//! 3. the chain, knot included, is brought back to its lengths by direct
+//!    solves (`chain`; follow-the-leader if a jerk outruns them), and the
+//!    room's push repeated for what that moved;
+//! 4. each point's velocity is what it moved over the substep (less any
+//!    bounce off a balloon).
 //!
 //! The ribbons read the bodies' states and write only their own points, so
 //! they run on rayon's threads in any split; their pulls on their balloons
 //! (one ribbon a balloon) and the pushes back of the balloons they touched
-//! are then applied in ribbon order, as impulses on the balloons' velocities:
-//! the contacts' relax pass and friction then see them, where a position
-//! move would slip past friction and let a pile of balloons on ribbons creep
-//! for ever.
+//! are then applied in ribbon order. A pull moves its balloon's centre but
+//! turns it only through its angular velocity (`BodyState::apply_pull`); the
+//! pushes back are impulses on the velocities: what the contacts' relax pass
+//! and friction see, where a direct turn would slip past friction and let a
+//! pile of balloons on ribbons creep for ever.
 
 use std::ops::Range;
 

@@ -306,8 +306,8 @@ impl World {
     }
 
     /// Takes the awake ribbons' points for the solve, and finds the room's
-    /// triangles and the balloons near each. Ribbons of sleepers stay still;
-    /// one that an awake balloon reaches wakes its balloon first.
+    /// triangles and the balloons near each. Ribbons of sleepers stay still
+    /// (one that a moving balloon reached was woken before the broadphase).
     pub(super) fn prepare_ribbons(&mut self) {
         let stage = &mut self.stages.ribbons;
         stage.active.truncate(0);
