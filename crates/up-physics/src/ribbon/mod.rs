@@ -23,6 +23,8 @@ pub(crate) mod collide;
 pub(crate) mod nearby;
 pub(crate) mod solve;
 
+use std::collections::BTreeMap;
+
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
@@ -173,6 +175,9 @@ impl Ribbon {
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub(crate) struct Ribbons {
     slots: Slots<Ribbon>,
+    /// Each balloon's ribbon (a balloon holds at most one), ordered so that
+    /// snapshots come out the same.
+    by_body: BTreeMap<BodyId, RibbonId>,
     /// The largest stretch any ribbon ended a step with since the world was
     /// made (`World::ribbon_max_stretch`).
     pub max_stretch: f32,
@@ -180,8 +185,11 @@ pub(crate) struct Ribbons {
 
 impl Ribbons {
     pub fn add(&mut self, ribbon: Ribbon) -> RibbonId {
+        let body = ribbon.body;
         let (index, generation) = self.slots.add(ribbon);
-        RibbonId { index, generation }
+        let id = RibbonId { index, generation };
+        self.by_body.insert(body, id);
+        id
     }
 
     pub fn get(&self, id: RibbonId) -> Option<&Ribbon> {
@@ -189,12 +197,14 @@ impl Ribbons {
     }
 
     pub fn remove(&mut self, id: RibbonId) -> Option<Ribbon> {
-        self.slots.remove(id.index, id.generation)
+        let ribbon = self.slots.remove(id.index, id.generation)?;
+        self.by_body.remove(&ribbon.body);
+        Some(ribbon)
     }
 
     /// The ribbon tied to `body`.
     pub fn on(&self, body: BodyId) -> Option<RibbonId> {
-        self.iter().find(|(_, r)| r.body == body).map(|(id, _)| id)
+        self.by_body.get(&body).copied()
     }
 
     /// Live ribbons in slot order (the solver's order).

@@ -160,7 +160,10 @@ pub(crate) struct SubstepInput<'a> {
 /// The ribbons' buffers for a step.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct RibbonStage {
+    /// The awake ribbons are the first `awake`; the rest keep their buffers
+    /// for the steps in which more are awake (no allocation a step).
     pub active: Vec<ActiveRibbon>,
+    pub awake: usize,
     /// Room triangles and balloons near each active ribbon, back to back.
     pub triangles: Vec<NearTriangle>,
     pub bodies: Vec<u32>,
@@ -170,6 +173,10 @@ pub(crate) struct RibbonStage {
     pub bound_center: Vec<Vec3>,
     pub bound_radius: Vec<f32>,
     pub awake_bodies: Vec<u32>,
+    /// The wake pass's buffers: balloons found near a ribbon, and the
+    /// balloons to wake.
+    pub found: Vec<u32>,
+    pub touched: Vec<crate::body::BodyId>,
     /// Per body (dense): its ribbon still moves faster than the sleep speed.
     pub moving: Vec<bool>,
 }

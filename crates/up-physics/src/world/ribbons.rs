@@ -270,8 +270,9 @@ impl World {
             return;
         }
         stage.nearby.build(&stage.bound_center, &stage.bound_radius);
-        let mut touched = Vec::new();
-        let mut found = Vec::new();
+        let mut touched = std::mem::take(&mut stage.touched);
+        let found = &mut stage.found;
+        touched.clear();
         for (_, ribbon) in self.ribbons.iter() {
             let Some(i) = self.handles.dense(ribbon.body) else {
                 continue;
@@ -283,7 +284,7 @@ impl World {
             found.clear();
             stage
                 .nearby
-                .query(&aabb, &stage.bound_center, &stage.bound_radius, &mut found);
+                .query(&aabb, &stage.bound_center, &stage.bound_radius, found);
             let reached = found.iter().any(|&k| {
                 let (c, r) = (
                     stage.bound_center[k as usize],
@@ -299,10 +300,11 @@ impl World {
                 touched.push(ribbon.body);
             }
         }
-        for body in touched {
+        for &body in &touched {
             // A ribbon's body exists while the ribbon does.
             let _ = self.wake(body);
         }
+        self.stages.ribbons.touched = touched;
     }
 
     /// Takes the awake ribbons' points for the solve, and finds the room's
@@ -310,7 +312,7 @@ impl World {
     /// (one that a moving balloon reached was woken before the broadphase).
     pub(super) fn prepare_ribbons(&mut self) {
         let stage = &mut self.stages.ribbons;
-        stage.active.truncate(0);
+        stage.awake = 0;
         stage.triangles.clear();
         stage.bodies.clear();
         let b = &self.bodies;
@@ -396,7 +398,7 @@ impl World {
             }
             r.triangles = first..stage.triangles.len() as u32;
         }
-        stage.active.truncate(count);
+        stage.awake = count;
     }
 
     /// Hands the points back to the ribbons, each knot where its balloon
@@ -415,7 +417,7 @@ impl World {
         }
         let slow = self.def.sleep_linear_speed;
         let mut max_stretch = self.ribbons.max_stretch;
-        for r in &mut stage.active {
+        for r in &mut stage.active[..stage.awake] {
             let Some(ribbon) = self.ribbons.slot_mut(r.slot) else {
                 continue;
             };

@@ -125,7 +125,7 @@ impl World {
             triangles: &ribbons.triangles,
             bodies: &ribbons.bodies,
         };
-        let active = &mut ribbons.active;
+        let active = &mut ribbons.active[..ribbons.awake];
         let mut ribbons_substep = |states: &mut [BodyState]| {
             if !active.is_empty() {
                 ribbon::solve::substep(active, &input, states);
