@@ -14,6 +14,7 @@ mod contact;
 mod continuous;
 mod counters;
 pub mod forces;
+pub mod gas;
 mod grab;
 mod hash;
 mod joint;
