@@ -376,6 +376,9 @@ fn print_forecast(
     }
 }
 
+/// Reads one state's share.
+type ShareOf = fn(&Shares) -> f64;
+
 /// The shares against time as an SVG document.
 fn plot_svg(shares: &[Shares], hours: f64) -> Result<String> {
     let mut svg = String::new();
@@ -396,7 +399,7 @@ fn plot_svg(shares: &[Shares], hours: f64) -> Result<String> {
             .y_desc("share of balloons (%)")
             .draw()
             .map_err(draw)?;
-        let series: [(&str, RGBColor, fn(&Shares) -> f64); 3] = [
+        let series: [(&str, RGBColor, ShareOf); 3] = [
             ("at the ceiling", RGBColor(214, 39, 40), |s| s.ceiling),
             ("hovering", RGBColor(31, 119, 180), |s| s.hovering),
             ("on the floor", RGBColor(44, 160, 44), |s| s.floor),
