@@ -140,12 +140,12 @@ pub fn run(args: &ForecastArgs) -> Result<()> {
             "--sample-minutes: expected a number of minutes in (0, {MAX_SAMPLE_MINUTES}], found {minutes}"
         );
     }
-    let scene = args.scene.load()?;
-    let mut built = build_world(&scene)?;
     if let Some(path) = &args.plot {
         // Probe the directory now rather than after a long run.
         AtomicFile::create(path).context("--plot")?;
     }
+    let scene = args.scene.load()?;
+    let mut built = build_world(&scene)?;
     let labels = group_labels(&scene);
     let groups = built.group_bodies.clone();
     let world = &mut built.world;
@@ -178,7 +178,7 @@ pub fn run(args: &ForecastArgs) -> Result<()> {
         counts
     };
 
-    let progress = progress_bar(looks, "looks");
+    let progress = progress_bar(looks, "samples");
     let started = Instant::now();
     let (mut steps, mut jumps) = (0u64, 0u64);
     let mut last = look(&mut census, world, &mut histories, &mut shares);

@@ -81,7 +81,9 @@ fn forecast_says_when_the_balloons_leave_the_ceiling_and_draws_it() {
         );
     };
     assert!(0.0 < first && first <= median, "{latex}");
-    assert!(median < landed && landed <= 4.0, "{latex}");
+    // Without ribbons they fall straight down: leaving and landing may
+    // fall in the same sample.
+    assert!(median <= landed && landed <= 4.0, "{latex}");
     let lift = latex["mean_lift_fraction_end"].as_f64().unwrap();
     assert!((0.0..0.5).contains(&lift), "{latex}");
 
@@ -116,7 +118,8 @@ fn forecast_says_when_the_balloons_leave_the_ceiling_and_draws_it() {
 #[test]
 fn forecast_rejects_bad_hours_samples_and_plot_paths() {
     let dir = TempDir::new("forecast-bad");
-    let scene = write_scene(&dir);
+    let scene = dir.str("late.toml");
+    std::fs::write(&scene, "[[balloons]]\ncount = 2\n").unwrap();
     for hours in ["0", "-1", "nan", "inf", "2000.5"] {
         let err = up_err(&["forecast", &scene, "--hours", hours]);
         assert!(err.contains("--hours"), "{hours}: {err}");
