@@ -33,7 +33,7 @@ pub struct ForecastArgs {
     )]
     pub hours: f64,
     /// Simulated minutes between looks at where the balloons are, in (0, 60];
-    /// the times printed are multiples of it.
+    /// a time printed is that of the first look that saw it.
     #[arg(
         long,
         value_name = "M",
@@ -391,7 +391,7 @@ fn plot_svg(shares: &[Shares], hours: f64) -> Result<String> {
             .margin(12)
             .x_label_area_size(40)
             .y_label_area_size(56)
-            .build_cartesian_2d(0.0..hours, 0.0..100.0)
+            .build_cartesian_2d(0.0..hours, -2.0..102.0)
             .map_err(draw)?;
         chart
             .configure_mesh()
