@@ -5,9 +5,10 @@
 use super::*;
 
 /// A 2 m × 2 m room, 2.4 m high with a flat ceiling: three untreated latex
-/// balloons filled `LATEX_AGE_H` hours before the run (near the end of their
-/// float time) and one foil balloon filled as long before (it keeps its lift
-/// for weeks).
+/// balloons without ribbons filled 12 hours before the run, near the end of
+/// their float time (they leave the ceiling about 2 h into the run, 14 h
+/// after filling), and one foil balloon filled as long before (it keeps its
+/// lift for weeks).
 const SCENE: &str = "\
 [room]
 width = 2.0
@@ -19,12 +20,12 @@ ceiling = \"flat\"
 count = 3
 kind = \"latex\"
 treatment = \"none\"
-filled_hours_before = 15.5
+filled_hours_before = 12
 
 [[balloons]]
 count = 1
 kind = \"foil\"
-filled_hours_before = 15.5
+filled_hours_before = 12
 
 [sim]
 seed = 7
