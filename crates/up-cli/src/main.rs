@@ -47,9 +47,10 @@ enum Command {
     /// A balloon is on the floor when its lowest point is within 3 cm of the
     /// room's lowest; at the ceiling when its centre is within 0.3 m of the
     /// highest it has been and it has risen at least 0.5 m; hovering
-    /// otherwise. "Half" is the ⌈n/2⌉-th balloon of a group of n; "> H h":
-    /// not within the run; "never up": no balloon of the group reached the
-    /// ceiling.
+    /// otherwise. Times are hours from the start of the run (a group's
+    /// `filled_hours_before` lies before it); "half" is the ⌈n/2⌉-th balloon
+    /// of a group of n; "> H h": not within the run; "never up": no balloon
+    /// of the group reached the ceiling.
     Forecast(forecast::ForecastArgs),
     /// Time the UP engine alone on a scene, with per-stage counters.
     Bench(bench::BenchArgs),
