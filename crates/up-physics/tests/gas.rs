@@ -12,6 +12,7 @@ use up_physics::gas::model::HELIUM_MOLAR_MASS;
 use up_physics::ribbon::RibbonDef;
 use up_physics::{
     BodyId, EnvelopeDef, PhysicsError, TemperatureSchedule, World, WorldDef, WAKE_GROWTH,
+    WAKE_SHRINK,
 };
 
 const HOUR: f64 = 3600.0;

@@ -20,17 +20,23 @@ use crate::forces::atmosphere::Atmosphere;
 use crate::gas::{EnvelopeDef, Gas};
 
 /// A sleeper wakes when its free lift has moved by this share of what it
-/// was when it fell asleep (plus `WAKE_LIFT_FLOOR`): 2 % keeps a balloon
-/// hovering on a 0.25 g/m ribbon within ≈ 3 cm of its balance height.
-pub const WAKE_LIFT_CHANGE: f64 = 0.02;
-/// kg of lift: the smallest change that wakes (2 mg), for balloons whose
-/// free lift passes through zero.
-pub const WAKE_LIFT_FLOOR: f64 = 2e-6;
+/// was when it fell asleep, plus `WAKE_LIFT_FLOOR`. Each wake costs its
+/// island a second or two of steps to settle again, so the thresholds are
+/// as coarse as the picture allows: a balloon pressed to the ceiling wakes
+/// a few times an hour, and one hovering on a 0.25 g/m ribbon (which bobs
+/// with a period of ≈ 15 s and takes ≈ 10 s to settle) comes down in
+/// steps of at most ≈ 16 cm (`docs/perf-log.md`, the time-lapse entry).
+/// A balloon so leaves the ceiling late by at most that much lift.
+pub const WAKE_LIFT_CHANGE: f64 = 0.05;
+/// kg of lift: the smallest change that wakes (40 mg), for balloons whose
+/// free lift is small or passes through zero.
+pub const WAKE_LIFT_FLOOR: f64 = 4e-5;
 /// Growth of a sleeper's size that wakes it: 0.2 %, ≈ 0.3 mm on an 11″
 /// balloon, within the position pass's target overlap.
 pub const WAKE_GROWTH: f64 = 0.002;
-/// Shrinking that wakes it: 1 %, a gap of ≈ 1.4 mm on an 11″ balloon.
-pub const WAKE_SHRINK: f64 = 0.01;
+/// Shrinking that wakes it: 2 %, a gap of ≈ 3 mm on an 11″ balloon, which
+/// buoyancy closes when it wakes.
+pub const WAKE_SHRINK: f64 = 0.02;
 /// Longest jump of the time-lapse while everything sleeps, s: when a sleeper
 /// wakes is known to within it.
 pub const MAX_JUMP_S: f64 = 10.0;
