@@ -28,6 +28,10 @@ pub struct Gas {
     pub full_volume: f64,
     /// kg: the gas's lift at fill (displaced air less the gas), for the share left.
     pub fill_lift_kg: f64,
+    /// s the world has run on since this gas was last advanced: a sleeper's
+    /// gas is advanced a second at a time (`world::gas`).
+    #[serde(default)]
+    pub(crate) owed_s: f64,
 }
 
 /// Temperature and pressure, f64.
@@ -67,6 +71,7 @@ impl Gas {
             air_mol: moles * (1.0 - x),
             full_volume,
             fill_lift_kg: 0.0,
+            owed_s: 0.0,
         };
         gas.fill_lift_kg = gas.gas_lift_kg(air);
         gas

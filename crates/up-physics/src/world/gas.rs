@@ -40,6 +40,10 @@ pub const WAKE_SHRINK: f64 = 0.02;
 /// Longest jump of the time-lapse while everything sleeps, s: when a sleeper
 /// wakes is known to within it.
 pub const MAX_JUMP_S: f64 = 10.0;
+/// A sleeper's gas is advanced (and its thresholds checked) once this many
+/// seconds have gathered, not every step: 10,000 sleepers' gas every step
+/// would cost a few per cent of the step.
+const SLEEPER_GAS_INTERVAL_S: f64 = 1.0;
 
 /// What `World::advance` did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -161,7 +165,7 @@ impl World {
     /// `seconds` pass with every body asleep: only the air and the gas move.
     fn jump(&mut self, seconds: f64) {
         let middle = self.air_at(self.time + 0.5 * seconds);
-        self.age_gas(seconds, &middle);
+        self.age_gas(seconds, &middle, 0.0);
         self.time += seconds;
         self.air = self.air_at(self.time);
     }
@@ -185,7 +189,7 @@ impl World {
         }
         self.air = self.air_at(self.time);
         let air = self.air;
-        self.age_gas(f64::from(self.def.dt), &air);
+        self.age_gas(f64::from(self.def.dt), &air, SLEEPER_GAS_INTERVAL_S);
         for i in 0..self.bodies.len() {
             if self.bodies.awake[i] && (scheduled || self.bodies.gas[i].is_some()) {
                 self.take_gas_size(i);
@@ -193,9 +197,10 @@ impl World {
         }
     }
 
-    /// Every gas `seconds` on in `air`, then the sleepers it has moved too
-    /// far woken (their sizes follow when they next step).
-    fn age_gas(&mut self, seconds: f64, air: &Atmosphere) {
+    /// Every gas `seconds` on in `air` (a sleeper's once `interval` s have
+    /// gathered), then the sleepers it has moved too far woken (their sizes
+    /// follow when they next step).
+    fn age_gas(&mut self, seconds: f64, air: &Atmosphere, interval: f64) {
         let mut woken = std::mem::take(&mut self.stages.gas_woken);
         woken.clear();
         let b = &mut self.bodies;
@@ -203,7 +208,13 @@ impl World {
             let Some(gas) = b.gas[i].as_mut() else {
                 continue;
             };
-            gas.advance(seconds, air);
+            gas.owed_s += seconds;
+            if b.awake[i] || gas.owed_s >= interval {
+                let owed = std::mem::take(&mut gas.owed_s);
+                gas.advance(owed, air);
+            } else {
+                continue;
+            }
             if !b.awake[i] {
                 let shape = &self.shapes[b.shape[i] as usize];
                 if moved_too_far(gas, b.size[i], shape.def.volume, air) {
