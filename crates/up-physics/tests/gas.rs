@@ -87,8 +87,9 @@ fn a_balloon_at_the_ceiling_keeps_the_lift_the_closed_form_gives() {
     let scale = world.body_scale(id).unwrap();
     let gas_scale = world.gas(id).unwrap().scale(&world.air());
     assert!(scale < 0.97, "shrunk to {scale}");
+    let slack = WAKE_SHRINK as f32 + 1e-3;
     assert!(
-        (scale / gas_scale - 1.0).abs() <= 0.011,
+        (scale / gas_scale - 1.0).abs() <= slack,
         "{scale} against {gas_scale}"
     );
 }
