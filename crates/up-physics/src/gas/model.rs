@@ -28,8 +28,8 @@ pub struct Gas {
     pub full_volume: f64,
     /// kg: the gas's lift at fill (displaced air less the gas), for the share left.
     pub fill_lift_kg: f64,
-    /// s the world has run on since this gas was last advanced: a sleeper's
-    /// gas is advanced a second at a time (`world::gas`).
+    /// s the world has run on since this gas was last advanced: the world
+    /// advances gas a second at a time (`world::gas`).
     #[serde(default)]
     pub(crate) owed_s: f64,
 }

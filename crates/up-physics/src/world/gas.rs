@@ -40,10 +40,11 @@ pub const WAKE_SHRINK: f64 = 0.02;
 /// Longest jump of the time-lapse while everything sleeps, s: when a sleeper
 /// wakes is known to within it.
 pub const MAX_JUMP_S: f64 = 10.0;
-/// A sleeper's gas is advanced (and its thresholds checked) once this many
-/// seconds have gathered, not every step: 10,000 sleepers' gas every step
-/// would cost a few per cent of the step.
-const SLEEPER_GAS_INTERVAL_S: f64 = 1.0;
+/// A balloon's gas is advanced (and a sleeper's thresholds checked) once
+/// this many seconds of it have gathered, not every step: 10,000 balloons'
+/// gas every step would cost a few per cent of the step, and in a second
+/// an 11″ balloon shrinks by a few micrometres.
+const GAS_INTERVAL_S: f64 = 1.0;
 
 /// What `World::advance` did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -180,8 +181,9 @@ impl World {
     }
 
     /// The gas stage, first in the step: the air at this step, every gas
-    /// `dt` on, the sleepers their gas has moved too far woken, and every
-    /// awake body the size its gas gives it.
+    /// on (a second at a time), the sleepers their gas has moved too far
+    /// woken, and the sizes of the awake bodies whose gas moved (of all of
+    /// them while the temperature changes).
     pub(super) fn update_gas(&mut self) {
         let scheduled = !self.def.temperature_schedule.is_empty();
         if !(self.has_gas || scheduled) {
@@ -189,36 +191,42 @@ impl World {
         }
         self.air = self.air_at(self.time);
         let air = self.air;
-        self.age_gas(f64::from(self.def.dt), &air, SLEEPER_GAS_INTERVAL_S);
-        for i in 0..self.bodies.len() {
-            if self.bodies.awake[i] && (scheduled || self.bodies.gas[i].is_some()) {
-                self.take_gas_size(i);
+        self.age_gas(f64::from(self.def.dt), &air, GAS_INTERVAL_S);
+        if scheduled {
+            for i in 0..self.bodies.len() {
+                if self.bodies.awake[i] {
+                    self.take_gas_size(i);
+                }
             }
         }
     }
 
-    /// Every gas `seconds` on in `air` (a sleeper's once `interval` s have
-    /// gathered), then the sleepers it has moved too far woken (their sizes
-    /// follow when they next step).
+    /// Every gas `seconds` on in `air`, each once `interval` s of it have
+    /// gathered; the sleepers it has moved too far woken; the bodies awake
+    /// whose gas moved, and those it woke, take its size.
     fn age_gas(&mut self, seconds: f64, air: &Atmosphere, interval: f64) {
         let mut woken = std::mem::take(&mut self.stages.gas_woken);
+        let mut moved = std::mem::take(&mut self.stages.gas_moved);
         woken.clear();
+        moved.clear();
         let b = &mut self.bodies;
         for i in 0..b.len() {
             let Some(gas) = b.gas[i].as_mut() else {
                 continue;
             };
             gas.owed_s += seconds;
-            if b.awake[i] || gas.owed_s >= interval {
-                let owed = std::mem::take(&mut gas.owed_s);
-                gas.advance(owed, air);
-            } else {
+            if gas.owed_s < interval {
                 continue;
             }
-            if !b.awake[i] {
+            let owed = std::mem::take(&mut gas.owed_s);
+            gas.advance(owed, air);
+            if b.awake[i] {
+                moved.push(i as u32);
+            } else {
                 let shape = &self.shapes[b.shape[i] as usize];
                 if moved_too_far(gas, b.size[i], shape.def.volume, air) {
                     woken.push(b.island[i]);
+                    moved.push(i as u32);
                 }
             }
         }
@@ -227,7 +235,11 @@ impl World {
         for &island in &woken {
             self.wake_island(island);
         }
+        for &i in &moved {
+            self.take_gas_size(i as usize);
+        }
         self.stages.gas_woken = woken;
+        self.stages.gas_moved = moved;
     }
 
     /// Body `i` takes the size and mass of its gas (its shape's without),
