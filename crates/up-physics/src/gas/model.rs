@@ -12,6 +12,10 @@ pub const GAS_CONSTANT: f64 = 8.314_462_618;
 pub const HELIUM_MOLAR_MASS: f64 = 4.002_602e-3;
 /// kg/mol, dry air.
 pub const AIR_MOLAR_MASS: f64 = 28.964_7e-3;
+/// The smallest size a balloon takes, over its fill size: an emptied
+/// envelope is still rubber or foil (an 11″ latex balloon's is ≈ 7 cm
+/// across), so it is never collided or drawn smaller.
+pub const MIN_SCALE: f32 = 0.25;
 /// Longest stretch, s, integrated in one Runge–Kutta step: the gas changes
 /// over hours, so a minute's step is exact to far below what matters.
 pub const MAX_GAS_STEP_S: f64 = 60.0;
@@ -113,9 +117,9 @@ impl Gas {
         self.volume_and_pressure(self.moles(), &Air::from(air)).1
     }
 
-    /// Linear size over the fill's: (V / V_full)^⅓.
+    /// Linear size over the fill's: (V / V_full)^⅓, at least `MIN_SCALE`.
     pub fn scale(&self, air: &Atmosphere) -> f32 {
-        libm::cbrt(self.volume(air) / self.full_volume) as f32
+        (libm::cbrt(self.volume(air) / self.full_volume) as f32).max(MIN_SCALE)
     }
 
     /// kg of gas.
