@@ -8,13 +8,14 @@
 
 use glam::{Quat, Vec3};
 use up_geom::{Pose, SplitMix64};
+use up_physics::gas::EnvelopeKind;
 use up_physics::{BodyDef, BodyId, World, WorldDef};
 
 use crate::balloon::{build_balloon, BalloonModel, BalloonSpec, Gas};
 use crate::error::SceneError;
 use crate::ribbons::{tie_ribbon, GroupRibbon};
 use crate::room::{box_room, room_from_obj, Ceiling, RoomMesh};
-use crate::scene::{parse_color, CeilingKind, GasKind, Scene};
+use crate::scene::{parse_color, BalloonKind, CeilingKind, GasKind, Scene};
 
 #[path = "build_spawn.rs"]
 pub mod spawn;
@@ -109,6 +110,10 @@ pub fn build_room(scene: &Scene) -> Result<RoomMesh, SceneError> {
 pub fn build_group_model(scene: &Scene, i: usize) -> Result<BalloonModel, SceneError> {
     let group = &scene.balloons[i];
     let spec = BalloonSpec {
+        kind: match group.kind {
+            BalloonKind::Latex => EnvelopeKind::Latex,
+            BalloonKind::Foil => EnvelopeKind::Foil,
+        },
         diameter_m: group.diameter(),
         envelope_mass_kg: group.envelope_mass_kg(),
         knot_mass_kg: group.knot_mass_kg(),
