@@ -21,5 +21,6 @@ pub mod scene_obj;
 pub mod bench_scene;
 pub mod build;
 pub mod error;
+pub mod gas_fill;
 pub mod ribbons;
 pub mod scene;
