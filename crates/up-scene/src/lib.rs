@@ -10,6 +10,7 @@ pub mod atomic_file;
 // The balloon and the room.
 pub mod balloon;
 pub mod balloon_mesh;
+pub mod foil_mesh;
 pub mod obj;
 pub mod obj_export;
 pub mod palette;
@@ -20,5 +21,6 @@ pub mod scene_obj;
 pub mod bench_scene;
 pub mod build;
 pub mod error;
+pub mod gas_fill;
 pub mod ribbons;
 pub mod scene;
