@@ -19,10 +19,10 @@ const HOUR: f64 = 3600.0;
 const G: f32 = 9.81;
 const KNOT: Vec3 = Vec3::new(0.0, -0.2, 0.0);
 
-/// The reference balloon's envelope (3 g of latex over 0.27 m², a 0.5 g
+/// The reference balloon's envelope (3 g of latex over 0.289 m², a 0.5 g
 /// knot), its permeance times `faster`.
 fn envelope(faster: f64) -> EnvelopeDef {
-    let mut def = EnvelopeDef::latex(0.0035, 0.003, 0.27, 1.0, 1.0);
+    let mut def = EnvelopeDef::latex(0.0035, 0.003, 0.289, 1.0, 1.0);
     def.helium_permeance *= faster;
     def
 }

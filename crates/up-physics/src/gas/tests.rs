@@ -10,7 +10,7 @@ use crate::forces::atmosphere::Atmosphere;
 const VOLUME: f64 = 0.0142;
 const ENVELOPE: f32 = 0.003;
 const SOLID: f32 = 0.0035;
-const AREA: f32 = 0.27;
+const AREA: f32 = 0.289;
 /// kg: the default 1.5 m ribbon at 0.25 g/m, all hanging from the ceiling.
 const RIBBON: f64 = 0.000_375;
 /// An 18″ foil balloon: m³ and kg (a 46 cm disc 12.6 cm thick, 10 g).
