@@ -7,9 +7,8 @@
 //! whole weight, like a heavier knot; 1.5 m of 0.25 g/m ribbon is 0.375 g on
 //! a balloon of 11 g free lift. What that does to the tilts is measured
 //! here, printed (`--nocapture`), and held to what the runs show, not to a
-//! picture of upright balloons. At 40 s the pile without ribbons is asleep;
-//! with them most balloons are still awake and moving, so their figures are
-//! those of a pile still settling.
+//! picture of upright balloons. At 40 s the pile without ribbons is asleep,
+//! and the one with them asleep or a few balloons short of it.
 
 use std::path::PathBuf;
 
