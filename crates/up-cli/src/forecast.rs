@@ -416,6 +416,8 @@ fn plot_svg(shares: &[Shares], hours: f64) -> Result<String> {
         }
         chart
             .configure_series_labels()
+            // Left of the middle: balloons leave the ceiling hours into a run.
+            .position(SeriesLabelPosition::MiddleLeft)
             .background_style(WHITE.mix(0.8))
             .border_style(BLACK)
             .draw()
