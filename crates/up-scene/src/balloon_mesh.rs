@@ -170,14 +170,23 @@ fn revolve(profile: &[(f32, f32)], segments: u32) -> (Vec<Vec3>, Vec<[u32; 3]>) 
             positions.push(Vec3::new(rho * cos, y, -rho * sin));
         }
     }
-    let bottom = positions.len() as u32;
     positions.push(Vec3::new(0.0, profile[profile.len() - 1].1, 0.0));
+    let indices = pole_to_pole_triangles(rings.len(), segments);
+    (positions, indices)
+}
+
+/// The triangles of a closed surface laid out as vertex 0 (the first pole),
+/// then `rings` rings of `segments` vertices each, then the last pole; each
+/// ring runs counter-clockwise seen from the first pole's side, so the
+/// triangles face outward.
+pub(crate) fn pole_to_pole_triangles(rings: usize, segments: u32) -> Vec<[u32; 3]> {
     let ring = |i: usize, j: u32| 1 + i as u32 * segments + j % segments;
-    let mut indices = Vec::with_capacity(2 * segments as usize * rings.len());
+    let last_pole = 1 + rings as u32 * segments;
+    let mut indices = Vec::with_capacity(2 * segments as usize * rings);
     for j in 0..segments {
         indices.push([0, ring(0, j), ring(0, j + 1)]);
     }
-    for i in 0..rings.len() - 1 {
+    for i in 0..rings - 1 {
         for j in 0..segments {
             let (a, b) = (ring(i, j), ring(i, j + 1));
             let (c, d) = (ring(i + 1, j), ring(i + 1, j + 1));
@@ -185,11 +194,11 @@ fn revolve(profile: &[(f32, f32)], segments: u32) -> (Vec<Vec3>, Vec<[u32; 3]>) 
             indices.push([a, d, b]);
         }
     }
-    let last = rings.len() - 1;
+    let last = rings - 1;
     for j in 0..segments {
-        indices.push([bottom, ring(last, j + 1), ring(last, j)]);
+        indices.push([last_pole, ring(last, j + 1), ring(last, j)]);
     }
-    (positions, indices)
+    indices
 }
 
 /// Smooth normals: the area-weighted sum of the faces around each vertex.

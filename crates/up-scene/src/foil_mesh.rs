@@ -28,7 +28,8 @@
 use glam::Vec3;
 
 use crate::balloon_mesh::{
-    cos_sin, vertex_normals, BalloonDimensions, BalloonMesh, BalloonMeshError,
+    cos_sin, pole_to_pole_triangles, vertex_normals, BalloonDimensions, BalloonMesh,
+    BalloonMeshError,
 };
 
 /// Vertices around each ring (a multiple of 4: one lands on the valve's tip).
@@ -89,28 +90,10 @@ pub fn foil_mesh(diameter_m: f32) -> Result<BalloonMesh, BalloonMeshError> {
             positions.push(Vec3::new(t * reach * cos, t * reach * sin, z));
         }
     }
-    let back = positions.len() as u32;
     positions.push(Vec3::new(0.0, 0.0, -h));
-    let segments = FOIL_SEGMENTS;
-    let ring = |i: usize, j: u32| 1 + i as u32 * segments + j % segments;
-    let mut indices = Vec::with_capacity(2 * segments as usize * rings.len());
     // Seen from +Z, φ runs counter-clockwise: the front face's triangles go
     // centre → ring j → ring j + 1.
-    for j in 0..segments {
-        indices.push([0, ring(0, j), ring(0, j + 1)]);
-    }
-    for i in 0..rings.len() - 1 {
-        for j in 0..segments {
-            let (a, b) = (ring(i, j), ring(i, j + 1));
-            let (c, d) = (ring(i + 1, j), ring(i + 1, j + 1));
-            indices.push([a, c, d]);
-            indices.push([a, d, b]);
-        }
-    }
-    let last = rings.len() - 1;
-    for j in 0..segments {
-        indices.push([back, ring(last, j + 1), ring(last, j)]);
-    }
+    let indices = pole_to_pole_triangles(rings.len(), FOIL_SEGMENTS);
     let normals = vertex_normals(&positions, &indices);
 
     let tip = -r * (1.0 + VALVE_POINT);
