@@ -49,7 +49,7 @@ describe("strides", () => {
     }
     const contacts = engine.contacts(1_000_000);
     expect(contacts.view.length).toBe(contacts.count * CONTACT_STRIDE);
-    expect(frameFloats(n, contacts.count)).toBe(2 * poses.length + contacts.view.length);
+    expect(frameFloats(n, contacts.count)).toBe(2 * poses.length + contacts.view.length + n);
   });
 });
 
@@ -75,7 +75,7 @@ describe("ribbons", () => {
     expect(tables.offsets[n]).toBe(engine.ribbonPointCount());
     const points = engine.ribbonPoints();
     expect(points.length).toBe(engine.ribbonPointCount() * RIBBON_POINT_STRIDE);
-    expect(frameFloats(n, 0, points.length)).toBe(2 * n * POSE_STRIDE + 2 * points.length);
+    expect(frameFloats(n, 0, points.length)).toBe(2 * n * POSE_STRIDE + 2 * points.length + n);
     expect([...tables.bodies].sort((a, b) => a - b)).toEqual([...Array(n).keys()]);
     for (const c of tables.colors) expect(c).toBeLessThanOrEqual(0xffffff);
     expect(Array.from(tables.weights), "the default ribbons carry no weight").toEqual(Array(n).fill(0));
