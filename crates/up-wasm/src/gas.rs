@@ -139,7 +139,7 @@ impl State {
     pub(crate) fn fill_added(&mut self, body: BodyId, group: usize) -> Result<(), WasmError> {
         let loaded = self.loaded.as_mut().ok_or(WasmError::NoWorld)?;
         if let Some(Some(envelope)) = loaded.built.envelopes.get(group) {
-            let envelope = envelope.clone();
+            let envelope = *envelope;
             loaded.built.world.fill(body, &envelope, 0.0)?;
         }
         Ok(())
