@@ -4,6 +4,9 @@ use glam::{Mat3, Quat, Vec3};
 use serde::{Deserialize, Serialize};
 use up_geom::{Pose, SphereTree};
 
+use crate::forces::drag::added_mass;
+use crate::gas::Gas;
+
 /// A generational handle to a body: stale handles are detected, never reused silently.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 pub struct BodyId {
@@ -81,20 +84,61 @@ pub(crate) struct ShapeData {
     pub added_mass: f32,
 }
 
+/// What a body's gas makes of its shape: its size and mass now. A body
+/// without gas keeps its shape's (`ShapeData::own_size`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub(crate) struct BodySize {
+    /// Linear size over the shape's; the tree, the centre of mass's offset
+    /// and the centre of buoyancy's grow with it about the mesh origin.
+    pub scale: f32,
+    /// kg: envelope, knot and gas.
+    pub mass: f32,
+}
+
 impl ShapeData {
+    /// The shape's own size and mass.
+    pub fn own_size(&self) -> BodySize {
+        BodySize {
+            scale: 1.0,
+            mass: self.def.mass,
+        }
+    }
+
+    /// m³ of air displaced at `scale`.
+    #[inline]
+    pub fn volume(&self, scale: f32) -> f32 {
+        self.def.volume * (scale * scale * scale)
+    }
+
+    /// 1 / (mass + added mass) of a body of `size`, in air of `air_density`
+    /// kg/m³ with added-mass coefficient `ca`; the shape's own
+    /// `inv_mass_translational` at its own size in the world's air.
+    pub fn inv_mass(&self, size: BodySize, ca: f32, air_density: f32) -> f32 {
+        1.0 / (size.mass + added_mass(ca, air_density, self.volume(size.scale)))
+    }
+
+    /// What the inverse inertia is multiplied by at `size`: the envelope and
+    /// the gas both lie at radii that grow with the scale, so the inertia
+    /// goes as mass · scale²; 1 at the shape's own size.
+    pub fn inverse_inertia_factor(&self, size: BodySize) -> f32 {
+        self.def.mass / size.mass / (size.scale * size.scale)
+    }
+
     /// The most a knock (`StepMotion::knock`, m) can turn the body, rad per
     /// metre: the impulse behind it, `k / inv_mass_translational` per step,
     /// applied at the bound radius, through the largest inverse inertia
     /// (bounded by its largest row sum, which the world frame's rotation
     /// does not change).
-    pub fn turn_per_knock(&self) -> f32 {
+    /// For a body of another size, `inverse_inertia_factor`, `scale` and
+    /// `inv_mass` are its own.
+    pub fn turn_per_knock(&self, inertia_factor: f32, scale: f32, inv_mass: f32) -> f32 {
         let m = &self.inv_inertia_local;
         let row = |r: usize| m.row(r).abs().element_sum();
         // Compared, not `f32::max`: that is a call in WebAssembly.
         let largest = [row(1), row(2)]
             .into_iter()
             .fold(row(0), |a, b| if b > a { b } else { a });
-        largest * self.bound_radius / self.inv_mass_translational
+        largest * inertia_factor * (self.bound_radius * scale) / inv_mass
     }
 }
 
@@ -118,6 +162,15 @@ pub(crate) struct Bodies {
     pub awake: Vec<bool>,
     /// Sleeping island this body belongs to, `u32::MAX` when awake.
     pub island: Vec<u32>,
+    /// Its size and mass now (its shape's, without gas). A sleeper keeps
+    /// the size it fell asleep with while its gas moves on (`world::gas`).
+    pub size: Vec<BodySize>,
+    /// 1 / (mass + added mass) at that size, kg⁻¹.
+    pub inv_mass: Vec<f32>,
+    /// `ShapeData::inverse_inertia_factor` at that size.
+    pub inertia_factor: Vec<f32>,
+    /// Its gas, for a balloon filled by `World::fill`.
+    pub gas: Vec<Option<Gas>>,
 }
 
 impl Bodies {
@@ -135,6 +188,8 @@ impl Bodies {
         rotation: Quat,
         v: Vec3,
         w: Vec3,
+        size: BodySize,
+        inv_mass: f32,
     ) {
         self.id.push(id);
         self.shape.push(shape);
@@ -148,6 +203,10 @@ impl Bodies {
         self.sleep_time.push(0.0);
         self.awake.push(true);
         self.island.push(u32::MAX);
+        self.size.push(size);
+        self.inv_mass.push(inv_mass);
+        self.inertia_factor.push(1.0);
+        self.gas.push(None);
     }
 
     pub fn swap_remove(&mut self, i: usize) {
@@ -163,6 +222,10 @@ impl Bodies {
         self.sleep_time.swap_remove(i);
         self.awake.swap_remove(i);
         self.island.swap_remove(i);
+        self.size.swap_remove(i);
+        self.inv_mass.swap_remove(i);
+        self.inertia_factor.swap_remove(i);
+        self.gas.swap_remove(i);
     }
 }
 

@@ -46,7 +46,7 @@ pub(crate) fn sweep_fast_bodies(
     buffers: &mut SweepBuffers,
 ) {
     let (shapes, dt, solver) = (input.shapes, input.dt, input.solver);
-    let (center, shape_of) = (&bodies.center, &bodies.shape);
+    let (center, shape_of, size) = (&bodies.center, &bodies.shape, &bodies.size);
     // The sweeps (read-only, in tasks of awake bodies), then their hits.
     let mut hits = std::mem::take(&mut buffers.hits);
     hits.clear();
@@ -60,8 +60,9 @@ pub(crate) fn sweep_fast_bodies(
                 let i = i as usize;
                 let s = &solver.states[i];
                 let shape = &shapes[shape_of[i] as usize];
-                let moved = s.dp.norm() + s.w.norm() * shape.bound_radius * dt;
-                if moved <= FAST_FRACTION * shape.min_leaf_radius {
+                let scale = size[i].scale;
+                let moved = s.dp.norm() + s.w.norm() * (shape.bound_radius * scale) * dt;
+                if moved <= FAST_FRACTION * (shape.min_leaf_radius * scale) {
                     continue;
                 }
                 let end = center[i];
@@ -75,6 +76,7 @@ pub(crate) fn sweep_fast_bodies(
                 let core_reach = shape
                     .tree
                     .leaf_spheres()
+                    .map(|leaf| scaled(leaf, scale))
                     .map(|leaf| leaf.center.norm() + leaf.radius * CORE_FRACTION)
                     .fold(0.0, f32::max);
                 let bound = Sphere::new(begin + 0.5 * s.dp, 0.5 * s.dp.norm() + core_reach);
@@ -83,7 +85,7 @@ pub(crate) fn sweep_fast_bodies(
                 }
                 let q0 = s.start_rotation();
                 let mut earliest: Option<(f32, Vec3)> = None;
-                for leaf in shape.tree.leaf_spheres() {
+                for leaf in shape.tree.leaf_spheres().map(|leaf| scaled(leaf, scale)) {
                     let from = begin + q0 * leaf.center;
                     let to = end + s.q * leaf.center;
                     let core = Sphere::new(from, leaf.radius * CORE_FRACTION);
@@ -117,4 +119,10 @@ pub(crate) fn sweep_fast_bodies(
         }
     }
     buffers.hits = hits;
+}
+
+/// A leaf sphere of a body grown by `scale`.
+#[inline]
+fn scaled(leaf: Sphere, scale: f32) -> Sphere {
+    Sphere::new(leaf.center * scale, leaf.radius * scale)
 }

@@ -35,10 +35,14 @@ pub use body::{BalloonShape, BodyDef, BodyId, ShapeId};
 pub use counters::Counters;
 pub use forces::atmosphere::Atmosphere;
 pub use forces::field::{FieldSample, ForceField};
+pub use gas::{EnvelopeDef, EnvelopeKind, Gas, TemperatureSchedule};
 pub use joint::{DistanceJointDef, DistanceLimit, JointAnchor, JointId};
 pub use quarantine::{QuarantinedBody, MAX_QUARANTINE_REPORTS};
 pub use ribbon::{RibbonDef, RibbonId};
 pub use snapshot::SnapshotError;
 pub use up_geom;
 pub use world::limits;
-pub use world::{ContactInfo, PhysicsError, StepStats, World, WorldDef, MAX_BODIES};
+pub use world::{
+    Advance, ContactInfo, PhysicsError, StepStats, World, WorldDef, MAX_BODIES, MAX_JUMP_S,
+    WAKE_GROWTH, WAKE_LIFT_CHANGE, WAKE_LIFT_FLOOR, WAKE_SHRINK,
+};

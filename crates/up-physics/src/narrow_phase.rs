@@ -25,7 +25,7 @@ use up_geom::query::contact_tree_tree::contact_tree_tree;
 use up_geom::query::contact_tree_trimesh::contact_tree_trimesh;
 use up_geom::{prune_shadowed, Contact, PlacedTree, RelativeMotion, TriMesh};
 
-use crate::body::ShapeData;
+use crate::body::{BodySize, ShapeData};
 use crate::contact::{pair_key, ContactFeature, ContactPoint, STATIC_BODY};
 use crate::spare::{release_spare, BUFFER_FLOOR, TASK_LIST_FLOOR};
 use crate::tasks::{collect_in_order, TaskList};
@@ -153,6 +153,8 @@ pub(crate) fn add_knocks(
 pub(crate) struct NarrowInput<'a> {
     pub shapes: &'a [ShapeData],
     pub shape: &'a [u32],
+    /// Each body's size (its tree's scale).
+    pub size: &'a [BodySize],
     pub node_centers: &'a [Vec3],
     pub node_start: &'a [u32],
     pub handle: &'a [u32],
@@ -175,6 +177,7 @@ impl NarrowInput<'_> {
         PlacedTree {
             tree,
             centers: &self.node_centers[start..start + tree.nodes().len()],
+            scale: self.size[i].scale,
         }
     }
 }

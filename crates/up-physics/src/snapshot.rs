@@ -14,7 +14,7 @@ const MAGIC: &[u8; 6] = b"UPSNAP";
 /// 2: `StepStats` counts quarantined bodies. 3: sleeping islands keep their impulses.
 /// 4: `WorldDef` has the position passes' most and target. 5: joints; contact
 /// features as two indices. 6: ribbons.
-const VERSION: u16 = 6;
+const VERSION: u16 = 7;
 const HEADER: usize = 6 + 2 + 8;
 
 #[derive(Debug, Error, PartialEq)]

@@ -78,7 +78,7 @@ fn flat_pairs(a: &PlacedTree, b: &PlacedTree, margin: f32, out: &mut Vec<Contact
             out.push(c);
         }
     };
-    if a.tree.nodes()[0].radius >= b.tree.nodes()[0].radius {
+    if a.radius(0) >= b.radius(0) {
         for la in near_a.leaves() {
             for lb in near_b.leaves() {
                 touch(la, lb, out);
@@ -121,16 +121,16 @@ impl Reaching {
     /// (`nodes_touch`, with its slack for an inner node, bit for bit).
     #[inline]
     fn of(t: &PlacedTree, other: &PlacedTree, margin: f32) -> Reaching {
-        let nodes = t.tree.nodes();
-        let (root, other_root) = (&nodes[0], &other.tree.nodes()[0]);
+        let root = &t.tree.nodes()[0];
+        let other_radius = other.radius(0);
         let other_center = other.centers[0];
         let mut near = Reaching {
             leaves: [Leaf::NONE; FLAT_LEAVES],
             len: 0,
         };
         for node in root.first_child..root.first_child + root.child_count {
-            let sphere = Sphere::new(t.centers[node as usize], nodes[node as usize].radius);
-            let reach = sphere.radius + other_root.radius + margin + PARENT_SLACK;
+            let sphere = Sphere::new(t.centers[node as usize], t.radius(node));
+            let reach = sphere.radius + other_radius + margin + PARENT_SLACK;
             if sphere.center.distance_squared(other_center) <= reach * reach {
                 near.leaves[near.len] = Leaf { node, sphere };
                 near.len += 1;
@@ -154,9 +154,8 @@ fn leaf_contact(
     margin: f32,
     out: &mut Vec<Contact>,
 ) {
-    let (na, nb) = (&a.tree.nodes()[ia as usize], &b.tree.nodes()[ib as usize]);
-    let sa = Sphere::new(a.centers[ia as usize], na.radius);
-    let sb = Sphere::new(b.centers[ib as usize], nb.radius);
+    let sa = Sphere::new(a.centers[ia as usize], a.radius(ia));
+    let sb = Sphere::new(b.centers[ib as usize], b.radius(ib));
     if let Some(mut c) = contact_sphere_sphere(sa, sb, margin) {
         c.feature_a = ia;
         c.feature_b = ib;
@@ -172,7 +171,7 @@ fn nodes_touch(a: &PlacedTree, ia: u32, b: &PlacedTree, ib: u32, margin: f32) ->
     } else {
         PARENT_SLACK
     };
-    let reach = na.radius + nb.radius + margin + slack;
+    let reach = a.radius(ia) + b.radius(ib) + margin + slack;
     a.centers[ia as usize].distance_squared(b.centers[ib as usize]) <= reach * reach
 }
 
@@ -187,7 +186,7 @@ fn descend(a: &PlacedTree, b: &PlacedTree, ia: u32, ib: u32, margin: f32, out: &
             if na.is_leaf() && nb.is_leaf() {
                 leaf_contact(a, b, ia, ib, margin, out);
             } else {
-                let children_of_a = !na.is_leaf() && (nb.is_leaf() || na.radius >= nb.radius);
+                let children_of_a = !na.is_leaf() && (nb.is_leaf() || a.radius(ia) >= b.radius(ib));
                 let (fixed, parent) = if children_of_a { (ib, na) } else { (ia, nb) };
                 let pending = Pending {
                     fixed,
@@ -321,14 +320,8 @@ mod tests {
         let (ca, cb) = ([Vec3::ZERO], [Vec3::new(1.0, 0.0, 0.0)]);
         let mut out = Vec::new();
         contact_tree_tree(
-            PlacedTree {
-                tree: &t,
-                centers: &ca,
-            },
-            PlacedTree {
-                tree: &t,
-                centers: &cb,
-            },
+            PlacedTree::new(&t, &ca),
+            PlacedTree::new(&t, &cb),
             0.0,
             &mut out,
         );
@@ -345,14 +338,8 @@ mod tests {
         let cb = placed(&t, Pose::from_position(Vec3::new(10.0, 0.0, 0.0)));
         let mut out = Vec::new();
         contact_tree_tree(
-            PlacedTree {
-                tree: &t,
-                centers: &ca,
-            },
-            PlacedTree {
-                tree: &t,
-                centers: &cb,
-            },
+            PlacedTree::new(&t, &ca),
+            PlacedTree::new(&t, &cb),
             0.1,
             &mut out,
         );
@@ -394,7 +381,7 @@ mod tests {
             let rotation = Quat::from_axis_angle(axis.try_normalize().unwrap_or(Vec3::Y), angle);
             let ca = placed(&ta, Pose::IDENTITY);
             let cb = placed(&tb, Pose::new(offset, rotation));
-            let (pa, pb) = (PlacedTree { tree: &ta, centers: &ca }, PlacedTree { tree: &tb, centers: &cb });
+            let (pa, pb) = (PlacedTree::new(&ta, &ca), PlacedTree::new(&tb, &cb));
             prop_assert!(is_flat(&pa) && is_flat(&pb));
             let mut got = Vec::new();
             contact_tree_tree(pa, pb, margin, &mut got);
@@ -420,7 +407,7 @@ mod tests {
             let rotation = Quat::from_axis_angle(axis.try_normalize().unwrap_or(Vec3::Y), angle);
             let ca = placed(&ta, Pose::IDENTITY);
             let cb = placed(&tb, Pose::new(offset, rotation));
-            let (pa, pb) = (PlacedTree { tree: &ta, centers: &ca }, PlacedTree { tree: &tb, centers: &cb });
+            let (pa, pb) = (PlacedTree::new(&ta, &ca), PlacedTree::new(&tb, &cb));
             let mut got = Vec::new();
             contact_tree_tree(pa, pb, margin, &mut got);
             let mut expected = brute_force(pa, pb, margin);

@@ -27,10 +27,10 @@ fn descend(a: &PlacedTree, root: u32, mesh: &TriMesh, margin: f32, out: &mut Vec
     loop {
         if let Some(index) = node.take() {
             let n = &a.tree.nodes()[index as usize];
-            let center = a.centers[index as usize];
+            let (center, radius) = (a.centers[index as usize], a.radius(index));
             if n.is_leaf() {
-                contact_sphere_trimesh(Sphere::new(center, n.radius), mesh, margin, index, out);
-            } else if mesh_within(mesh, center, n.radius + margin + PARENT_SLACK) {
+                contact_sphere_trimesh(Sphere::new(center, radius), mesh, margin, index, out);
+            } else if mesh_within(mesh, center, radius + margin + PARENT_SLACK) {
                 let children = (n.first_child, n.first_child + n.child_count);
                 if len < STACK_SIZE {
                     stack[len] = children;
@@ -75,15 +75,7 @@ mod tests {
         let mut centers = vec![Vec3::ZERO; tree.nodes().len()];
         tree.place(&pose, &mut centers);
         let mut out = Vec::new();
-        contact_tree_trimesh(
-            PlacedTree {
-                tree,
-                centers: &centers,
-            },
-            mesh,
-            margin,
-            &mut out,
-        );
+        contact_tree_trimesh(PlacedTree::new(tree, &centers), mesh, margin, &mut out);
         out
     }
 

@@ -168,8 +168,14 @@ impl SphereTree {
     /// Writes the world-space centre of every node for `pose` into `out`
     /// (which must hold `nodes().len()` entries).
     pub fn place(&self, pose: &Pose, out: &mut [Vec3]) {
+        self.place_scaled(pose, 1.0, out);
+    }
+
+    /// `place` for the tree grown by `scale` about its origin (a balloon
+    /// that shrinks as it loses gas); scale 1 places it exactly as `place`.
+    pub fn place_scaled(&self, pose: &Pose, scale: f32, out: &mut [Vec3]) {
         for (o, n) in out.iter_mut().zip(&self.nodes) {
-            *o = pose.transform_point(n.center);
+            *o = pose.transform_point(n.center * scale);
         }
     }
 
@@ -191,4 +197,24 @@ pub struct PlacedTree<'a> {
     pub tree: &'a SphereTree,
     /// World-space centre of each node, indexed like `tree.nodes()`.
     pub centers: &'a [Vec3],
+    /// The tree's size over its own: every radius is multiplied by it (the
+    /// centres were placed with it, `SphereTree::place_scaled`).
+    pub scale: f32,
+}
+
+impl<'a> PlacedTree<'a> {
+    /// The tree at its own size.
+    pub fn new(tree: &'a SphereTree, centers: &'a [Vec3]) -> Self {
+        Self {
+            tree,
+            centers,
+            scale: 1.0,
+        }
+    }
+
+    /// Radius of node `i` as placed, m.
+    #[inline]
+    pub fn radius(&self, i: u32) -> f32 {
+        self.tree.nodes()[i as usize].radius * self.scale
+    }
 }

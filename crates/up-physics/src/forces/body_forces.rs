@@ -8,7 +8,7 @@ use super::buoyancy::{buoyancy_force, buoyancy_torque};
 use super::drag::{drag_factor, drag_force};
 use super::field::{FieldSample, ForceFields};
 use super::gravity::gravity_force;
-use crate::body::ShapeData;
+use crate::body::{BodySize, ShapeData};
 
 /// Per-body forces for one step. 52 bytes.
 #[derive(Clone, Copy, Debug, Default)]
@@ -49,28 +49,35 @@ pub(crate) struct BodyLoad {
 }
 
 impl BodyForces {
-    pub fn assemble(input: &ForceInput, shape: &ShapeData, load: &BodyLoad) -> BodyForces {
-        let buoyancy = buoyancy_force(input.air_density, shape.def.volume, input.gravity);
-        let mut force = gravity_force(shape.def.mass, input.gravity) + buoyancy + load.force;
+    /// For a body of `size`: its volume, mass, arm and area follow it.
+    pub fn assemble(
+        input: &ForceInput,
+        shape: &ShapeData,
+        size: BodySize,
+        load: &BodyLoad,
+    ) -> BodyForces {
+        let (scale, mass, volume) = (size.scale, size.mass, shape.volume(size.scale));
+        let buoyancy = buoyancy_force(input.air_density, volume, input.gravity);
+        let mut force = gravity_force(mass, input.gravity) + buoyancy + load.force;
         if !input.fields.is_empty() {
             force += input.fields.force(&FieldSample {
                 center: load.center,
                 velocity: load.velocity,
                 user_data: load.user_data,
-                mass: shape.def.mass,
-                volume: shape.def.volume,
+                mass,
+                volume,
                 time: input.time,
             });
         }
         BodyForces {
             force,
             buoyancy,
-            buoyancy_arm: shape.buoyancy_arm,
+            buoyancy_arm: shape.buoyancy_arm * scale,
             torque: load.torque,
             drag_factor: drag_factor(
                 input.air_density,
                 input.drag_coefficient,
-                shape.def.reference_area,
+                shape.def.reference_area * (scale * scale),
             ),
         }
     }

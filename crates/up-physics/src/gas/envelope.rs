@@ -111,26 +111,31 @@ impl EnvelopeDef {
     pub(crate) fn problem(&self) -> Option<(&'static str, f64, &'static str)> {
         let checks: [(&'static str, f64, bool, &'static str); 5] = [
             (
-                "solid_mass",
+                "envelope.solid_mass",
                 f64::from(self.solid_mass),
                 self.solid_mass > 0.0,
                 "> 0 kg",
             ),
             (
-                "helium_fraction",
+                "envelope.helium_fraction",
                 f64::from(self.helium_fraction),
                 (0.0..=1.0).contains(&self.helium_fraction),
                 "0 to 1",
             ),
             (
-                "helium_permeance",
+                "envelope.helium_permeance",
                 self.helium_permeance,
                 self.helium_permeance >= 0.0,
                 "≥ 0 mol/(s·Pa)",
             ),
-            ("air_ratio", self.air_ratio, self.air_ratio >= 0.0, "≥ 0"),
             (
-                "overpressure_pa",
+                "envelope.air_ratio",
+                self.air_ratio,
+                self.air_ratio >= 0.0,
+                "≥ 0",
+            ),
+            (
+                "envelope.overpressure_pa",
                 f64::from(self.overpressure_pa),
                 (0.0..=50_000.0).contains(&self.overpressure_pa),
                 "0 to 50 000 Pa",

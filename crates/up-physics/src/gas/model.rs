@@ -186,7 +186,8 @@ impl Gas {
         let k2 = self.rates(he + 0.5 * h * k1.0, ai + 0.5 * h * k1.1, a);
         let k3 = self.rates(he + 0.5 * h * k2.0, ai + 0.5 * h * k2.1, a);
         let k4 = self.rates(he + h * k3.0, ai + h * k3.1, a);
-        let d = |i: fn(&(f64, f64)) -> f64| h / 6.0 * (i(&k1) + 2.0 * i(&k2) + 2.0 * i(&k3) + i(&k4));
+        let d =
+            |i: fn(&(f64, f64)) -> f64| h / 6.0 * (i(&k1) + 2.0 * i(&k2) + 2.0 * i(&k3) + i(&k4));
         self.helium_mol = (he + d(|k| k.0)).max(0.0);
         self.air_mol = (ai + d(|k| k.1)).max(0.0);
     }

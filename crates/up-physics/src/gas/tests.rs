@@ -64,7 +64,10 @@ fn an_untreated_11_inch_balloon_comes_down_after_12_to_18_hours() {
     let air = Atmosphere::default();
     let gas = Gas::fill(latex(1.0, 1.0), VOLUME, &air);
     let lift = gas.free_lift_kg(&air);
-    assert!((0.010..0.0125).contains(&lift), "free lift {lift} kg at fill");
+    assert!(
+        (0.010..0.0125).contains(&lift),
+        "free lift {lift} kg at fill"
+    );
     let hours = hours_afloat(gas, &air);
     assert!((12.0..18.0).contains(&hours), "afloat {hours} h");
     // What it has lost by then: the charts' 70–75 % of its lift.
@@ -87,7 +90,10 @@ fn a_foil_balloon_stays_taut_for_days_and_afloat_for_weeks() {
     let air = Atmosphere::default();
     let gas = Gas::fill(EnvelopeDef::foil(FOIL_SOLID, 1.0, 1.0), FOIL_VOLUME, &air);
     let lift = gas.free_lift_kg(&air);
-    assert!((0.003..0.006).contains(&lift), "free lift {lift} kg at fill");
+    assert!(
+        (0.003..0.006).contains(&lift),
+        "free lift {lift} kg at fill"
+    );
     let taut = hours_until(gas, &air, |g| g.volume(&air) < 0.999 * FOIL_VOLUME) / 24.0;
     assert!((3.0..5.0).contains(&taut), "taut {taut} days");
     let afloat = hours_afloat(gas, &air) / 24.0;
@@ -107,7 +113,10 @@ fn volume_follows_charles_law_from_5_to_30_celsius() {
     let gas = Gas::fill(latex(1.0, 1.0), VOLUME, &cold);
     let ratio = gas.volume(&warm) / gas.volume(&cold);
     let expected = 303.15 / 278.15;
-    assert!((ratio / expected - 1.0).abs() < 1e-6, "{ratio} against {expected}");
+    assert!(
+        (ratio / expected - 1.0).abs() < 1e-6,
+        "{ratio} against {expected}"
+    );
     // A foil balloon filled taut cannot grow: its pressure rises instead.
     let foil = Gas::fill(EnvelopeDef::foil(FOIL_SOLID, 1.0, 1.0), FOIL_VOLUME, &cold);
     assert_eq!(foil.volume(&warm), FOIL_VOLUME);

@@ -32,7 +32,7 @@ use super::{
     Ribbon, AIR_VISCOSITY, BALLOON_FRICTION, NORMAL_DRAG_COEFFICIENT, RIBBON_WIDTH, ROOM_FRICTION,
     TANGENT_DRAG_COEFFICIENT, WEIGHT_DRAG_COEFFICIENT, WEIGHT_RADIUS,
 };
-use crate::body::ShapeData;
+use crate::body::{BodySize, ShapeData};
 use crate::solver::body_state::BodyState;
 use crate::tasks::fill_chunks;
 
@@ -152,6 +152,8 @@ pub(crate) struct SubstepInput<'a> {
     /// Every body's centre of mass at the step's start, and its shape.
     pub centers: &'a [Vec3],
     pub shape_of: &'a [u32],
+    /// Each body's size (its tree's scale).
+    pub size: &'a [BodySize],
     pub shapes: &'a [ShapeData],
     pub triangles: &'a [NearTriangle],
     pub bodies: &'a [u32],
@@ -219,12 +221,12 @@ fn substep_one(r: &mut ActiveRibbon, input: &SubstepInput, states: &[BodyState])
     place_near_spheres(r, input, states);
     let place = |b: &NearBalloon, out: &mut Vec<Sphere>| {
         let tree = &input.shapes[b.tree as usize].tree;
-        let nodes = tree.nodes();
+        let (nodes, scale) = (tree.nodes(), input.size[b.state as usize].scale);
         for &leaf in tree.leaves() {
             let node = &nodes[leaf as usize];
             out.push(Sphere::new(
-                b.center + b.rotation * node.center,
-                node.radius,
+                b.center + b.rotation * (node.center * scale),
+                node.radius * scale,
             ));
         }
     };
@@ -344,15 +346,16 @@ fn place_near_spheres(r: &mut ActiveRibbon, input: &SubstepInput, states: &[Body
         let s = &states[b as usize];
         let tree = &input.shapes[input.shape_of[b as usize] as usize].tree;
         let center = input.centers[b as usize] + s.dp;
-        let root = tree.root();
-        let root_center = center + s.q * root.center;
+        let (root, scale) = (tree.root(), input.size[b as usize].scale);
+        let root_center = center + s.q * (root.center * scale);
+        let root_radius = root.radius * scale;
         let closest = root_center.clamp(lo, hi);
-        if closest.distance_squared(root_center) > (root.radius + reach).powi(2) {
+        if closest.distance_squared(root_center) > (root_radius + reach).powi(2) {
             continue;
         }
         r.near.push(NearBalloon {
             state: b,
-            bound: Sphere::new(root_center, root.radius),
+            bound: Sphere::new(root_center, root_radius),
             moved: s.v * input.h,
             center,
             rotation: s.q,

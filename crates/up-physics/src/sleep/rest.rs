@@ -68,7 +68,7 @@ pub(crate) fn update_sleep(
     let mixed = |a: usize, b: usize| restless(a) != restless(b) && awake[a] && awake[b];
     let near = |a: usize, b: usize| {
         let (centers, gap) = (input.bound_center, rules.speculative_distance);
-        roots_within(input.shapes, &bodies.shape, centers, a, b, gap)
+        roots_within(input.shapes, bodies, centers, a, b, gap)
     };
     let pairs = input.pairs.iter().filter(|&&(a, b)| {
         let (a, b) = (a as usize, b as usize);

@@ -54,7 +54,7 @@ pub(crate) fn wake_touched_bodies(
             0.0
         };
         let centers = input.bound_center;
-        if !roots_within(input.shapes, &bodies.shape, centers, awake, asleep, reach) {
+        if !roots_within(input.shapes, bodies, centers, awake, asleep, reach) {
             continue;
         }
         if impact {
@@ -125,7 +125,7 @@ pub(crate) fn wake_neighbours_of(
     sleeping: &mut SleepingIslands,
     buffers: &mut SleepBuffers,
 ) {
-    let ri = shapes[bodies.shape[i] as usize].bound_radius;
+    let ri = shapes[bodies.shape[i] as usize].bound_radius * bodies.size[i].scale;
     let ci = bodies.center[i];
     let reach = ri + gap;
     let mut islands = std::mem::take(&mut buffers.wake);
@@ -134,7 +134,7 @@ pub(crate) fn wake_neighbours_of(
         if j == i || bodies.awake[j] {
             continue;
         }
-        let rj = shapes[bodies.shape[j] as usize].bound_radius;
+        let rj = shapes[bodies.shape[j] as usize].bound_radius * bodies.size[j].scale;
         if distance(bodies.center[j], ci) <= reach + rj {
             islands.push(bodies.island[j]);
         }

@@ -48,8 +48,9 @@ impl World {
         let i = self.dense(id)?;
         let shape = &self.shapes[self.bodies.shape[i] as usize];
         let r = point - self.bodies.center[i];
-        let inv_inertia = world_inverse_inertia(self.bodies.rotation[i], shape.inv_inertia_local);
-        self.bodies.linear_velocity[i] += shape.inv_mass_translational * impulse;
+        let local = shape.inv_inertia_local * self.bodies.inertia_factor[i];
+        let inv_inertia = world_inverse_inertia(self.bodies.rotation[i], local);
+        self.bodies.linear_velocity[i] += self.bodies.inv_mass[i] * impulse;
         self.bodies.angular_velocity[i] += inv_inertia * r.cross(impulse);
         Ok(())
     }

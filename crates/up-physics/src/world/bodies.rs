@@ -79,6 +79,9 @@ impl World {
         }
         let rotation = def.pose.rotation.normalize();
         let center = def.pose.position + rotation * shape.def.center_of_mass;
+        let size = shape.own_size();
+        let ca = self.def.added_mass_coefficient;
+        let inv_mass = shape.inv_mass(size, ca, self.air.air_density());
         let dense = self.bodies.len() as u32;
         let id = self.handles.allocate(dense);
         self.bodies.push(
@@ -89,6 +92,8 @@ impl World {
             rotation,
             def.linear_velocity,
             def.angular_velocity,
+            size,
+            inv_mass,
         );
         Ok(id)
     }

@@ -29,6 +29,7 @@ impl World {
         let input = NarrowInput {
             shapes: &self.shapes,
             shape: &self.bodies.shape,
+            size: &self.bodies.size,
             node_centers: &s.node_centers,
             node_start: &s.node_start,
             handle: &s.handle,

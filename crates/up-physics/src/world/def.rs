@@ -7,6 +7,7 @@ use up_geom::TriMesh;
 use super::limits::{self, Limit};
 use super::PhysicsError;
 use crate::forces::atmosphere::Atmosphere;
+use crate::gas::TemperatureSchedule;
 
 /// Everything that defines a world, with documented defaults (`Default`).
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -15,6 +16,10 @@ pub struct WorldDef {
     pub gravity: Vec3,
     /// The room's air: densities for buoyancy, drag and added mass follow from it.
     pub atmosphere: Atmosphere,
+    /// The room's temperature over the run, (s, K) points, linear between;
+    /// empty (the default): the atmosphere's temperature throughout.
+    #[serde(default)]
+    pub temperature_schedule: TemperatureSchedule,
     /// s per step; 1/60.
     pub dt: f32,
     /// Solver substeps per step; 4.
@@ -80,6 +85,7 @@ impl Default for WorldDef {
         Self {
             gravity: Vec3::new(0.0, -9.81, 0.0),
             atmosphere: Atmosphere::default(),
+            temperature_schedule: TemperatureSchedule::default(),
             dt: 1.0 / 60.0,
             substeps: 4,
             solve_iterations: 2,
@@ -146,6 +152,9 @@ impl WorldDef {
             a.pressure_pa,
             "> 0 Pa",
         )?;
+        if let Some(problem) = self.temperature_schedule.problem() {
+            return Err(PhysicsError::BadSchedule(problem));
+        }
         within(&limits::DT, "dt", self.dt)?;
         let substeps = self.substeps as f32;
         within(&limits::SUBSTEPS, "substeps", substeps)?;

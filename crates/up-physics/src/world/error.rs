@@ -14,6 +14,8 @@ pub enum PhysicsError {
         value: f32,
         expected: String,
     },
+    #[error("invalid temperature_schedule: {0}")]
+    BadSchedule(String),
     #[error("invalid balloon shape: {0}")]
     BadShape(String),
     #[error("unknown shape {0}")]

@@ -36,6 +36,7 @@ impl World {
         );
         let b = &mut self.bodies;
         let (n, shapes, shape, awake) = (b.len(), &self.shapes, &b.shape, &b.awake);
+        let inertia_factor = &b.inertia_factor;
         let parts = (
             &mut b.center[..],
             &mut b.rotation[..],
@@ -60,7 +61,8 @@ impl World {
                 // Keep angular momentum L = I·ω across the rotation (the gyroscopic
                 // effect): the solve used the inertia at the step's start.
                 let momentum = s.inv_inertia.inverse() * s.w;
-                let inv_inertia_local = shapes[shape[i] as usize].inv_inertia_local;
+                let inv_inertia_local =
+                    shapes[shape[i] as usize].inv_inertia_local * inertia_factor[i];
                 let w = world_inverse_inertia(s.q, inv_inertia_local) * momentum;
                 angular_velocity[k] = if w.is_finite() { w } else { s.w };
             }

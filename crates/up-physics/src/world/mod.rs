@@ -14,6 +14,7 @@ mod contacts;
 mod def;
 mod error;
 mod finish;
+mod gas;
 mod joints;
 pub mod limits;
 mod place;
@@ -42,6 +43,7 @@ use crate::sleep::{SleepBuffers, SleepInput, SleepRules, SleepingIslands};
 pub use contacts::ContactInfo;
 pub use def::WorldDef;
 pub use error::PhysicsError;
+pub use gas::{Advance, MAX_JUMP_S, WAKE_GROWTH, WAKE_LIFT_CHANGE, WAKE_LIFT_FLOOR, WAKE_SHRINK};
 pub use step::StepStats;
 
 pub(crate) use place::roots_within;
@@ -68,6 +70,8 @@ struct Stages {
     ribbons: RibbonStage,
     /// Pairs of bodies held by a joint, dense indices (`joints`).
     joined: Vec<(u32, u32)>,
+    /// Islands whose gas woke them (`gas`).
+    gas_woken: Vec<u32>,
 }
 
 impl Stages {
@@ -106,6 +110,10 @@ pub struct World {
     sleeping: SleepingIslands,
     grab: Option<Grab>,
     ribbon_grab: Option<ribbons::RibbonGrab>,
+    /// The room's air now (`gas::air_at`): the atmosphere at the schedule's temperature.
+    air: crate::Atmosphere,
+    /// Whether any body was ever filled with gas (the gas stage runs).
+    has_gas: bool,
     time: f64,
     step_count: u64,
     stats: StepStats,
@@ -124,7 +132,13 @@ pub struct World {
 impl World {
     pub fn new(def: WorldDef) -> Result<World, PhysicsError> {
         def.validate()?;
+        let mut air = def.atmosphere;
+        if let Some(k) = def.temperature_schedule.at(0.0) {
+            air.temperature_k = k;
+        }
         Ok(World {
+            air,
+            has_gas: false,
             def,
             shapes: Vec::new(),
             bodies: Bodies::default(),

@@ -7,7 +7,7 @@ use up_geom::norm::{distance, Norm};
 use up_geom::Pose;
 
 use super::{World, PLACE_CHUNK};
-use crate::body::ShapeData;
+use crate::body::{Bodies, ShapeData};
 use crate::narrow_phase::{add_knocks, StepMotion};
 use crate::tasks::{fill_chunks, for_each_run, Ragged};
 
@@ -43,13 +43,14 @@ impl Placement {
 /// within `gap` of touching.
 pub(crate) fn roots_within(
     shapes: &[ShapeData],
-    shape: &[u32],
+    bodies: &Bodies,
     centers: &[Vec3],
     a: usize,
     b: usize,
     gap: f32,
 ) -> bool {
-    let root = |i: usize| shapes[shape[i] as usize].tree.root().radius;
+    let root =
+        |i: usize| shapes[bodies.shape[i] as usize].tree.root().radius * bodies.size[i].scale;
     distance(centers[a], centers[b]) < root(a) + root(b) + gap
 }
 
@@ -90,12 +91,13 @@ impl World {
             for k in 0..placed_asleep.len() {
                 let i = first + k;
                 let shape = &shapes[bodies.shape[i] as usize];
+                let scale = bodies.size[i].scale;
                 let nodes = nodes.item(k);
                 // A sleeper does not move: placed once, its nodes stay where they are.
                 let asleep = !bodies.awake[i];
                 if !(asleep && placed_asleep[k]) {
                     let pose = Pose::new(bodies.center[i], bodies.rotation[i]);
-                    shape.tree.place(&pose, nodes);
+                    shape.tree.place_scaled(&pose, scale, nodes);
                 }
                 placed_asleep[k] = asleep;
                 let motion = if at_rest || asleep {
@@ -104,7 +106,7 @@ impl World {
                     let rate = bodies.angular_velocity[i].norm();
                     StepMotion {
                         linear: bodies.linear_velocity[i] * dt,
-                        spin: rate * shape.bound_radius * dt,
+                        spin: rate * (shape.bound_radius * scale) * dt,
                         turn: rate * dt,
                         ..StepMotion::default()
                     }
@@ -113,7 +115,7 @@ impl World {
                 let margin = speculative_distance + motion.reach();
                 motions[k] = motion;
                 bound_center[k] = nodes[0];
-                bound_radius[k] = shape.tree.root().radius + margin;
+                bound_radius[k] = shape.tree.root().radius * scale + margin;
                 handle[k] = bodies.id[i].index;
             }
         });
@@ -122,10 +124,10 @@ impl World {
     /// Each body's knock, from the broadphase's pairs (`narrow_phase::add_knocks`).
     pub(super) fn add_knocks(&mut self) {
         let s = &mut self.stages.place;
-        let (shapes, shape) = (&self.shapes, &self.bodies.shape);
+        let (shapes, bodies) = (&self.shapes, &self.bodies);
         let centers = &s.bound_center;
-        let within = |a, b, gap| roots_within(shapes, shape, centers, a, b, gap);
-        let inv_mass = |i: usize| shapes[shape[i] as usize].inv_mass_translational;
+        let within = |a, b, gap| roots_within(shapes, bodies, centers, a, b, gap);
+        let inv_mass = |i: usize| bodies.inv_mass[i];
         let bounce = 1.0 + self.def.restitution;
         let share = |a: usize, b: usize| bounce * inv_mass(a) / (inv_mass(a) + inv_mass(b));
         add_knocks(
@@ -143,7 +145,10 @@ impl World {
                 m.knock_turn = if m.knock == Vec3::ZERO {
                     0.0
                 } else {
-                    m.knock.norm() * shapes[shape[first + k] as usize].turn_per_knock()
+                    let i = first + k;
+                    let shape = &shapes[bodies.shape[i] as usize];
+                    let (factor, scale) = (bodies.inertia_factor[i], bodies.size[i].scale);
+                    m.knock.norm() * shape.turn_per_knock(factor, scale, bodies.inv_mass[i])
                 };
             }
         });
@@ -151,11 +156,16 @@ impl World {
 
     /// Cell radius: the largest root sphere plus its margin at a brisk ascent.
     pub(super) fn cell_radius(&self) -> f32 {
-        let largest = self
+        let mut largest = self
             .shapes
             .iter()
             .map(|s| s.tree.root().radius)
             .fold(0.0, f32::max);
+        // Balloons the warmth has grown (gas rarely grows one more than a few %).
+        if self.has_gas {
+            let scale = self.bodies.size.iter().map(|s| s.scale).fold(1.0, f32::max);
+            largest *= scale;
+        }
         largest + self.def.speculative_distance + 3.0 * self.def.dt
     }
 

@@ -58,7 +58,7 @@ impl World {
         solver.forces.resize(n, BodyForces::default());
         let (bodies, shapes) = (&self.bodies, &self.shapes);
         let input = ForceInput {
-            air_density: self.def.atmosphere.air_density(),
+            air_density: self.air.air_density(),
             gravity: self.def.gravity,
             drag_coefficient: self.def.drag_coefficient,
             fields: &self.fields,
@@ -84,8 +84,11 @@ impl World {
                     dp: Vec3::ZERO,
                     dq: Quat::IDENTITY,
                     q,
-                    inv_mass: shape.inv_mass_translational,
-                    inv_inertia: world_inverse_inertia(q, shape.inv_inertia_local),
+                    inv_mass: bodies.inv_mass[i],
+                    inv_inertia: world_inverse_inertia(
+                        q,
+                        shape.inv_inertia_local * bodies.inertia_factor[i],
+                    ),
                     runaway: false,
                 };
                 let load = BodyLoad {
@@ -95,7 +98,7 @@ impl World {
                     force: bodies.force[i],
                     torque: bodies.torque[i],
                 };
-                *forces = BodyForces::assemble(&input, shape, &load);
+                *forces = BodyForces::assemble(&input, shape, bodies.size[i], &load);
             }
         });
         // The room: one static state after the bodies.
@@ -218,8 +221,7 @@ impl World {
         if !self.bodies.awake[i] {
             return None;
         }
-        let shape = &self.shapes[self.bodies.shape[i] as usize];
-        let mass = 1.0 / shape.inv_mass_translational;
+        let mass = 1.0 / self.bodies.inv_mass[i];
         let omega = 2.0 * std::f32::consts::PI * GRAB_HERTZ;
         let g = self.def.gravity;
         Some(GrabSpring {
@@ -229,7 +231,7 @@ impl World {
             target: grab.target,
             stiffness: mass * omega * omega,
             damping: 2.0 * mass * GRAB_DAMPING_RATIO * omega,
-            max_force: GRAB_MAX_WEIGHTS * shape.def.mass * g.length(),
+            max_force: GRAB_MAX_WEIGHTS * self.bodies.size[i].mass * g.length(),
         })
     }
 }

@@ -31,7 +31,8 @@ impl World {
         let q = self.bodies.rotation[i];
         let com = self.shapes[self.bodies.shape[i] as usize]
             .def
-            .center_of_mass;
+            .center_of_mass
+            * self.bodies.size[i].scale;
         Pose::new(self.bodies.center[i] - q * com, q)
     }
 
@@ -90,14 +91,15 @@ impl World {
     /// Mass used for momentum: body mass plus added mass, kg.
     pub fn effective_mass(&self, id: BodyId) -> Option<f32> {
         let i = self.handles.dense(id)?;
-        Some(1.0 / self.shapes[self.bodies.shape[i] as usize].inv_mass_translational)
+        Some(1.0 / self.bodies.inv_mass[i])
     }
 
     /// World-frame inertia about the centre of mass, kg·m².
     pub fn world_inertia(&self, id: BodyId) -> Option<glam::Mat3> {
         let i = self.handles.dense(id)?;
         let r = glam::Mat3::from_quat(self.bodies.rotation[i]);
-        let local = self.shapes[self.bodies.shape[i] as usize].def.inertia;
+        let factor = self.bodies.inertia_factor[i];
+        let local = self.shapes[self.bodies.shape[i] as usize].def.inertia * (1.0 / factor);
         Some(r * local * r.transpose())
     }
 
@@ -130,8 +132,9 @@ impl World {
                 let v = self.bodies.linear_velocity[i];
                 let w = self.bodies.angular_velocity[i];
                 let r = glam::Mat3::from_quat(self.bodies.rotation[i]);
-                let inertia = r * shape.def.inertia * r.transpose();
-                0.5 * v.length_squared() / shape.inv_mass_translational + 0.5 * w.dot(inertia * w)
+                let local = shape.def.inertia * (1.0 / self.bodies.inertia_factor[i]);
+                let inertia = r * local * r.transpose();
+                0.5 * v.length_squared() / self.bodies.inv_mass[i] + 0.5 * w.dot(inertia * w)
             })
             .sum()
     }

@@ -61,8 +61,10 @@ impl World {
         let center_of_mass = self.shapes[self.bodies.shape[i] as usize]
             .def
             .center_of_mass;
+        // At the shape's size: the knot moves in as its balloon shrinks.
         let arm = def.knot - center_of_mass;
-        let knot = self.bodies.center[i] + self.bodies.rotation[i] * arm;
+        let knot =
+            self.bodies.center[i] + self.bodies.rotation[i] * (arm * self.bodies.size[i].scale);
         let segments = def.segments as usize;
         let segment_length = def.length / segments as f32;
         let point_mass = def.mass_per_length * segment_length;
@@ -262,7 +264,9 @@ impl World {
             let shape = &self.shapes[b.shape[i] as usize];
             let reach = b.linear_velocity[i].norm() * self.def.dt + self.def.speculative_distance;
             stage.bound_center.push(b.center[i]);
-            stage.bound_radius.push(shape.bound_radius + reach);
+            stage
+                .bound_radius
+                .push(shape.bound_radius * b.size[i].scale + reach);
             stage.awake_bodies.push(i as u32);
         }
         let asleep = |body| self.handles.dense(body).is_some_and(|i| !b.awake[i]);
@@ -334,10 +338,12 @@ impl World {
             } else {
                 0.0
             };
-            stage.bound_radius.push(shape.bound_radius + reach + margin);
+            stage
+                .bound_radius
+                .push(shape.bound_radius * b.size[i].scale + reach + margin);
         }
         stage.nearby.build(&stage.bound_center, &stage.bound_radius);
-        let air_density = self.def.atmosphere.air_density();
+        let air_density = self.air.air_density();
         let grab = self.ribbon_grab;
         let room = self.def.room.as_ref();
         let mut count = 0;
@@ -359,7 +365,7 @@ impl World {
             r.slot = slot as u32;
             r.state = i as u32;
             r.origin = b.center[i];
-            r.arm0 = b.rotation[i] * ribbon.arm;
+            r.arm0 = b.rotation[i] * (ribbon.arm * b.size[i].scale);
             r.grab = grab
                 .filter(|g| g.ribbon.index as usize == slot)
                 .map(|g| (g.point as usize, g.target));
@@ -423,9 +429,10 @@ impl World {
             };
             r.give_back(ribbon);
             let i = r.state as usize;
-            ribbon.points[0] = self.bodies.center[i] + self.bodies.rotation[i] * ribbon.arm;
-            ribbon.velocities[0] = self.bodies.linear_velocity[i]
-                + self.bodies.angular_velocity[i].cross(self.bodies.rotation[i] * ribbon.arm);
+            let arm = self.bodies.rotation[i] * (ribbon.arm * self.bodies.size[i].scale);
+            ribbon.points[0] = self.bodies.center[i] + arm;
+            ribbon.velocities[0] =
+                self.bodies.linear_velocity[i] + self.bodies.angular_velocity[i].cross(arm);
             if !ribbon.points.iter().all(|p| p.is_finite()) {
                 self.stages.faults.non_finite.push(i);
                 continue;

@@ -6,7 +6,9 @@ use crate::snapshot::{self, SnapshotError};
 
 impl World {
     /// FNV-1a over every body's handle, pose, velocity and sleep state, in
-    /// dense order, then every ribbon's points and their velocities.
+    /// dense order, then every ribbon's points and their velocities, then
+    /// the gas of the balloons that have one and the clock.
+    /// A world without ribbons or gas hashes as it did before there were any.
     pub fn state_hash(&self) -> u64 {
         let mut h = Fnv1a::new();
         h.write_u32(self.bodies.len() as u32);
@@ -26,13 +28,25 @@ impl World {
             }
             h.write_u32(b.awake[i] as u32);
         }
-        // A world without ribbons hashes as it did before there were any.
         for (id, ribbon) in self.ribbons.iter() {
             h.write_u32(id.index);
             h.write_u32(id.generation);
             for (p, v) in ribbon.points.iter().zip(&ribbon.velocities) {
                 for x in [p.x, p.y, p.z, v.x, v.y, v.z] {
                     h.write_f32(x);
+                }
+            }
+        }
+        if self.has_gas {
+            h.write_bytes(&self.time.to_le_bytes());
+            h.write_f32(self.air.temperature_k);
+            for (i, gas) in self.bodies.gas.iter().enumerate() {
+                if let Some(gas) = gas {
+                    h.write_u32(i as u32);
+                    h.write_bytes(&gas.helium_mol.to_le_bytes());
+                    h.write_bytes(&gas.air_mol.to_le_bytes());
+                    h.write_f32(self.bodies.size[i].scale);
+                    h.write_f32(self.bodies.size[i].mass);
                 }
             }
         }
@@ -71,6 +85,10 @@ impl World {
             b.sleep_time.len(),
             b.awake.len(),
             b.island.len(),
+            b.size.len(),
+            b.inv_mass.len(),
+            b.inertia_factor.len(),
+            b.gas.len(),
         ];
         if lens.iter().any(|&l| l != n) {
             return Err("body arrays of different lengths".into());
@@ -81,6 +99,10 @@ impl World {
             }
             if self.handles.dense(b.id[i]) != Some(i) {
                 return Err(format!("body {i}: handle table does not point back"));
+            }
+            let size = b.size[i];
+            if !(size.scale.is_finite() && size.scale > 0.0 && size.mass > 0.0) {
+                return Err(format!("body {i} has size {size:?}"));
             }
             if !b.awake[i] && self.sleeping.members.get(b.island[i] as usize).is_none() {
                 return Err(format!("body {i} sleeps in a missing island"));

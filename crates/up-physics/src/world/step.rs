@@ -63,6 +63,7 @@ impl World {
         let mut clock = Stopwatch::start();
         let mut counters = Counters::default();
 
+        self.update_gas();
         self.find_joined();
         self.wake_touched_ribbons();
         self.place_bodies(false);
@@ -121,6 +122,7 @@ impl World {
             gravity: self.def.gravity,
             centers: &self.bodies.center,
             shape_of: &self.bodies.shape,
+            size: &self.bodies.size,
             shapes: &self.shapes,
             triangles: &ribbons.triangles,
             bodies: &ribbons.bodies,

@@ -1,0 +1,307 @@
+//! Balloons that lose their gas, in the world: the lift a held balloon keeps
+//! against the gas model's closed form, Charles's law through a temperature
+//! schedule, a shrinking pile that keeps its overlap bound and its order, a
+//! balloon sinking on its ribbon as the ribbon's weight takes over, and the
+//! time-lapse against plain stepping.
+
+mod common;
+
+use common::*;
+use glam::{Quat, Vec3};
+use up_physics::gas::model::HELIUM_MOLAR_MASS;
+use up_physics::ribbon::RibbonDef;
+use up_physics::{
+    BodyId, EnvelopeDef, PhysicsError, TemperatureSchedule, World, WorldDef, WAKE_GROWTH,
+};
+
+const HOUR: f64 = 3600.0;
+const G: f32 = 9.81;
+const KNOT: Vec3 = Vec3::new(0.0, -0.2, 0.0);
+
+/// The reference balloon's envelope (3 g of latex over 0.27 m², a 0.5 g
+/// knot), its permeance times `faster`.
+fn envelope(faster: f64) -> EnvelopeDef {
+    let mut def = EnvelopeDef::latex(0.0035, 0.003, 0.27, 1.0, 1.0);
+    def.helium_permeance *= faster;
+    def
+}
+
+/// A flat-ceilinged room `width` square and `height` high with `n` balloons
+/// in a row on its floor, each filled with `envelope`.
+fn room_of_balloons(
+    width: f32,
+    height: f32,
+    n: usize,
+    envelope: &EnvelopeDef,
+) -> (World, Vec<BodyId>) {
+    let def = WorldDef {
+        room: Some(room(width, width, height, None)),
+        ..WorldDef::default()
+    };
+    let (mut world, shape) = world_with(def);
+    let ids: Vec<BodyId> = (0..n)
+        .map(|k| {
+            let x = (k as f32 - (n as f32 - 1.0) / 2.0) * 0.4;
+            let id = add(&mut world, shape, Vec3::new(x, 0.3, 0.0), Quat::IDENTITY);
+            world.fill(id, envelope, 0.0).expect("valid envelope");
+            id
+        })
+        .collect();
+    (world, ids)
+}
+
+#[test]
+fn a_balloon_at_the_ceiling_keeps_the_lift_the_closed_form_gives() {
+    // Helium alone through latex: n = n₀/(1 + t/τ)³, τ = 3·n₀/(K·p), and the
+    // gas's lift ρ_air·V − m_gas follows n (V ∝ n).
+    let mut def = envelope(1.0);
+    def.air_ratio = 0.0;
+    let (mut world, ids) = room_of_balloons(2.0, 3.0, 1, &def);
+    let id = ids[0];
+    let gas0 = world.gas(id).unwrap();
+    let air = world.air();
+    let (n0, lift0) = (gas0.moles(), gas0.gas_lift_kg(&air));
+    let p = f64::from(air.pressure_pa + def.overpressure_pa);
+    let tau = 3.0 * n0 / (def.helium_permeance * p);
+    let mut jumped = 0;
+    for hour in 1..=6 {
+        jumped += world.advance(HOUR, 10_000).jumps;
+        let t = world.time();
+        let expected = lift0 / (1.0 + t / tau).powi(3);
+        let lift = world.gas(id).unwrap().gas_lift_kg(&world.air());
+        let error = (lift - expected).abs() / expected;
+        assert!(
+            error < 0.01,
+            "hour {hour}: lift {lift} kg against {expected} kg"
+        );
+        // The body weighs what its gas and envelope weigh.
+        let m = world.gas(id).unwrap().mass();
+        assert!((m - 0.0035 - world.gas(id).unwrap().helium_mol * HELIUM_MOLAR_MASS).abs() < 1e-9);
+    }
+    assert!(
+        jumped > 100,
+        "the balloon slept at the ceiling: {jumped} jumps"
+    );
+    // It sleeps with the size it had when it fell asleep, within the wake thresholds.
+    let scale = world.body_scale(id).unwrap();
+    let gas_scale = world.gas(id).unwrap().scale(&world.air());
+    assert!(scale < 0.97, "shrunk to {scale}");
+    assert!(
+        (scale / gas_scale - 1.0).abs() <= 0.011,
+        "{scale} against {gas_scale}"
+    );
+}
+
+#[test]
+fn a_warming_room_swells_the_balloons_by_charles_law() {
+    // 5 °C to 30 °C over an hour, no leak: V ∝ T.
+    let def = WorldDef {
+        room: Some(room(2.0, 2.0, 3.0, None)),
+        atmosphere: up_physics::Atmosphere {
+            temperature_k: 278.15,
+            ..Default::default()
+        },
+        temperature_schedule: TemperatureSchedule {
+            points: vec![(0.0, 278.15), (HOUR, 303.15)],
+        },
+        ..WorldDef::default()
+    };
+    let (mut world, shape) = world_with(def);
+    let id = add(&mut world, shape, Vec3::new(0.0, 0.3, 0.0), Quat::IDENTITY);
+    let mut tight = envelope(0.0);
+    tight.air_ratio = 0.0;
+    world.fill(id, &tight, 0.0).unwrap();
+    let v0 = world.gas(id).unwrap().volume(&world.air());
+    world.advance(1.5 * HOUR, 100_000);
+    assert_eq!(world.air().temperature_k, 303.15);
+    let v1 = world.gas(id).unwrap().volume(&world.air());
+    let expected = 303.15 / 278.15;
+    assert!(
+        ((v1 / v0) / expected - 1.0).abs() < 0.005,
+        "{} against {expected}",
+        v1 / v0
+    );
+    // The body follows its gas to within a sleeper's growth threshold.
+    let s = f64::from(world.body_scale(id).unwrap());
+    let gas_scale = (v1 / v0).cbrt();
+    assert!(
+        s <= gas_scale * (1.0 + 1e-6) && s >= gas_scale * (1.0 - WAKE_GROWTH) - 1e-6,
+        "{s} against {gas_scale}"
+    );
+}
+
+#[test]
+fn a_shrinking_column_keeps_its_order_and_its_overlap_bound() {
+    // Four balloons stacked in a shaft just wider than one, losing their gas
+    // a hundred times faster than real: as they shrink the gaps open and
+    // close again by buoyancy, never by a jump through a neighbour.
+    let def = WorldDef {
+        room: Some(room(0.36, 0.36, 2.0, None)),
+        ..WorldDef::default()
+    };
+    let (mut world, shape) = world_with(def);
+    let fast = envelope(100.0);
+    let ids: Vec<BodyId> = (0..4)
+        .map(|k| {
+            let id = add(
+                &mut world,
+                shape,
+                Vec3::new(0.0, 0.3 + 0.45 * k as f32, 0.0),
+                Quat::IDENTITY,
+            );
+            world.fill(id, &fast, 0.0).unwrap();
+            id
+        })
+        .collect();
+    let limit = 0.01 * HEAD_RADIUS;
+    let heights = |w: &World| -> Vec<f32> {
+        ids.iter()
+            .map(|&id| w.center_of_mass(id).unwrap().y)
+            .collect()
+    };
+    let mut worst = 0.0f32;
+    // 6 simulated minutes: ≈ 10 hours of real leaking, the balloons at a
+    // third of their lift.
+    for step in 0..(6 * 3600) {
+        world.step();
+        let p = world.stats().max_penetration;
+        worst = worst.max(p);
+        assert!(p <= limit, "step {step}: overlap {p} m");
+        let h = heights(&world);
+        assert!(
+            h.windows(2).all(|w| w[0] < w[1]),
+            "step {step}: order lost {h:?}"
+        );
+    }
+    let scale = world.body_scale(ids[0]).unwrap();
+    assert!(scale < 0.9, "they shrank only to {scale}");
+    println!("worst overlap {worst} m, scale {scale}");
+}
+
+#[test]
+fn a_balloon_losing_lift_sinks_on_its_ribbon_as_the_lifted_ribbon_weighs_its_lift() {
+    // 10 g/m, 2 m: the balloon's 11 g of lift holds 1.1 m of the ribbon
+    // up and the rest lies on the floor; as the gas goes (50 times faster
+    // than real), the knot comes down with F/(λ·g).
+    let def = WorldDef {
+        room: Some(room(6.0, 6.0, 3.0, None)),
+        ..WorldDef::default()
+    };
+    let (mut world, shape) = world_with(def);
+    let id = add(&mut world, shape, Vec3::new(0.0, 1.0, 0.0), Quat::IDENTITY);
+    world.fill(id, &envelope(50.0), 0.0).unwrap();
+    let (lambda, length, segments) = (0.010, 2.0, 32);
+    let ribbon = world
+        .add_ribbon(&RibbonDef {
+            mass_per_length: lambda,
+            ..RibbonDef::new(id, KNOT, length, segments)
+        })
+        .unwrap();
+    let segment = length / segments as f32;
+    let mut checked = 0;
+    for minute in 1..=20 {
+        world.advance(60.0, 100_000);
+        let lift = world.free_lift(id).unwrap() * G;
+        let expected = lift / (lambda * G);
+        let knot = world.ribbon_points(ribbon).unwrap()[0].y;
+        println!("minute {minute}: knot {knot} m, F/(λg) {expected} m");
+        if expected > 0.3 && expected < length - 0.3 {
+            // The chain lifts whole points: its knot rests up to a segment
+            // above the balance, and the floor's friction holds a lying
+            // point until the pull passes it (a second segment).
+            let above = knot - expected;
+            assert!(
+                (-segment..2.0 * segment).contains(&above),
+                "minute {minute}: knot at {knot} m, F/(λg) = {expected} m"
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked >= 5, "only {checked} minutes hovered");
+}
+
+/// Simulated seconds at which each balloon's centre first came 0.3 m below
+/// the highest it had been (it left the ceiling): stepping every frame, or
+/// by the time-lapse a second at a time.
+fn leave_times(world: &mut World, ids: &[BodyId], until: f64, lapse: bool) -> Vec<f64> {
+    let mut top = vec![f32::MIN; ids.len()];
+    let mut left = vec![f64::NAN; ids.len()];
+    while world.time() < until && left.iter().any(|t| t.is_nan()) {
+        if lapse {
+            world.advance(1.0, u64::MAX);
+        } else {
+            world.step();
+        }
+        for (k, &id) in ids.iter().enumerate() {
+            let y = world.center_of_mass(id).unwrap().y;
+            top[k] = top[k].max(y);
+            if left[k].is_nan() && y < top[k] - 0.3 && top[k] > 1.5 {
+                left[k] = world.time();
+            }
+        }
+    }
+    left
+}
+
+#[test]
+fn the_time_lapse_agrees_with_plain_stepping() {
+    // Six balloons on ribbons, losing their gas 60 times faster than real,
+    // leave a 2.5 m ceiling after a few minutes: stepped every frame, and by
+    // the time-lapse that jumps while they sleep, they leave within a
+    // minute of each other.
+    let build = || {
+        let (mut world, ids) = room_of_balloons(3.0, 2.5, 6, &envelope(60.0));
+        for &id in &ids {
+            world.add_ribbon(&RibbonDef::new(id, KNOT, 1.5, 8)).unwrap();
+        }
+        (world, ids)
+    };
+    let until = 30.0 * 60.0;
+    let (mut plain, ids) = build();
+    let stepped = leave_times(&mut plain, &ids, until, false);
+    let (mut lapse, _) = build();
+    let lapsed = leave_times(&mut lapse, &ids, until, true);
+    for (k, (a, b)) in stepped.iter().zip(&lapsed).enumerate() {
+        assert!(
+            a.is_finite() && b.is_finite(),
+            "balloon {k} never left: {a} / {b}"
+        );
+        assert!(
+            (a - b).abs() <= 60.0,
+            "balloon {k}: {a} s stepped against {b} s lapsed"
+        );
+    }
+    println!(
+        "left at {stepped:?} s stepped, {lapsed:?} s lapsed; {} steps in all lapsed",
+        lapse.step_count()
+    );
+    assert!(
+        lapse.step_count() < plain.step_count() / 2,
+        "the time-lapse stepped {} of {}",
+        lapse.step_count(),
+        plain.step_count()
+    );
+}
+
+#[test]
+fn bad_fills_are_refused_with_the_key() {
+    let (mut world, ids) = room_of_balloons(2.0, 3.0, 1, &envelope(1.0));
+    let mut bad = envelope(1.0);
+    bad.helium_fraction = 1.5;
+    match world.fill(ids[0], &bad, 0.0) {
+        Err(PhysicsError::BadParameter { key, .. }) => assert_eq!(key, "envelope.helium_fraction"),
+        other => panic!("{other:?}"),
+    }
+    match world.fill(ids[0], &envelope(1.0), -1.0) {
+        Err(PhysicsError::BadParameter { key, .. }) => assert_eq!(key, "age_s"),
+        other => panic!("{other:?}"),
+    }
+    let schedule = TemperatureSchedule {
+        points: vec![(10.0, 290.0), (5.0, 295.0)],
+    };
+    let def = WorldDef {
+        temperature_schedule: schedule,
+        ..WorldDef::default()
+    };
+    assert!(matches!(World::new(def), Err(PhysicsError::BadSchedule(_))));
+}
