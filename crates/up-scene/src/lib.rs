@@ -20,5 +20,8 @@ pub mod scene_obj;
 pub mod bench_scene;
 pub mod build;
 pub mod error;
+pub mod float_census;
 pub mod ribbons;
 pub mod scene;
+
+pub use float_census::{FloatCensus, FloatState, GroupCensus};
