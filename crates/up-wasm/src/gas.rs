@@ -87,7 +87,8 @@ impl State {
     pub fn write_body_scales(&mut self) -> Result<(), WasmError> {
         let n = self.body_count();
         self.scales.resize(n, 1.0);
-        self.world()?.write_body_scales(&mut self.scales);
+        let loaded = self.loaded.as_ref().ok_or(WasmError::NoWorld)?;
+        loaded.built.world.write_body_scales(&mut self.scales);
         Ok(())
     }
 
