@@ -48,6 +48,8 @@ class WorkerState {
   readonly lapse = new TimeLapse();
   /** Simulated time of the next look at where the balloons float, s. */
   nextCensus = 0;
+  /** Whether the last time-lapse tick ran out of steps before its span: the next one starts at once. */
+  lapseBehind = false;
   /** Bumped whenever bodies are added or removed or the world is rebuilt: picks name the version they were made in. */
   version = 0;
   versionSent = -1;
@@ -242,6 +244,8 @@ function lapseTick(realSeconds: number): Previous | null {
   const start = performance.now();
   const done = engine.advance(seconds, Math.min(plan.maxSteps, engine.constants.max_steps_per_call));
   state.lapse.record(done, performance.now() - start, realSeconds);
+  // Half a step short is done (the engine's clock sums f32 steps).
+  state.lapseBehind = done.seconds < seconds - state.dtMs / 2000;
   state.steps += done.steps;
   state.stepsSinceStats += done.steps;
   state.lastStepTime = now();
@@ -306,7 +310,10 @@ function tick(): void {
 
 function schedule(): void {
   if (state.tickTimer !== null) return;
-  const wait = state.paused ? 50 : Math.max(0, state.dtMs - state.accumulator - (now() - state.lastTick));
+  // A time-lapse that fell behind steps on at once: the worker's thread is its
+  // own, and each tick still ends within its budget to send a frame and read messages.
+  const behind = !state.paused && state.lapse.lapsing && state.lapseBehind;
+  const wait = state.paused ? 50 : behind ? 0 : Math.max(0, state.dtMs - state.accumulator - (now() - state.lastTick));
   state.tickTimer = setTimeout(tick, wait);
 }
 
