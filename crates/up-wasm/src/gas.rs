@@ -131,7 +131,11 @@ impl State {
             ceiling,
             hovering,
             floor,
-            mean_lift_fraction: if total > 0 { (lift / f64::from(total)) as f32 } else { 0.0 },
+            mean_lift_fraction: if total > 0 {
+                (lift / f64::from(total)) as f32
+            } else {
+                0.0
+            },
             groups,
         })
     }

@@ -55,7 +55,10 @@ fn an_hour_of_time_lapse_shrinks_every_balloon_and_the_clock_reads_an_hour() {
     // A tick at ×3 600 asks a minute of a frame's budget of steps.
     let (steps, jumps) = lapse(&mut s, 3600.0, 60.0, 200);
     assert!((s.sim_time() - 3600.0).abs() < 1e-6, "{}", s.sim_time());
-    assert!(jumps > 0, "the pile slept and the gas jumped ({steps} steps)");
+    assert!(
+        jumps > 0,
+        "the pile slept and the gas jumped ({steps} steps)"
+    );
     s.write_body_scales().unwrap();
     for &k in &s.scales {
         assert!(k < 1.0 && k > 0.5, "an hour of helium loss: {k}");
@@ -89,7 +92,10 @@ fn the_balloons_rise_to_the_ceiling_and_are_counted_there() {
     assert_eq!(up.ceiling + up.hovering + up.floor, n);
     assert!(up.ceiling >= n * 9 / 10, "{up:?}");
     assert_eq!(up.groups.len(), 1);
-    assert!(up.mean_lift_fraction > 0.95 && up.mean_lift_fraction <= 1.01, "{up:?}");
+    assert!(
+        up.mean_lift_fraction > 0.95 && up.mean_lift_fraction <= 1.01,
+        "{up:?}"
+    );
     assert!((up.time_s - s.sim_time()).abs() < 1e-9);
     // A new world starts a new census.
     s.load_default().unwrap();
