@@ -21,7 +21,7 @@ use glam::{Vec2, Vec3};
 use thiserror::Error;
 
 /// (cos a, sin a) through glam, which uses libm: the same bits natively and in wasm.
-fn cos_sin(a: f32) -> (f32, f32) {
+pub(crate) fn cos_sin(a: f32) -> (f32, f32) {
     let v = Vec2::from_angle(a);
     (v.x, v.y)
 }
@@ -193,7 +193,7 @@ fn revolve(profile: &[(f32, f32)], segments: u32) -> (Vec<Vec3>, Vec<[u32; 3]>) 
 }
 
 /// Smooth normals: the area-weighted sum of the faces around each vertex.
-fn vertex_normals(positions: &[Vec3], indices: &[[u32; 3]]) -> Vec<Vec3> {
+pub(crate) fn vertex_normals(positions: &[Vec3], indices: &[[u32; 3]]) -> Vec<Vec3> {
     let mut sums = vec![Vec3::ZERO; positions.len()];
     for t in indices {
         let [a, b, c] = t.map(|i| positions[i as usize]);

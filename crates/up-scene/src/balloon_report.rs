@@ -26,6 +26,8 @@ pub struct NodeReport {
 /// The sphere tree and mass properties of a balloon model; SI units, body frame.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct CollidersReport {
+    /// `"Latex"` or `"Foil"`.
+    pub kind: up_physics::gas::EnvelopeKind,
     /// m.
     pub diameter_m: f32,
     /// m, top of the head to the tip of the knot.
@@ -88,6 +90,7 @@ impl CollidersReport {
             .collect();
         let s = &model.shape;
         Self {
+            kind: model.spec.kind,
             diameter_m: model.spec.diameter_m,
             height_m: model.mesh.dimensions.height(),
             nodes,
@@ -120,9 +123,17 @@ impl fmt::Display for CollidersReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         writeln!(
             f,
-            "sphere tree of a {:.3} m balloon, {:.3} m tall (body frame: origin at the widest \
-             circle, +Y up)",
-            self.diameter_m, self.height_m
+            "sphere tree of a {:.3} m {} balloon, {:.3} m tall (body frame: origin at the {}, +Y up)",
+            self.diameter_m,
+            match self.kind {
+                up_physics::gas::EnvelopeKind::Latex => "latex",
+                up_physics::gas::EnvelopeKind::Foil => "foil",
+            },
+            self.height_m,
+            match self.kind {
+                up_physics::gas::EnvelopeKind::Latex => "widest circle",
+                up_physics::gas::EnvelopeKind::Foil => "disc's centre",
+            },
         )?;
         for n in &self.nodes {
             let kind = match (n.role, n.leaf) {

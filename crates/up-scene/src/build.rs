@@ -1,6 +1,8 @@
 //! Building a scene into a `World`: the room, one balloon model per group,
 //! and every balloon placed without overlap, deterministically from `sim.seed`,
-//! with its group's ribbon tied at its knot (`ribbons::tie_ribbon`).
+//! filled with its gas (`gas_fill`: its group's envelope, its own leak
+//! factor, filled `filled_hours_before` h before the run), and with its
+//! group's ribbon tied at its knot (`ribbons::tie_ribbon`).
 //!
 //! Each body's `user_data` packs its group and colour:
 //! `group << 16 | colour`, where `colour` indexes `BuiltScene::colors`
@@ -8,13 +10,15 @@
 
 use glam::{Quat, Vec3};
 use up_geom::{Pose, SplitMix64};
+use up_physics::gas::{EnvelopeDef, EnvelopeKind};
 use up_physics::{BodyDef, BodyId, World, WorldDef};
 
 use crate::balloon::{build_balloon, BalloonModel, BalloonSpec, Gas};
 use crate::error::SceneError;
+use crate::gas_fill::{fill_balloon, group_envelope, PermeanceFactors};
 use crate::ribbons::{tie_ribbon, GroupRibbon};
 use crate::room::{box_room, room_from_obj, Ceiling, RoomMesh};
-use crate::scene::{parse_color, CeilingKind, GasKind, Scene};
+use crate::scene::{parse_color, BalloonKind, CeilingKind, GasKind, Scene};
 
 #[path = "build_spawn.rs"]
 pub mod spawn;
@@ -42,6 +46,10 @@ pub struct BuiltScene {
     pub group_bodies: Vec<Vec<BodyId>>,
     /// Each group's ribbon (None: its balloons have none), in the scene's order.
     pub group_ribbons: Vec<Option<GroupRibbon>>,
+    /// The envelope each group's balloons were filled with, before each
+    /// balloon's own leak factor (`gas_fill`), in the scene's order. None: a
+    /// group whose balloons carry no gas model (every group has one now).
+    pub envelopes: Vec<Option<EnvelopeDef>>,
 }
 
 /// `user_data` of a body of `group` with palette colour `color`.
@@ -76,6 +84,7 @@ pub fn world_def(scene: &Scene) -> WorldDef {
         angular_damping: sim.angular_damping,
         enable_sleep: sim.sleep,
         enable_continuous: sim.continuous,
+        temperature_schedule: scene.air.temperature_schedule(),
         ..WorldDef::default()
     }
 }
@@ -109,6 +118,10 @@ pub fn build_room(scene: &Scene) -> Result<RoomMesh, SceneError> {
 pub fn build_group_model(scene: &Scene, i: usize) -> Result<BalloonModel, SceneError> {
     let group = &scene.balloons[i];
     let spec = BalloonSpec {
+        kind: match group.kind {
+            BalloonKind::Latex => EnvelopeKind::Latex,
+            BalloonKind::Foil => EnvelopeKind::Foil,
+        },
         diameter_m: group.diameter(),
         envelope_mass_kg: group.envelope_mass_kg(),
         knot_mass_kg: group.knot_mass_kg(),
@@ -153,9 +166,12 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
     let mut balloon_models = Vec::with_capacity(scene.balloons.len());
     let mut group_bodies = Vec::with_capacity(scene.balloons.len());
     let mut group_ribbons = Vec::with_capacity(scene.balloons.len());
+    let mut envelopes = Vec::with_capacity(scene.balloons.len());
+    let mut factors = PermeanceFactors::new(scene.sim.seed);
 
     for (i, group) in scene.balloons.iter().enumerate() {
         let model = build_group_model(scene, i)?;
+        let envelope = group_envelope(group, &model);
         let shape_id = world.add_shape(model.shape.clone()).map_err(physics)?;
         let root = model.shape.tree.root().sphere();
         let region = spawn_region(scene, i, &bounds.min, &bounds.max)?;
@@ -187,6 +203,9 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
             let palette = &group_palette[i];
             body.user_data = user_data_for(i, palette[k % palette.len()]);
             let id = world.add_body(&body).map_err(physics)?;
+            let factor = factors.next_factor();
+            fill_balloon(&mut world, id, &envelope, factor, group.filled_hours_before)
+                .map_err(physics)?;
             if let Some(ribbon) = &ribbon {
                 tie_ribbon(&mut world, id, &model, &ribbon.spec).map_err(physics)?;
             }
@@ -195,6 +214,7 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
         balloon_models.push(model);
         group_bodies.push(bodies);
         group_ribbons.push(ribbon);
+        envelopes.push(Some(envelope));
     }
     Ok(BuiltScene {
         world,
@@ -204,6 +224,7 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
         color_names,
         group_bodies,
         group_ribbons,
+        envelopes,
     })
 }
 

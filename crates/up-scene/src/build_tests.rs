@@ -170,6 +170,7 @@ fn example_scenes_build() {
         ("party-hall.toml", 1000, 0),
         ("thrown.toml", 1, 0),
         ("two-gases.json", 18, 0),
+        ("evening.toml", 43, 43),
     ];
     for (name, count, ribbons) in expected {
         let scene = Scene::from_path(dir.join(name)).unwrap();
@@ -182,4 +183,142 @@ fn example_scenes_build() {
             "{name}: overlap at spawn"
         );
     }
+}
+
+#[test]
+fn every_balloon_is_filled_with_its_groups_envelope_and_its_own_factor() {
+    use up_physics::gas::{envelope::HI_FLOAT_FACTOR, EnvelopeKind};
+    let text = "[[balloons]]\ncount = 20\n\
+                [[balloons]]\ncount = 10\ntreatment = \"hi-float\"\n\
+                [[balloons]]\ncount = 3\nkind = \"foil\"\n\
+                [[balloons]]\ncount = 4\ngas = \"air\"\n";
+    let built = build_world(&scene(text)).unwrap();
+    assert_eq!(built.envelopes.len(), 4);
+    let base: Vec<_> = built.envelopes.iter().map(|e| e.unwrap()).collect();
+    let factors = |built: &BuiltScene| -> Vec<f64> {
+        built
+            .group_bodies
+            .iter()
+            .zip(&base)
+            .flat_map(|(bodies, envelope)| {
+                bodies.iter().map(move |&id| {
+                    let gas = built.world.gas(id).expect("every balloon has gas");
+                    assert_eq!(
+                        EnvelopeDef {
+                            helium_permeance: envelope.helium_permeance,
+                            ..gas.envelope
+                        },
+                        *envelope
+                    );
+                    gas.envelope.helium_permeance / envelope.helium_permeance
+                })
+            })
+            .collect()
+    };
+    let f = factors(&built);
+    assert_eq!(f.len(), 37);
+    assert!(f.iter().all(|f| (0.9..=1.1).contains(f)), "{f:?}");
+    // Each balloon its own: no two alike within a group.
+    let mut sorted = f.clone();
+    sorted.sort_by(f64::total_cmp);
+    assert!(sorted.windows(2).all(|w| w[0] != w[1]));
+    // The same scene gives the same factors; another seed others.
+    assert_eq!(factors(&build_world(&scene(text)).unwrap()), f);
+    let permeances = |built: &BuiltScene| -> Vec<f64> {
+        built
+            .group_bodies
+            .iter()
+            .flatten()
+            .map(|&id| built.world.gas(id).unwrap().envelope.helium_permeance)
+            .collect()
+    };
+    let mut other = scene(text);
+    other.sim.seed = 2;
+    assert_ne!(
+        permeances(&build_world(&other).unwrap()),
+        permeances(&built)
+    );
+
+    // Hi-Float leaks at the treatment's share of the same balloon untreated.
+    assert_eq!(base[0].kind, EnvelopeKind::Latex);
+    let treated = base[1].helium_permeance / base[0].helium_permeance;
+    assert!((treated - HI_FLOAT_FACTOR).abs() < 1e-12, "{treated}");
+    // The 18″ foil: the engine's foil at area ratio 1, its 9 g film and 1 g valve.
+    let foil = EnvelopeDef::foil(base[2].solid_mass, 1.0, 1.0);
+    assert_eq!(base[2], foil);
+    assert!((foil.solid_mass - 0.010).abs() < 1e-7, "{foil:?}");
+    // Air-filled: no helium.
+    assert_eq!(base[3].helium_fraction, 0.0);
+    let air_balloon = built.group_bodies[3][0];
+    assert_eq!(built.world.gas(air_balloon).unwrap().helium_mol, 0.0);
+    assert!(built.world.free_lift(air_balloon).unwrap() < 0.0);
+    // Filled now, every helium balloon has its model's lift.
+    for (g, bodies) in built.group_bodies.iter().enumerate().take(3) {
+        let model_lift = built.balloon_models[g].free_lift_kg();
+        for &id in bodies {
+            let lift = built.world.free_lift(id).unwrap();
+            assert!(lift > 0.0, "group {g}: {lift}");
+            assert!(
+                (lift / model_lift - 1.0).abs() < 0.1,
+                "group {g}: {lift} vs {model_lift}"
+            );
+            let scale = built.world.body_scale(id).unwrap();
+            assert!((scale - 1.0).abs() < 1e-3, "group {g}: scale {scale}");
+        }
+    }
+}
+
+#[test]
+fn balloons_filled_ten_hours_before_lift_less() {
+    // Per balloon: (free lift kg, helium mol), filled `hours` before.
+    let filled = |hours: f32, kind: &str| -> Vec<(f32, f64)> {
+        let text =
+            format!("[[balloons]]\ncount = 6\nkind = \"{kind}\"\nfilled_hours_before = {hours}\n");
+        let built = build_world(&scene(&text)).unwrap();
+        built.group_bodies[0]
+            .iter()
+            .map(|&id| {
+                let gas = built.world.gas(id).unwrap();
+                (built.world.free_lift(id).unwrap(), gas.helium_mol)
+            })
+            .collect()
+    };
+    // Balloon by balloon (the same factors: same seed, same order). Latex
+    // loses a good share of its lift in 10 h, and shrinks with its gas.
+    let (fresh, aged) = (filled(0.0, "latex"), filled(10.0, "latex"));
+    for (f, a) in fresh.iter().zip(&aged) {
+        assert!(a.0 < 0.9 * f.0, "{} kg after 10 h, {} kg fresh", a.0, f.0);
+        assert!(a.1 < f.1);
+    }
+    // Foil loses helium too, but slowly, and while it stays taut its
+    // lift even rises (its volume holds, its gas weighs less).
+    let (fresh, aged) = (filled(0.0, "foil"), filled(10.0, "foil"));
+    for (f, a) in fresh.iter().zip(&aged) {
+        assert!(
+            a.1 < f.1 && a.1 > 0.99 * f.1,
+            "{} mol after 10 h, {} fresh",
+            a.1,
+            f.1
+        );
+    }
+    let text = "[[balloons]]\ncount = 1\nfilled_hours_before = 10\n";
+    let built = build_world(&scene(text)).unwrap();
+    let scale = built.world.body_scale(built.group_bodies[0][0]).unwrap();
+    assert!(scale < 0.99, "scale {scale}");
+}
+
+#[test]
+fn the_temperature_schedule_reaches_the_world() {
+    let s = scene("[[balloons]]\ncount = 2\n[air]\ntemperature_schedule = [[0, 12], [2, 22]]\n");
+    let def = world_def(&s);
+    assert_eq!(
+        def.temperature_schedule.points,
+        vec![(0.0, 285.15), (7200.0, 295.15)]
+    );
+    assert!((def.atmosphere.temperature_k - 285.15).abs() < 1e-4);
+    let mut built = build_world(&s).unwrap();
+    assert!((built.world.air().temperature_k - 285.15).abs() < 1e-4);
+    built.world.advance(3.0 * 3600.0, 10_000_000);
+    let air = built.world.air();
+    assert!((air.temperature_k - 295.15).abs() < 1e-3, "{air:?}");
 }

@@ -10,6 +10,7 @@ pub mod atomic_file;
 // The balloon and the room.
 pub mod balloon;
 pub mod balloon_mesh;
+pub mod foil_mesh;
 pub mod obj;
 pub mod obj_export;
 pub mod palette;
@@ -21,6 +22,7 @@ pub mod bench_scene;
 pub mod build;
 pub mod error;
 pub mod float_census;
+pub mod gas_fill;
 pub mod ribbons;
 pub mod scene;
 

@@ -32,12 +32,23 @@ pub use validate::{
 
 /// Metres per inch: balloon sizes are sold in inches (11″ ≈ 0.28 m).
 pub const METRES_PER_INCH: f32 = 0.0254;
-/// Diameter of a balloon group that gives neither `diameter_m` nor `size_in`, m (11″).
+/// Diameter of a latex group that gives neither `diameter_m` nor `size_in`, m (11″).
 pub const DEFAULT_DIAMETER_M: f32 = 0.28;
+/// Diameter of a foil group that gives neither, m: 18″, the common round foil balloon.
+pub const DEFAULT_FOIL_DIAMETER_M: f32 = 18.0 * METRES_PER_INCH;
 /// Latex envelope of an 11″ balloon, g; other sizes scale with the surface (d²).
 pub const DEFAULT_ENVELOPE_MASS_G_11IN: f32 = 3.0;
+/// Metallised nylon of an 18″ foil balloon, g; other sizes scale with the
+/// surface. With its 1 g valve the balloon weighs the ≈ 10 g the physics
+/// reference gives.
+pub const DEFAULT_FOIL_ENVELOPE_MASS_G_18IN: f32 = 9.0;
 /// Knot and neck latex, g.
 pub const DEFAULT_KNOT_MASS_G: f32 = 0.5;
+/// A foil balloon's valve strip and the seal round it, g (an estimate).
+pub const DEFAULT_FOIL_VALVE_MASS_G: f32 = 1.0;
+/// Latest fill before the run, h (`filled_hours_before`): 12 weeks, past
+/// any balloon's float time.
+pub const MAX_FILLED_HOURS_BEFORE: f32 = 2000.0;
 /// The original's six colours: the palette's first six.
 pub const DEFAULT_COLORS: [&str; DEFAULT_COLOR_COUNT] = {
     let mut names = [""; DEFAULT_COLOR_COUNT];
@@ -151,6 +162,32 @@ pub enum GasKind {
     Air,
 }
 
+/// What a balloon is made of.
+#[cfg_attr(feature = "tsify", derive(tsify_next::Tsify))]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum BalloonKind {
+    /// A latex balloon: stretches with its gas, which leaks through it in hours.
+    #[default]
+    Latex,
+    /// A round foil (metallised nylon) balloon: a flat pillow standing on
+    /// edge, nearly inextensible, holding its gas for weeks.
+    Foil,
+}
+
+/// A sealant gel inside a latex balloon that slows its leak.
+#[cfg_attr(feature = "tsify", derive(tsify_next::Tsify))]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Treatment {
+    /// `"none"`: bare latex.
+    #[default]
+    #[serde(rename = "none")]
+    Untreated,
+    /// `"hi-float"`: treated; helium leaks `up_physics::gas::envelope::HI_FLOAT_FACTOR` as fast.
+    #[serde(rename = "hi-float")]
+    HiFloat,
+}
+
 /// A group of identical balloons.
 #[cfg_attr(feature = "tsify", derive(tsify_next::Tsify))]
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -158,10 +195,18 @@ pub enum GasKind {
 pub struct BalloonGroup {
     /// How many; 1. At most 200 000 over all groups.
     pub count: u64,
+    /// `"latex"` or `"foil"`; latex.
+    pub kind: BalloonKind,
+    /// `"none"` or `"hi-float"` (latex only); none.
+    pub treatment: Treatment,
+    /// h: the balloons were filled this long before the run starts (their gas
+    /// has been leaking since); 0. Range [0, 2000].
+    pub filled_hours_before: f32,
     /// Colour names (`"red"`, ...) or `"#rrggbb"`, cycled over the group; the six
     /// originals. 1 to 64 of them.
     pub colors: Vec<String>,
-    /// m, widest diameter of the inflated balloon; 0.28 (11″). Range [0.05, 5].
+    /// m, widest diameter of the inflated balloon; 0.28 (11″) for latex, 0.457
+    /// (18″) for foil. Range [0.05, 5].
     #[serde(skip_serializing_if = "Option::is_none")]
     pub diameter_m: Option<f32>,
     /// The same in inches, as balloons are sold (11 → 0.2794 m); give one of the two.
@@ -169,10 +214,11 @@ pub struct BalloonGroup {
     pub size_in: Option<f32>,
     /// `"helium"` (rises) or `"air"` (falls slowly).
     pub gas: GasKind,
-    /// g of latex; 3 for 11″, scaled with the surface for other sizes. Range [0.01, 10000].
+    /// g of envelope: latex, 3 for 11″; foil, 9 for 18″; scaled with the
+    /// surface for other sizes. Range [0.01, 10000].
     #[serde(skip_serializing_if = "Option::is_none")]
     pub envelope_mass_g: Option<f32>,
-    /// g of knot and neck; 0.5. Range [0, 1000].
+    /// g of knot and neck (latex; 0.5) or of valve (foil; 1). Range [0, 1000].
     #[serde(skip_serializing_if = "Option::is_none")]
     pub knot_mass_g: Option<f32>,
     /// Where the balloons start. Left out: spread over the floor.
@@ -199,6 +245,9 @@ impl Default for BalloonGroup {
     fn default() -> Self {
         Self {
             count: 1,
+            kind: BalloonKind::Latex,
+            treatment: Treatment::Untreated,
+            filled_hours_before: 0.0,
             colors: DEFAULT_COLORS.iter().map(|c| c.to_string()).collect(),
             diameter_m: None,
             size_in: None,
@@ -217,27 +266,36 @@ impl Default for BalloonGroup {
 }
 
 impl BalloonGroup {
-    /// m: `diameter_m`, else `size_in` converted, else 11″.
+    /// m: `diameter_m`, else `size_in` converted, else 11″ (latex) or 18″ (foil).
     pub fn diameter(&self) -> f32 {
         match (self.diameter_m, self.size_in) {
             (Some(d), _) => d,
             (None, Some(inches)) => inches * METRES_PER_INCH,
-            (None, None) => DEFAULT_DIAMETER_M,
+            (None, None) => match self.kind {
+                BalloonKind::Latex => DEFAULT_DIAMETER_M,
+                BalloonKind::Foil => DEFAULT_FOIL_DIAMETER_M,
+            },
         }
     }
 
-    /// kg of latex envelope: as given, or 3 g scaled by the surface relative to 11″.
+    /// kg of envelope: as given, or the kind's default (3 g at 11″ latex,
+    /// 9 g at 18″ foil) scaled by the surface.
     pub fn envelope_mass_kg(&self) -> f32 {
-        let scale = self.diameter() / DEFAULT_DIAMETER_M;
-        let grams = self
-            .envelope_mass_g
-            .unwrap_or(DEFAULT_ENVELOPE_MASS_G_11IN * scale * scale);
-        grams * 1e-3
+        let (grams, diameter) = match self.kind {
+            BalloonKind::Latex => (DEFAULT_ENVELOPE_MASS_G_11IN, DEFAULT_DIAMETER_M),
+            BalloonKind::Foil => (DEFAULT_FOIL_ENVELOPE_MASS_G_18IN, DEFAULT_FOIL_DIAMETER_M),
+        };
+        let scale = self.diameter() / diameter;
+        self.envelope_mass_g.unwrap_or(grams * scale * scale) * 1e-3
     }
 
-    /// kg of knot.
+    /// kg of knot (latex) or valve (foil).
     pub fn knot_mass_kg(&self) -> f32 {
-        self.knot_mass_g.unwrap_or(DEFAULT_KNOT_MASS_G) * 1e-3
+        let grams = match self.kind {
+            BalloonKind::Latex => DEFAULT_KNOT_MASS_G,
+            BalloonKind::Foil => DEFAULT_FOIL_VALVE_MASS_G,
+        };
+        self.knot_mass_g.unwrap_or(grams) * 1e-3
     }
 
     /// The group's ribbon, if it has one (a table with `length_m > 0`).
@@ -300,15 +358,44 @@ pub struct SpawnBox {
     pub max: [f32; 3],
 }
 
+/// Most points of `air.temperature_schedule`.
+pub const MAX_SCHEDULE_POINTS: usize = 1000;
+/// Latest time of a `temperature_schedule` point, h (as `filled_hours_before`).
+pub const MAX_SCHEDULE_HOURS: f32 = 2000.0;
+
 /// The room's air: densities for buoyancy, drag and added mass follow (ideal gas).
 #[cfg_attr(feature = "tsify", derive(tsify_next::Tsify))]
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct AirSpec {
-    /// °C; 20. Range [−60, 60].
+    /// °C at the start (and throughout, without a schedule); 20. Range [−60, 60].
+    /// With a schedule: its first point's temperature (left out, or the same).
     pub temperature_c: f32,
     /// kPa; 101.325 (sea level). Range [50, 150].
     pub pressure_kpa: f32,
+    /// `[hours from the start, °C]` pairs, hours ≥ 0 and increasing, °C in
+    /// [−60, 60]; linear between points, held before the first and after the
+    /// last. Left out or empty: `temperature_c` throughout.
+    #[serde(skip_serializing_if = "Vec::is_empty", deserialize_with = "pairs")]
+    pub temperature_schedule: Vec<[f32; 2]>,
+}
+
+/// `[[a, b], ...]` with exactly two numbers a point: TOML's reader would
+/// drop a third number unseen if read straight into `[f32; 2]`.
+fn pairs<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<Vec<[f32; 2]>, D::Error> {
+    let points = Vec::<Vec<f32>>::deserialize(deserializer)?;
+    points
+        .into_iter()
+        .enumerate()
+        .map(|(i, point)| {
+            <[f32; 2]>::try_from(point.as_slice()).map_err(|_| {
+                serde::de::Error::custom(format!(
+                    "point {i}: expected [hours, °C], two numbers, found {}",
+                    point.len()
+                ))
+            })
+        })
+        .collect()
 }
 
 impl Default for AirSpec {
@@ -316,15 +403,35 @@ impl Default for AirSpec {
         Self {
             temperature_c: 20.0,
             pressure_kpa: 101.325,
+            temperature_schedule: Vec::new(),
         }
     }
 }
 
 impl AirSpec {
+    /// °C at the start: the schedule's first point, else `temperature_c`.
+    pub fn start_temperature_c(&self) -> f32 {
+        self.temperature_schedule
+            .first()
+            .map_or(self.temperature_c, |p| p[1])
+    }
+
+    /// The air at the start: the balloons are filled in it.
     pub fn atmosphere(&self) -> up_physics::Atmosphere {
         up_physics::Atmosphere {
-            temperature_k: self.temperature_c + 273.15,
+            temperature_k: self.start_temperature_c() + 273.15,
             pressure_pa: self.pressure_kpa * 1000.0,
+        }
+    }
+
+    /// The schedule as the engine takes it: (s, K) points; empty without one.
+    pub fn temperature_schedule(&self) -> up_physics::gas::TemperatureSchedule {
+        up_physics::gas::TemperatureSchedule {
+            points: self
+                .temperature_schedule
+                .iter()
+                .map(|&[hours, celsius]| (f64::from(hours) * 3600.0, celsius + 273.15))
+                .collect(),
         }
     }
 }
@@ -489,20 +596,35 @@ impl Scene {
             lines,
         };
         scene.validate()?;
+        scene.air.temperature_c = scene.air.start_temperature_c();
         Ok(scene)
     }
 
+    /// The scene as written out: `temperature_c` is the schedule's first
+    /// temperature when there is a schedule, so the text reads back.
+    fn normalized(&self) -> std::borrow::Cow<'_, Scene> {
+        let start = self.air.start_temperature_c();
+        if start.to_bits() == self.air.temperature_c.to_bits() {
+            return std::borrow::Cow::Borrowed(self);
+        }
+        let mut scene = self.clone();
+        scene.air.temperature_c = start;
+        std::borrow::Cow::Owned(scene)
+    }
+
     pub fn to_toml_string(&self) -> Result<String, SceneError> {
-        toml::to_string_pretty(self).map_err(|e| SceneError::Serialize {
+        toml::to_string_pretty(self.normalized().as_ref()).map_err(|e| SceneError::Serialize {
             format: "TOML",
             message: e.to_string(),
         })
     }
 
     pub fn to_json_string(&self) -> Result<String, SceneError> {
-        serde_json::to_string_pretty(self).map_err(|e| SceneError::Serialize {
-            format: "JSON",
-            message: e.to_string(),
+        serde_json::to_string_pretty(self.normalized().as_ref()).map_err(|e| {
+            SceneError::Serialize {
+                format: "JSON",
+                message: e.to_string(),
+            }
         })
     }
 

@@ -36,6 +36,11 @@ impl KeyLines {
         }
     }
 
+    /// Whether the file gave `path` itself (not just a table above it).
+    pub fn contains(&self, path: &str) -> bool {
+        self.lines.contains_key(path)
+    }
+
     /// Every value of a TOML document.
     pub fn from_toml(text: &str) -> Self {
         let mut out = KeyLines::default();

@@ -3,7 +3,7 @@
 //! ribbon as a thin flat strip along its points, each an OBJ object of its
 //! own with a material of its colour. The room is `obj_export::export_room_obj`.
 //!
-//! Balloons are the group's model mesh placed at the body's pose (smooth
+//! Balloons are the group's model mesh placed at the body's pose and size (smooth
 //! normals); a ribbon is a strip `RIBBON_WIDTH` wide whose flat side is
 //! carried along the ribbon without twisting (parallel transport of the
 //! first point's side), so a hanging ribbon reads as a ribbon from the side
@@ -136,9 +136,11 @@ pub fn scene_obj_text(built: &BuiltScene, mtllib: &str) -> (String, String) {
         };
         let material = use_material(&mut mtl, material_name("balloon", name), rgb, true);
         let mesh = &model.mesh;
+        // The size its gas has left it (1 without gas).
+        let scale = world.body_scale(id).unwrap_or(1.0);
         let _ = writeln!(obj, "o balloon_{}", id.index);
         for &p in &mesh.positions {
-            push_vec3(&mut obj, "v", pose.position + pose.rotation * p);
+            push_vec3(&mut obj, "v", pose.position + pose.rotation * (p * scale));
         }
         for &n in &mesh.normals {
             push_vec3(&mut obj, "vn", pose.rotation * n);

@@ -1,7 +1,10 @@
 //! Range checks on a parsed scene. The first problem found is returned, with
 //! the key path and line of the offending value and the documented range.
 
-use super::{parse_color, CeilingKind, RibbonSpec, Scene};
+use super::{
+    parse_color, AirSpec, BalloonKind, CeilingKind, RibbonSpec, Scene, Treatment,
+    MAX_FILLED_HOURS_BEFORE, MAX_SCHEDULE_HOURS, MAX_SCHEDULE_POINTS,
+};
 use crate::error::SceneError;
 use up_physics::limits::{self, Limit};
 use up_physics::ribbon::{MAX_SEGMENTS, MIN_SEGMENTS};
@@ -122,6 +125,7 @@ pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
         false,
         "kPa",
     )?;
+    check_schedule(&c, air)?;
 
     let sim = &scene.sim;
     if sim.seed > MAX_SEED {
@@ -210,6 +214,21 @@ pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
                 ));
             }
         }
+        if group.kind == BalloonKind::Foil && group.treatment == Treatment::HiFloat {
+            return Err(c.fail(
+                &key("treatment"),
+                "\"none\" for a foil balloon (Hi-Float is a gel for latex)",
+                "\"hi-float\"",
+            ));
+        }
+        c.range(
+            &key("filled_hours_before"),
+            group.filled_hours_before,
+            0.0,
+            MAX_FILLED_HOURS_BEFORE,
+            false,
+            "h",
+        )?;
         if group.diameter_m.is_some() && group.size_in.is_some() {
             return Err(c.fail(
                 &key("size_in"),
@@ -315,6 +334,56 @@ pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
                     ));
                 }
             }
+        }
+    }
+    Ok(())
+}
+
+/// `air.temperature_schedule`: hours increasing from ≥ 0, each °C in range,
+/// and `air.temperature_c`, if the file gives it, the first point's.
+fn check_schedule(c: &Checker, air: &AirSpec) -> Result<(), SceneError> {
+    let schedule = &air.temperature_schedule;
+    if schedule.len() > MAX_SCHEDULE_POINTS {
+        return Err(c.fail(
+            "air.temperature_schedule",
+            format!("at most {MAX_SCHEDULE_POINTS} [hours, °C] points"),
+            format!("{} points", schedule.len()),
+        ));
+    }
+    for (i, &[hours, celsius]) in schedule.iter().enumerate() {
+        let at = format!("air.temperature_schedule[{i}]");
+        c.range(
+            &format!("{at}[0]"),
+            hours,
+            0.0,
+            MAX_SCHEDULE_HOURS,
+            false,
+            "h",
+        )?;
+        if let Some(&[previous, _]) = i.checked_sub(1).map(|j| &schedule[j]) {
+            if hours <= previous {
+                return Err(c.fail(
+                    &format!("{at}[0]"),
+                    format!(
+                        "hours after the previous point's {previous} (points in increasing time)"
+                    ),
+                    hours.to_string(),
+                ));
+            }
+        }
+        c.range(&format!("{at}[1]"), celsius, -60.0, 60.0, false, "°C")?;
+    }
+    if let Some(&[_, first]) = schedule.first() {
+        let given = c.scene.source.lines.contains("air.temperature_c");
+        if given && air.temperature_c != first {
+            return Err(c.fail(
+                "air.temperature_c",
+                format!(
+                    "the schedule's first temperature ({first} °C), or no temperature_c: \
+                     the schedule sets the air from its first point"
+                ),
+                air.temperature_c.to_string(),
+            ));
         }
     }
     Ok(())

@@ -77,10 +77,14 @@ fn the_bouquet_floats_above_its_weights_gathered_on_the_floor() {
             "ribbon {k}: knot at {knot}"
         );
     }
-    // Together: every weight still near the middle, where they started.
+    // Together: every weight still near the middle, where they started. The
+    // balloons jostle as they crowd and the weights shuffle by up to 0.2 m
+    // (0.23–0.28 m from the middle at the farthest, with a balloon's lift
+    // 0.4 % either way); within a balloon's width of the middle is together,
+    // where 15 g weights end 0.38–0.78 m out (the next test).
     let at_end = weights_from_the_middle(&built);
     println!("weights from the middle: {at_start:?} at the start, {at_end:?} at 20 s");
-    assert!(at_end.iter().all(|&r| r < 0.25), "{at_end:?}");
+    assert!(at_end.iter().all(|&r| r < 0.3), "{at_end:?}");
     let stretch = built.world.ribbon_max_stretch();
     println!("largest stretch {stretch}");
     assert!(stretch < 0.01, "{stretch}");

@@ -12,6 +12,10 @@ pub const GAS_CONSTANT: f64 = 8.314_462_618;
 pub const HELIUM_MOLAR_MASS: f64 = 4.002_602e-3;
 /// kg/mol, dry air.
 pub const AIR_MOLAR_MASS: f64 = 28.964_7e-3;
+/// The smallest size a balloon takes, over its fill size: an emptied
+/// envelope is still rubber or foil (an 11″ latex balloon's is ≈ 7 cm
+/// across), so it is never collided or drawn smaller.
+pub const MIN_SCALE: f32 = 0.25;
 /// Longest stretch, s, integrated in one Runge–Kutta step: the gas changes
 /// over hours, so a minute's step is exact to far below what matters.
 pub const MAX_GAS_STEP_S: f64 = 60.0;
@@ -28,6 +32,10 @@ pub struct Gas {
     pub full_volume: f64,
     /// kg: the gas's lift at fill (displaced air less the gas), for the share left.
     pub fill_lift_kg: f64,
+    /// s the world has run on since this gas was last advanced: the world
+    /// advances gas a second at a time (`world::gas`).
+    #[serde(default)]
+    pub(crate) owed_s: f64,
 }
 
 /// Temperature and pressure, f64.
@@ -67,6 +75,7 @@ impl Gas {
             air_mol: moles * (1.0 - x),
             full_volume,
             fill_lift_kg: 0.0,
+            owed_s: 0.0,
         };
         gas.fill_lift_kg = gas.gas_lift_kg(air);
         gas
@@ -108,9 +117,9 @@ impl Gas {
         self.volume_and_pressure(self.moles(), &Air::from(air)).1
     }
 
-    /// Linear size over the fill's: (V / V_full)^⅓.
+    /// Linear size over the fill's: (V / V_full)^⅓, at least `MIN_SCALE`.
     pub fn scale(&self, air: &Atmosphere) -> f32 {
-        libm::cbrt(self.volume(air) / self.full_volume) as f32
+        (libm::cbrt(self.volume(air) / self.full_volume) as f32).max(MIN_SCALE)
     }
 
     /// kg of gas.

@@ -20,20 +20,31 @@ use crate::forces::atmosphere::Atmosphere;
 use crate::gas::{EnvelopeDef, Gas};
 
 /// A sleeper wakes when its free lift has moved by this share of what it
-/// was when it fell asleep (plus `WAKE_LIFT_FLOOR`): 2 % keeps a balloon
-/// hovering on a 0.25 g/m ribbon within ≈ 3 cm of its balance height.
-pub const WAKE_LIFT_CHANGE: f64 = 0.02;
-/// kg of lift: the smallest change that wakes (2 mg), for balloons whose
-/// free lift passes through zero.
-pub const WAKE_LIFT_FLOOR: f64 = 2e-6;
+/// was when it fell asleep, plus `WAKE_LIFT_FLOOR`. Each wake costs its
+/// island a second or two of steps to settle again, so the thresholds are
+/// as coarse as the picture allows: a balloon pressed to the ceiling wakes
+/// a few times an hour, and one hovering on a 0.25 g/m ribbon (which bobs
+/// with a period of ≈ 15 s and takes ≈ 10 s to settle) comes down in
+/// steps of at most ≈ 16 cm (`docs/perf-log.md`, the time-lapse entry).
+/// A balloon so leaves the ceiling late by at most that much lift.
+pub const WAKE_LIFT_CHANGE: f64 = 0.05;
+/// kg of lift: the smallest change that wakes (40 mg), for balloons whose
+/// free lift is small or passes through zero.
+pub const WAKE_LIFT_FLOOR: f64 = 4e-5;
 /// Growth of a sleeper's size that wakes it: 0.2 %, ≈ 0.3 mm on an 11″
 /// balloon, within the position pass's target overlap.
 pub const WAKE_GROWTH: f64 = 0.002;
-/// Shrinking that wakes it: 1 %, a gap of ≈ 1.4 mm on an 11″ balloon.
-pub const WAKE_SHRINK: f64 = 0.01;
+/// Shrinking that wakes it: 2 %, a gap of ≈ 3 mm on an 11″ balloon, which
+/// buoyancy closes when it wakes.
+pub const WAKE_SHRINK: f64 = 0.02;
 /// Longest jump of the time-lapse while everything sleeps, s: when a sleeper
 /// wakes is known to within it.
 pub const MAX_JUMP_S: f64 = 10.0;
+/// A balloon's gas is advanced (and a sleeper's thresholds checked) once
+/// this many seconds of it have gathered, not every step: 10,000 balloons'
+/// gas every step would cost a few per cent of the step, and in a second
+/// an 11″ balloon shrinks by a few micrometres.
+const GAS_INTERVAL_S: f64 = 1.0;
 
 /// What `World::advance` did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -155,7 +166,7 @@ impl World {
     /// `seconds` pass with every body asleep: only the air and the gas move.
     fn jump(&mut self, seconds: f64) {
         let middle = self.air_at(self.time + 0.5 * seconds);
-        self.age_gas(seconds, &middle);
+        self.age_gas(seconds, &middle, 0.0);
         self.time += seconds;
         self.air = self.air_at(self.time);
     }
@@ -170,8 +181,9 @@ impl World {
     }
 
     /// The gas stage, first in the step: the air at this step, every gas
-    /// `dt` on, the sleepers their gas has moved too far woken, and every
-    /// awake body the size its gas gives it.
+    /// on (a second at a time), the sleepers their gas has moved too far
+    /// woken, and the sizes of the awake bodies whose gas moved (of all of
+    /// them while the temperature changes).
     pub(super) fn update_gas(&mut self) {
         let scheduled = !self.def.temperature_schedule.is_empty();
         if !(self.has_gas || scheduled) {
@@ -179,29 +191,42 @@ impl World {
         }
         self.air = self.air_at(self.time);
         let air = self.air;
-        self.age_gas(f64::from(self.def.dt), &air);
-        for i in 0..self.bodies.len() {
-            if self.bodies.awake[i] && (scheduled || self.bodies.gas[i].is_some()) {
-                self.take_gas_size(i);
+        self.age_gas(f64::from(self.def.dt), &air, GAS_INTERVAL_S);
+        if scheduled {
+            for i in 0..self.bodies.len() {
+                if self.bodies.awake[i] {
+                    self.take_gas_size(i);
+                }
             }
         }
     }
 
-    /// Every gas `seconds` on in `air`, then the sleepers it has moved too
-    /// far woken (their sizes follow when they next step).
-    fn age_gas(&mut self, seconds: f64, air: &Atmosphere) {
+    /// Every gas `seconds` on in `air`, each once `interval` s of it have
+    /// gathered; the sleepers it has moved too far woken; the bodies awake
+    /// whose gas moved, and those it woke, take its size.
+    fn age_gas(&mut self, seconds: f64, air: &Atmosphere, interval: f64) {
         let mut woken = std::mem::take(&mut self.stages.gas_woken);
+        let mut moved = std::mem::take(&mut self.stages.gas_moved);
         woken.clear();
+        moved.clear();
         let b = &mut self.bodies;
         for i in 0..b.len() {
             let Some(gas) = b.gas[i].as_mut() else {
                 continue;
             };
-            gas.advance(seconds, air);
-            if !b.awake[i] {
+            gas.owed_s += seconds;
+            if gas.owed_s < interval {
+                continue;
+            }
+            let owed = std::mem::take(&mut gas.owed_s);
+            gas.advance(owed, air);
+            if b.awake[i] {
+                moved.push(i as u32);
+            } else {
                 let shape = &self.shapes[b.shape[i] as usize];
                 if moved_too_far(gas, b.size[i], shape.def.volume, air) {
                     woken.push(b.island[i]);
+                    moved.push(i as u32);
                 }
             }
         }
@@ -210,7 +235,11 @@ impl World {
         for &island in &woken {
             self.wake_island(island);
         }
+        for &i in &moved {
+            self.take_gas_size(i as usize);
+        }
         self.stages.gas_woken = woken;
+        self.stages.gas_moved = moved;
     }
 
     /// Body `i` takes the size and mass of its gas (its shape's without),

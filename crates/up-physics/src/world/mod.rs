@@ -72,6 +72,8 @@ struct Stages {
     joined: Vec<(u32, u32)>,
     /// Islands whose gas woke them (`gas`).
     gas_woken: Vec<u32>,
+    /// Awake bodies whose gas moved this step (`gas`).
+    gas_moved: Vec<u32>,
 }
 
 impl Stages {
