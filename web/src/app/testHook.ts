@@ -57,24 +57,35 @@ export function createTestHook(app: App) {
     },
     /** Each body's size over its shape's in the current frame (its gas's). */
     bodyScales: () => Array.from(bridge.scales),
-    /** The float plot's samples, and its canvas's pixels: those not of its background, and those of the ceiling's line. */
+    /**
+     * The float plot's samples, and the pixels of its lines' area (the
+     * legend and the axis's words left out): those of a line (neither
+     * background nor grid), and those of the ceiling's line.
+     */
     plot() {
-      const canvas = app.plot.canvas;
+      const { canvas, area } = app.plot;
+      const ratio = canvas.width / canvas.clientWidth;
       const ctx = canvas.getContext("2d");
       const hex = (h: string) => [1, 3, 5].map((i) => parseInt(h.slice(i, i + 2), 16));
       const [br, bg, bb] = hex(PLOT_COLORS.background);
+      const [gr, gg, gb] = hex(PLOT_COLORS.grid);
       const [cr, cg, cb] = hex(PLOT_COLORS.ceiling);
       let drawn = 0;
       let ceiling = 0;
+      // Half a line's width past the area on each side: the lines at 0 and 1 lie on its edges.
+      const x0 = Math.floor((area.left - 2) * ratio);
+      const y0 = Math.floor((area.top - 2) * ratio);
+      const w = Math.ceil((area.width + 4) * ratio);
+      const h = Math.ceil((area.height + 4) * ratio);
       if (ctx) {
-        const px = ctx.getImageData(0, 0, canvas.width, canvas.height).data;
+        const px = ctx.getImageData(x0, y0, w, h).data;
         for (let i = 0; i < px.length; i += 4) {
           const off = (r: number, g: number, b: number) => Math.max(Math.abs(px[i] - r), Math.abs(px[i + 1] - g), Math.abs(px[i + 2] - b));
-          if (off(br, bg, bb) > 24) drawn++;
+          if (off(br, bg, bb) > 24 && off(gr, gg, gb) > 24) drawn++;
           if (off(cr, cg, cb) < 40) ceiling++;
         }
       }
-      return { samples: app.plot.series.samples.slice(), drawnPixels: drawn, ceilingPixels: ceiling, pixels: canvas.width * canvas.height };
+      return { samples: app.plot.series.samples.slice(), drawnPixels: drawn, ceilingPixels: ceiling, pixels: w * h };
     },
     version: () => bridge.current?.version ?? -1,
     sceneJson: () => JSON.stringify(app.scene),

@@ -81,6 +81,8 @@ const SERIES: { key: "ceiling" | "hovering" | "floor"; label: string }[] = [
 export class FloatPlot {
   readonly canvas: HTMLCanvasElement;
   readonly series = new FloatSeries();
+  /** Where the lines go, CSS pixels: between the legend on top and the axis's words below. */
+  readonly area: PlotArea;
   private dirty = true;
 
   constructor(
@@ -97,6 +99,7 @@ export class FloatPlot {
     this.canvas.height = Math.round(height * ratio);
     this.canvas.style.width = `${width}px`;
     this.canvas.style.height = `${height}px`;
+    this.area = { left: 8, top: 18, width: width - 16, height: height - 36 };
     parent.appendChild(this.canvas);
   }
 
@@ -120,7 +123,7 @@ export class FloatPlot {
     ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
     ctx.fillStyle = PLOT_COLORS.background;
     ctx.fillRect(0, 0, this.width, this.height);
-    const area: PlotArea = { left: 8, top: 18, width: this.width - 16, height: this.height - 36 };
+    const area = this.area;
     const samples = this.series.samples;
     const last = samples[samples.length - 1];
     const span = axisSpan(last?.t ?? 0);
@@ -134,21 +137,22 @@ export class FloatPlot {
       ctx.stroke();
     }
     ctx.font = "11px system-ui, sans-serif";
-    ctx.fillStyle = PLOT_COLORS.text;
+    // The legend on top, each line's name in its colour; what is plotted along the bottom.
     ctx.textBaseline = "top";
-    ctx.fillText("share of balloons", area.left, 3);
+    let legendX = area.left;
+    for (const { key, label } of [...SERIES].reverse()) {
+      ctx.fillStyle = PLOT_COLORS[key];
+      ctx.fillText(label, legendX, 3);
+      legendX += ctx.measureText(label).width + 12;
+    }
+    ctx.fillStyle = PLOT_COLORS.text;
     ctx.textBaseline = "bottom";
     ctx.fillText("0", area.left, this.height - 3);
+    ctx.textAlign = "center";
+    ctx.fillText("share of balloons over time", area.left + area.width / 2, this.height - 3);
     ctx.textAlign = "right";
     ctx.fillText(spanLabel(span), area.left + area.width, this.height - 3);
     ctx.textAlign = "left";
-    let legendX = area.left + 46;
-    ctx.lineWidth = 2;
-    for (const { key, label } of [...SERIES].reverse()) {
-      ctx.fillStyle = PLOT_COLORS[key];
-      ctx.fillText(label, legendX, this.height - 3);
-      legendX += ctx.measureText(label).width + 10;
-    }
     if (samples.length === 0) return;
     for (const { key } of SERIES) {
       ctx.strokeStyle = PLOT_COLORS[key];
