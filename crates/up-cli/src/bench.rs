@@ -71,7 +71,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let mut stage_sums: Vec<(&'static str, f64)> = world.counters().stages();
     stage_sums.iter_mut().for_each(|(_, ms)| *ms = 0.0);
     let mut max_penetration = 0.0f32;
-    let progress = progress_bar(args.steps);
+    let progress = progress_bar(args.steps, "steps");
     let started = Instant::now();
     for step in 1..=args.steps {
         let t0 = Instant::now();

@@ -9,6 +9,7 @@ mod bench;
 mod colliders;
 mod export_obj;
 mod fit_spheres;
+mod forecast;
 mod heap_meter;
 mod run;
 mod scene_arg;
@@ -40,6 +41,17 @@ struct Cli {
 enum Command {
     /// Simulate a scene headless; print a summary (and JSON with --json).
     Run(run::RunArgs),
+    /// Run a scene over hours (a time-lapse) and say per balloon group when
+    /// its balloons leave the ceiling and when they are on the floor.
+    ///
+    /// A balloon is on the floor when its lowest point is within 3 cm of the
+    /// room's lowest; at the ceiling when its centre is within 0.3 m of the
+    /// highest it has been and it has risen at least 0.5 m; hovering
+    /// otherwise. Times are hours from the start of the run (a group's
+    /// `filled_hours_before` lies before it); "half" is the ⌈n/2⌉-th balloon
+    /// of a group of n; "> H h": not within the run; "never up": no balloon
+    /// of the group reached the ceiling.
+    Forecast(forecast::ForecastArgs),
     /// Time the UP engine alone on a scene, with per-stage counters.
     Bench(bench::BenchArgs),
     /// Show the default balloon's sphere tree and mass properties.
@@ -76,6 +88,7 @@ fn main() -> ExitCode {
     }
     let result = match cli.command {
         Command::Run(args) => run::run(&args),
+        Command::Forecast(args) => forecast::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::Colliders(args) => colliders::run(&args),
         Command::Validate(args) => validate::run(&args),

@@ -17,14 +17,30 @@ use up_scene::atomic_file::{write_atomically, AtomicFile};
 
 /// Longest run `--seconds` accepts, s (one simulated day).
 const MAX_SECONDS: f64 = 86_400.0;
+/// Longest run `--hours` accepts, h (the scenes' `filled_hours_before` range).
+pub const MAX_HOURS: f64 = 2000.0;
+/// s of simulated time per `World::advance` call of a time-lapse: a CSV row
+/// set, a progress tick and a penetration sample each.
+pub const LAPSE_CHUNK_S: f64 = 60.0;
 
 #[derive(Args, Debug)]
 pub struct RunArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
     /// Simulated seconds; the scene's `sim.duration_s` (10 s by default) if left out.
-    #[arg(long, value_name = "S")]
+    #[arg(
+        long,
+        value_name = "S",
+        conflicts_with = "hours",
+        allow_negative_numbers = true
+    )]
     pub seconds: Option<f64>,
+    /// Simulated hours, in (0, 2000], as a time-lapse: the same physics as a
+    /// stepped run (`World::advance`: every step while anything moves; while
+    /// every balloon sleeps, only the gas goes on, a minute at a time, until
+    /// its lift change wakes them). CSV rows every K simulated minutes.
+    #[arg(long, value_name = "H", allow_negative_numbers = true)]
+    pub hours: Option<f64>,
     /// Write the trajectory as CSV: `t,id,x,y,z,qx,qy,qz,qw` (s, m, unit quaternion; Y up).
     #[arg(long, value_name = "FILE.csv")]
     pub out: Option<PathBuf>,
@@ -32,8 +48,9 @@ pub struct RunArgs {
     /// balloon's id as in --out, the point from 0 at the knot to the free end, m).
     #[arg(long, value_name = "FILE.csv")]
     pub ribbons_out: Option<PathBuf>,
-    /// Write a CSV row set every K steps, to --out and --ribbons-out (the
-    /// first and last steps are always written).
+    /// Write a CSV row set every K steps (with --hours: every K simulated
+    /// minutes), to --out and --ribbons-out (the first and last steps are
+    /// always written).
     #[arg(long, value_name = "K", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
     pub every: u64,
     /// End with one JSON object on the last line of standard output.
@@ -68,17 +85,40 @@ pub fn check_load_state_alone(load_state: Option<&Path>, balloons: Option<u64>) 
     Ok(())
 }
 
+/// `--hours`, checked: finite, in (0, MAX_HOURS].
+pub fn check_hours(hours: f64) -> Result<f64> {
+    if !(hours.is_finite() && hours > 0.0 && hours <= MAX_HOURS) {
+        bail!("--hours: expected a number of hours in (0, {MAX_HOURS}], found {hours}");
+    }
+    Ok(hours)
+}
+
+/// How long a run goes and how: stepping every frame, or a time-lapse.
+#[derive(Clone, Copy, Debug)]
+enum Length {
+    Steps(u64),
+    Lapse { seconds: f64 },
+}
+
 pub fn run(args: &RunArgs) -> Result<()> {
     check_load_state_alone(args.load_state.as_deref(), args.scene.balloons)?;
+    let hours = args.hours.map(check_hours).transpose()?;
     let scene = args.scene.load()?;
-    let seconds = args.seconds.unwrap_or(f64::from(scene.sim.duration_s));
-    if !(seconds.is_finite() && seconds > 0.0 && seconds <= MAX_SECONDS) {
-        bail!("--seconds: expected a number in (0, {MAX_SECONDS}], found {seconds}");
-    }
     let mut built = build_or_restore(&scene, args.load_state.as_deref())?;
     let world = &mut built.world;
-    let dt = f64::from(world.def().dt);
-    let steps = (seconds / dt).round().max(1.0) as u64;
+    let length = match hours {
+        Some(hours) => Length::Lapse {
+            seconds: hours * 3600.0,
+        },
+        None => {
+            let seconds = args.seconds.unwrap_or(f64::from(scene.sim.duration_s));
+            if !(seconds.is_finite() && seconds > 0.0 && seconds <= MAX_SECONDS) {
+                bail!("--seconds: expected a number in (0, {MAX_SECONDS}], found {seconds}");
+            }
+            let dt = f64::from(world.def().dt);
+            Length::Steps((seconds / dt).round().max(1.0) as u64)
+        }
+    };
 
     // Create output files first: a bad path fails before the simulation runs.
     let mut csv = CsvOut::create(
@@ -96,32 +136,20 @@ pub fn run(args: &RunArgs) -> Result<()> {
         AtomicFile::create(path)?;
     }
 
-    let progress = progress_bar(steps);
-    let write_rows = |world: &World, outs: [&mut Option<CsvOut>; 2]| -> Result<()> {
-        for out in outs.into_iter().flatten() {
+    let mut write_rows = |world: &World| -> Result<()> {
+        for out in [&mut csv, &mut ribbons_csv].into_iter().flatten() {
             out.write(world)?;
         }
         Ok(())
     };
-    write_rows(world, [&mut csv, &mut ribbons_csv])?;
-    let mut max_penetration = 0.0f32;
+    write_rows(world)?;
+    let start_time = world.time();
     let started = Instant::now();
-    for step in 1..=steps {
-        world.step();
-        max_penetration = max_penetration.max(world.stats().max_penetration);
-        if step % args.every == 0 || step == steps {
-            write_rows(world, [&mut csv, &mut ribbons_csv])?;
-        }
-        if let Some(bar) = &progress {
-            if step % 16 == 0 {
-                bar.set_position(step);
-            }
-        }
-    }
+    let ran = match length {
+        Length::Steps(steps) => step_every_frame(world, steps, args.every, &mut write_rows)?,
+        Length::Lapse { seconds } => time_lapse(world, seconds, args.every, &mut write_rows)?,
+    };
     let wall = started.elapsed().as_secs_f64();
-    if let Some(bar) = progress {
-        bar.finish_and_clear();
-    }
     for out in [csv, ribbons_csv].into_iter().flatten() {
         out.commit()?;
     }
@@ -133,11 +161,13 @@ pub fn run(args: &RunArgs) -> Result<()> {
     let summary = RunSummary {
         scene: args.scene.name(),
         balloons: world.body_count(),
-        steps,
+        steps: ran.steps,
+        jumps: ran.jumps,
         sim_seconds: world.time(),
+        sim_time_s: world.time() - start_time,
         wall_seconds: wall,
-        ms_per_step: wall * 1000.0 / steps as f64,
-        max_penetration_m: max_penetration,
+        ms_per_step: wall * 1000.0 / ran.steps.max(1) as f64,
+        max_penetration_m: ran.max_penetration,
         escaped: end.escaped,
         nan_bodies: end.nan_bodies,
         state_hash: format!("{:016x}", world.state_hash()),
@@ -149,12 +179,122 @@ pub fn run(args: &RunArgs) -> Result<()> {
         awake: world.stats().awake_count,
         ribbons: world.ribbon_count(),
         ribbon_max_stretch: world.ribbon_max_stretch(),
+        mean_lift_fraction: mean_lift_fraction(world),
     };
     print_table("up run", &summary.rows());
     if args.json {
         println!("{}", serde_json::to_string(&summary)?);
     }
     Ok(())
+}
+
+/// What a run did.
+struct Ran {
+    steps: u64,
+    jumps: u64,
+    /// m: the deepest overlap seen (every step, or each chunk's last in a time-lapse).
+    max_penetration: f32,
+}
+
+/// Steps `steps` frames, writing rows every `every` and after the last.
+fn step_every_frame(
+    world: &mut World,
+    steps: u64,
+    every: u64,
+    write_rows: &mut dyn FnMut(&World) -> Result<()>,
+) -> Result<Ran> {
+    let progress = progress_bar(steps, "steps");
+    let mut max_penetration = 0.0f32;
+    for step in 1..=steps {
+        world.step();
+        max_penetration = max_penetration.max(world.stats().max_penetration);
+        if step % every == 0 || step == steps {
+            write_rows(world)?;
+        }
+        if let Some(bar) = &progress {
+            if step % 16 == 0 {
+                bar.set_position(step);
+            }
+        }
+    }
+    if let Some(bar) = progress {
+        bar.finish_and_clear();
+    }
+    Ok(Ran {
+        steps,
+        jumps: 0,
+        max_penetration,
+    })
+}
+
+/// Advances `seconds` of simulated time by `World::advance`, a chunk of
+/// `LAPSE_CHUNK_S` at a time, writing rows every `every` chunks and after the last.
+fn time_lapse(
+    world: &mut World,
+    seconds: f64,
+    every: u64,
+    write_rows: &mut dyn FnMut(&World) -> Result<()>,
+) -> Result<Ran> {
+    let chunks = (seconds / LAPSE_CHUNK_S).ceil().max(1.0) as u64;
+    let progress = progress_bar(chunks, "simulated min");
+    let mut ran = Ran {
+        steps: 0,
+        jumps: 0,
+        max_penetration: 0.0,
+    };
+    let mut left = seconds;
+    for chunk in 1..=chunks {
+        let ask = if chunk == chunks { left } else { LAPSE_CHUNK_S };
+        let (steps, jumps) = advance_fully(world, ask);
+        ran.steps += steps;
+        ran.jumps += jumps;
+        left -= ask;
+        ran.max_penetration = ran.max_penetration.max(world.stats().max_penetration);
+        if chunk % every == 0 || chunk == chunks {
+            write_rows(world)?;
+        }
+        if let Some(bar) = &progress {
+            bar.set_position(chunk);
+        }
+    }
+    if let Some(bar) = progress {
+        bar.finish_and_clear();
+    }
+    Ok(ran)
+}
+
+/// `World::advance` until `seconds` have passed (it stops early when its
+/// step budget runs out); returns the steps and jumps taken.
+pub fn advance_fully(world: &mut World, seconds: f64) -> (u64, u64) {
+    // Steps per call: a minute stepped at 1/60 s is 3,600; the budget only
+    // bounds one call's time, the loop goes on.
+    const MAX_STEPS: u64 = 1 << 20;
+    let (mut steps, mut jumps, mut left) = (0, 0, seconds);
+    while left > 0.0 {
+        let done = world.advance(left, MAX_STEPS);
+        steps += done.steps;
+        jumps += done.jumps;
+        if done.seconds <= 0.0 {
+            // Nothing moved the clock: stop rather than spin.
+            break;
+        }
+        left -= done.seconds;
+    }
+    (steps, jumps)
+}
+
+/// Mean over the balloons that carry gas of `Gas::lift_fraction` in the
+/// room's air now; None when none does.
+pub fn mean_lift_fraction(world: &World) -> Option<f64> {
+    let air = world.air();
+    let (sum, n) = world
+        .body_ids()
+        .iter()
+        .filter_map(|&id| world.gas(id))
+        .fold((0.0, 0u64), |(sum, n), gas| {
+            (sum + gas.lift_fraction(&air), n + 1)
+        });
+    (n > 0).then(|| sum / n as f64)
 }
 
 /// A CSV file being written, whole or not at all, and how its rows are made.
@@ -220,15 +360,14 @@ fn write_ribbon_rows(world: &World, out: &mut AtomicFile) -> std::io::Result<()>
     Ok(())
 }
 
-/// A progress bar on standard error, only when it is a terminal.
-pub fn progress_bar(steps: u64) -> Option<ProgressBar> {
+/// A progress bar of `len` `unit` on standard error, only when it is a terminal.
+pub fn progress_bar(len: u64, unit: &str) -> Option<ProgressBar> {
     if !std::io::stderr().is_terminal() {
         return None;
     }
-    let bar = ProgressBar::with_draw_target(Some(steps), ProgressDrawTarget::stderr());
-    if let Ok(style) =
-        ProgressStyle::with_template("{bar:40} {pos}/{len} steps  {elapsed} (eta {eta})")
-    {
+    let bar = ProgressBar::with_draw_target(Some(len), ProgressDrawTarget::stderr());
+    let template = format!("{{bar:40}} {{pos}}/{{len}} {unit}  {{elapsed}} (eta {{eta}})");
+    if let Ok(style) = ProgressStyle::with_template(&template) {
         bar.set_style(style);
     }
     Some(bar)

@@ -12,13 +12,20 @@ pub struct RunSummary {
     pub scene: String,
     pub balloons: usize,
     pub steps: u64,
-    /// Simulated time at the end, s.
+    /// Time-lapse jumps (`World::advance` moving the gas alone while every
+    /// balloon sleeps); 0 for a run stepped every frame.
+    pub jumps: u64,
+    /// Simulated time at the end, s (the world's clock: a world loaded with
+    /// `--load-state` starts from its saved time).
     pub sim_seconds: f64,
+    /// Simulated time this run covered, s.
+    pub sim_time_s: f64,
     /// Wall-clock time spent stepping, s.
     pub wall_seconds: f64,
     /// Mean wall-clock time per step, ms.
     pub ms_per_step: f64,
-    /// Deepest overlap any step found (balloon–balloon or balloon–room), m.
+    /// Deepest overlap any step found (balloon–balloon or balloon–room), m;
+    /// with `--hours`, the deepest at the end of each simulated minute.
     pub max_penetration_m: f32,
     /// Bodies whose origin is outside the room at the end.
     pub escaped: usize,
@@ -45,6 +52,10 @@ pub struct RunSummary {
     /// life (`World::ribbon_max_stretch`; 0.004 is 0.4 % longer than its
     /// length); a world loaded with `--load-state` keeps its earlier largest.
     pub ribbon_max_stretch: f32,
+    /// Mean over the balloons that carry gas of the gas's lift now over its
+    /// lift at fill (`Gas::lift_fraction`, in the room's air at the end);
+    /// null when no balloon carries gas.
+    pub mean_lift_fraction: Option<f64>,
 }
 
 /// Measures the end state of `world`.
@@ -127,7 +138,9 @@ impl RunSummary {
             ("scene", self.scene.clone()),
             ("balloons", self.balloons.to_string()),
             ("steps", self.steps.to_string()),
-            ("simulated", format!("{:.3} s", self.sim_seconds)),
+            ("time-lapse jumps", self.jumps.to_string()),
+            ("simulated", format!("{:.3} s", self.sim_time_s)),
+            ("clock at the end", format!("{:.3} s", self.sim_seconds)),
             ("wall clock", format!("{:.3} s", self.wall_seconds)),
             ("per step", format!("{:.3} ms", self.ms_per_step)),
             (
@@ -146,6 +159,11 @@ impl RunSummary {
             (
                 "ribbon max stretch",
                 format!("{:.3} %", self.ribbon_max_stretch * 100.0),
+            ),
+            (
+                "mean lift left",
+                self.mean_lift_fraction
+                    .map_or_else(|| "no gas".to_string(), |f| format!("{:.1} %", f * 100.0)),
             ),
             ("state hash", self.state_hash.clone()),
         ]

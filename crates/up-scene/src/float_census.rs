@@ -266,6 +266,37 @@ mod tests {
     }
 
     #[test]
+    fn a_balloon_losing_its_helium_leaves_the_ceiling_and_lands() {
+        let mut world = small_room("[[balloons]]\ncount = 1\ngas = \"helium\"\n");
+        let id = world.body_ids()[0];
+        // An untreated 11″ latex balloon filled 12 h before: about 2 h of
+        // float left (the envelope as up_physics' own gas tests size it).
+        let envelope = up_physics::EnvelopeDef::latex(0.0035, 0.003, 0.289, 1.0, 1.0);
+        world.fill(id, &envelope, 12.0 * 3600.0).unwrap();
+        let mut census = FloatCensus::new();
+        census.observe(&world);
+        run(&mut world, 6.0);
+        let up = census.observe(&world);
+        assert_eq!(census.state(id), Some(FloatState::Ceiling));
+        let mut states = vec![FloatState::Ceiling];
+        let mut lift = up[0].mean_lift_fraction;
+        assert!(lift > 0.0 && lift < 1.0, "aged 12 h: {lift}");
+        for _ in 0..6 * 60 {
+            world.advance(60.0, u64::MAX);
+            let now = census.observe(&world);
+            assert!(now[0].mean_lift_fraction < lift, "the lift only falls");
+            lift = now[0].mean_lift_fraction;
+            let state = census.state(id).unwrap();
+            if states.last() != Some(&state) {
+                states.push(state);
+            }
+        }
+        assert_eq!(states.first(), Some(&FloatState::Ceiling));
+        assert_eq!(states.last(), Some(&FloatState::Floor), "{states:?}");
+        assert!(world.body_scale(id).unwrap() < 1.0, "it shrank");
+    }
+
+    #[test]
     fn a_balloon_pulled_down_from_the_ceiling_hovers_then_lands() {
         let mut world = small_room("[[balloons]]\ncount = 1\ngas = \"helium\"\n");
         let mut census = FloatCensus::new();

@@ -1,7 +1,9 @@
 //! The `up` binary end to end: every subcommand, every error path, the CSV
 //! and JSON formats, and that failed runs leave no half-written files.
-//! Simulations stay short (a few balloons, at most a simulated second).
+//! Simulations stay short (a few balloons, at most a simulated second, or
+//! a few simulated hours as a time-lapse in a small room).
 
+mod forecast;
 mod ribbons;
 mod run;
 mod saved_state;

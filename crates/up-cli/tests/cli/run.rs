@@ -7,6 +7,7 @@ fn help_is_available_everywhere() {
     assert!(up_ok(&["--help"]).contains("run"));
     for sub in [
         "run",
+        "forecast",
         "bench",
         "colliders",
         "validate",
