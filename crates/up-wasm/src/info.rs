@@ -11,6 +11,7 @@ use up_scene::scene::{
 
 use crate::contacts::{CONTACT_FLOATS, MAX_CONTACTS};
 use crate::error::ERROR_KINDS;
+use crate::gas::MAX_ADVANCE_S;
 use crate::ribbons::{MAX_RIBBON_LENGTH_M, RIBBON_POINT_FLOATS};
 use crate::state::{CAPACITY, MAX_SPEED, MAX_SPIN, MAX_STEPS_PER_CALL, POSE_FLOATS, TREE_FLOATS};
 
@@ -83,8 +84,10 @@ pub struct Constants {
     pub capacity: u32,
     /// Most contacts one `write_contacts` writes.
     pub max_contacts: u32,
-    /// Most steps one `step` call takes.
+    /// Most steps one `step` or `advance` call takes.
     pub max_steps_per_call: u32,
+    /// Most simulated seconds one `advance` call covers.
+    pub max_advance_s: f64,
     /// Fastest a balloon may be set moving, m/s, and spinning, rad/s.
     pub max_speed: f32,
     pub max_spin: f32,
@@ -116,6 +119,7 @@ impl Constants {
             capacity: CAPACITY as u32,
             max_contacts: MAX_CONTACTS as u32,
             max_steps_per_call: MAX_STEPS_PER_CALL,
+            max_advance_s: MAX_ADVANCE_S,
             max_speed: MAX_SPEED,
             max_spin: MAX_SPIN,
             colors,

@@ -35,6 +35,7 @@
 mod clock;
 mod contacts;
 mod error;
+mod gas;
 mod info;
 mod ribbons;
 mod state;
@@ -44,6 +45,7 @@ use wasm_bindgen::prelude::*;
 
 pub use contacts::{CONTACT_FLOATS, MAX_CONTACTS};
 pub use error::{CallError, WasmError, ERROR_KINDS};
+pub use gas::{AdvanceReport, FloatCounts, GroupFloat, MAX_ADVANCE_S};
 pub use info::{Constants, EngineStats, NamedColor, SceneLimits, WorldSummary};
 pub use ribbons::{pack_rgb, MAX_RIBBON_LENGTH_M, RIBBON_POINT_FLOATS};
 pub use state::{
@@ -141,6 +143,42 @@ impl Engine {
     /// Takes `n` fixed steps (at most `MAX_STEPS_PER_CALL`).
     pub fn step(&mut self, n: u32) -> Result<(), CallError> {
         named("step", self.state.step(n))
+    }
+
+    /// Advances `seconds` of simulated time (at most `MAX_ADVANCE_S`), taking
+    /// fixed steps while anything moves and jumping the gas alone while
+    /// everything sleeps, in at most `max_steps` steps (at most
+    /// `MAX_STEPS_PER_CALL`); says how far it got. Deterministic.
+    pub fn advance(&mut self, seconds: f64, max_steps: u32) -> Result<AdvanceReport, CallError> {
+        named("advance", self.state.advance(seconds, max_steps))
+    }
+
+    /// Simulated seconds since the world was built (0 without one).
+    pub fn sim_time(&self) -> f64 {
+        self.state.sim_time()
+    }
+
+    /// The room's air temperature now, °C (a scene's schedule applied).
+    pub fn air_temperature_c(&self) -> Result<f32, CallError> {
+        named("air_temperature_c", self.state.air_temperature_c())
+    }
+
+    /// Writes every body's size over its shape's (1 for a body without gas),
+    /// dense order, for `body_scales_ptr`; returns how many bodies.
+    pub fn write_body_scales(&mut self) -> Result<u32, CallError> {
+        named("write_body_scales", self.state.write_body_scales())?;
+        Ok(self.state.scales.len() as u32)
+    }
+
+    pub fn body_scales_ptr(&self) -> *const f32 {
+        self.state.scales.as_ptr()
+    }
+
+    /// Where the balloons float now (at the ceiling, hovering, on the floor),
+    /// per group and in all; each call is a look the census remembers (how
+    /// high each balloon has been), so call it at a steady pace.
+    pub fn float_counts(&mut self) -> Result<FloatCounts, CallError> {
+        named("float_counts", self.state.float_counts())
     }
 
     /// Bodies in the world (0 without one).

@@ -12,6 +12,7 @@ use crate::contacts::write_contacts;
 use crate::error::{finite, WasmError};
 use crate::info::{EngineStats, WorldSummary};
 use crate::ribbons::RibbonTables;
+use up_scene::float_census::FloatCensus;
 
 /// Most steps one `step` call takes: a host asking for more has lost track of time.
 pub const MAX_STEPS_PER_CALL: u32 = 10_000;
@@ -63,6 +64,10 @@ pub struct State {
     steps_summed: u32,
     /// The ribbons' points and tables for the page (`ribbons.rs`).
     pub ribbons: RibbonTables,
+    /// Each body's size over its shape's, dense order (`gas.rs`).
+    pub scales: Vec<f32>,
+    /// How high each balloon has been, for where it floats (`gas.rs`); made afresh with each world.
+    pub census: Option<FloatCensus>,
 }
 
 /// `Ok` when a velocity stays within `MAX_SPEED` and `MAX_SPIN`, else why not.
@@ -119,6 +124,7 @@ impl State {
             built,
             shapes,
         });
+        self.census = None;
         Ok(())
     }
 
@@ -145,20 +151,28 @@ impl State {
                 "{n} steps at once: expected at most {MAX_STEPS_PER_CALL}"
             )));
         }
-        let loaded = self.loaded.as_mut().ok_or(WasmError::NoWorld)?;
+        self.world()?;
         for _ in 0..n {
-            loaded.built.world.step();
-            let stages = loaded.built.world.counters().stages();
-            if self.stage_sums.len() != stages.len() {
-                self.stage_sums = stages.iter().map(|&(name, _)| (name, 0.0)).collect();
-                self.steps_summed = 0;
-            }
-            for (sum, (_, ms)) in self.stage_sums.iter_mut().zip(&stages) {
-                sum.1 += ms;
-            }
-            self.steps_summed += 1;
+            self.world_mut()?.step();
+            self.sum_last_step();
         }
         Ok(())
+    }
+
+    /// Adds the last step's stage times to the sums `stats` averages.
+    pub(crate) fn sum_last_step(&mut self) {
+        let Some(loaded) = self.loaded.as_ref() else {
+            return;
+        };
+        let stages = loaded.built.world.counters().stages();
+        if self.stage_sums.len() != stages.len() {
+            self.stage_sums = stages.iter().map(|&(name, _)| (name, 0.0)).collect();
+            self.steps_summed = 0;
+        }
+        for (sum, (_, ms)) in self.stage_sums.iter_mut().zip(&stages) {
+            sum.1 += ms;
+        }
+        self.steps_summed += 1;
     }
 
     pub fn body_count(&self) -> usize {
@@ -237,8 +251,10 @@ impl State {
         let mut def = BodyDef::new(shape, Pose::new(position, Quat::IDENTITY));
         def.user_data = user_data_for(model as usize, color as usize);
         let body = loaded.built.world.add_body(&def)?;
-        if let Err(e) = self.tie_added(body, model as usize) {
-            // A balloon the page cannot give its ribbon is not added.
+        // Filled before its ribbon is tied: the ribbon hangs from the balloon as its gas makes it.
+        let filled = self.fill_added(body, model as usize);
+        if let Err(e) = filled.and_then(|()| self.tie_added(body, model as usize)) {
+            // A balloon the page cannot fill or give its ribbon is not added.
             let _ = self.world_mut()?.remove_body(body);
             return Err(e);
         }

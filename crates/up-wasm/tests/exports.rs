@@ -68,6 +68,11 @@ fn before_a_world_every_method_answers_no_world_or_nothing() {
     refused(e.drag_to(0.0, 1.0, 0.0), "NoWorld", "drag_to");
     refused(e.release(), "NoWorld", "release");
     refused(e.write_model_tree(0), "NoWorld", "write_model_tree");
+    refused(e.advance(1.0, 10), "NoWorld", "advance");
+    refused(e.write_body_scales(), "NoWorld", "write_body_scales");
+    refused(e.air_temperature_c(), "NoWorld", "air_temperature_c");
+    refused(e.float_counts(), "NoWorld", "float_counts");
+    assert_eq!(e.sim_time(), 0.0);
     assert_eq!(e.body_count(), 0);
     assert_eq!(e.model_count(), 0);
     assert_eq!(e.room_vertices_len(), 0);
@@ -79,6 +84,7 @@ fn before_a_world_every_method_answers_no_world_or_nothing() {
         e.contacts_ptr(),
         e.room_vertices_ptr(),
         e.tree_ptr(),
+        e.body_scales_ptr(),
     ] {
         assert!(!ptr.is_null(), "an empty view, not a null pointer");
     }
@@ -130,7 +136,11 @@ fn nan_and_infinite_arguments_are_bad_arguments_and_change_nothing() {
         refused(e.grab(0, 0.0, bad, 0.0), "BadArgument", "grab");
         let m = refused(e.drag_to(bad, 0.0, 0.0), "BadArgument", "drag_to");
         assert!(m.contains("finite"), "{m}");
+        refused(e.advance(f64::from(bad), 10), "BadArgument", "advance");
     }
+    refused(e.advance(MAX_ADVANCE_S + 1.0, 10), "BadArgument", "advance");
+    refused(e.advance(1.0, 0), "BadArgument", "advance");
+    assert_eq!(e.sim_time(), 0.0, "no refused advance moved the clock");
     refused(e.step(MAX_STEPS_PER_CALL + 1), "BadArgument", "step");
     assert_eq!(e.body_count(), n);
     assert_eq!(e.state_hash(), hash, "no refused call changed the world");

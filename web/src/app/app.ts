@@ -11,6 +11,7 @@ import type { EngineStats } from "../sim/engine";
 import type { WorldInfo } from "../sim/protocol";
 import { Controls } from "../ui/controls";
 import { Hud } from "../ui/hud";
+import { FloatPlot } from "../ui/floatPlot";
 import { Messages } from "../ui/messages";
 import { Panel, type PanelActions } from "../ui/panel";
 import type { KeyAction } from "../ui/input";
@@ -34,6 +35,8 @@ export class App {
   readonly link: ShareLink;
   readonly bridge: SimBridge;
   readonly controls: Controls;
+  /** Where the balloons float against simulated time. */
+  readonly plot: FloatPlot;
   panel: Panel | null = null;
   /** The engine's description of the world shown (null until the first is ready). */
   info: WorldInfo | null = null;
@@ -52,6 +55,7 @@ export class App {
     this.hud = new Hud(page.hud);
     this.messages = new Messages(page.message, page.fatal);
     this.link = new ShareLink(this.messages);
+    this.plot = new FloatPlot(document.body);
     this.bridge = new SimBridge({
       ready: (info) => this.worldReady(info),
       frame: () => this.panel?.setPaused(this.bridge.paused),
@@ -59,6 +63,7 @@ export class App {
         this.lastStats = { stats, stepsPerSecond };
         this.hud.setStats(stats, stepsPerSecond);
       },
+      census: (sample) => this.plot.push(sample),
       error: (message, fatal) => this.engineError(message, fatal),
     });
     this.controls = new Controls(this.stage.camera, this.stage.renderer.domElement, this.bridge, {
@@ -85,6 +90,7 @@ export class App {
 
   private worldReady(info: WorldInfo): void {
     this.info = info;
+    this.plot.clear();
     this.link.pending = false;
     this.scene = JSON.parse(info.sceneJson) as Record<string, unknown>;
     const params = paramsFromScene(this.scene);
@@ -164,6 +170,7 @@ export class App {
     },
     togglePause: () => this.togglePause(),
     step: () => this.bridge.singleStep(),
+    timeLapse: (rate) => this.bridge.setRate(rate),
     debugTrees: (on) => this.setDebug(on),
     screenshot: () => this.screenshot(),
     share: () => this.link.share(JSON.stringify(this.scene), () => this.hud.setMode("Link copied to the clipboard")),
@@ -175,8 +182,11 @@ export class App {
     this.lastFrameTime = now;
     this.controls.update(dt);
     const withBalloons = this.world.update(this.bridge, performance.timeOrigin + now);
-    if (withBalloons) this.hud.setCount(this.bridge.current!.count);
+    const current = this.bridge.current;
+    if (withBalloons && current) this.hud.setCount(current.count);
+    if (current) this.hud.setClock(current);
     this.hud.frame(now);
+    this.plot.draw();
     const { renderer, scene, camera } = this.stage;
     const renderStart = performance.now();
     renderer.render(scene, camera);

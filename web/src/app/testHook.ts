@@ -6,6 +6,7 @@
 
 import * as THREE from "three";
 import { POSE_STRIDE } from "../render/poseMath";
+import { PLOT_COLORS } from "../ui/floatPlot";
 import type { App } from "./app";
 
 export function createTestHook(app: App) {
@@ -43,18 +44,65 @@ export function createTestHook(app: App) {
       return { end: [p[e], p[e + 1], p[e + 2]], body: bodies[r] };
     },
     steps: () => bridge.current?.steps ?? 0,
+    /** The simulated clock of the current frame and what the HUD's clock line reads. */
+    clock: () => {
+      const f = bridge.current;
+      return {
+        simTime: f?.simTime ?? 0,
+        airTemperatureC: f?.airTemperatureC ?? NaN,
+        rate: f?.rate ?? 1,
+        achievedRate: f?.achievedRate ?? 0,
+        text: document.getElementById("hud-clock")?.textContent ?? "",
+      };
+    },
+    /** Each body's size over its shape's in the current frame (its gas's). */
+    bodyScales: () => Array.from(bridge.scales),
+    /**
+     * The float plot's samples, and the pixels of its lines' area (the
+     * legend and the axis's words left out): those of a line (neither
+     * background nor grid), and those of the ceiling's line.
+     */
+    plot() {
+      const { canvas, area } = app.plot;
+      const ratio = canvas.width / canvas.clientWidth;
+      const ctx = canvas.getContext("2d");
+      const hex = (h: string) => [1, 3, 5].map((i) => parseInt(h.slice(i, i + 2), 16));
+      const [br, bg, bb] = hex(PLOT_COLORS.background);
+      const [gr, gg, gb] = hex(PLOT_COLORS.grid);
+      const [cr, cg, cb] = hex(PLOT_COLORS.ceiling);
+      let drawn = 0;
+      let ceiling = 0;
+      // Half a line's width past the area on each side: the lines at 0 and 1 lie on its edges.
+      const x0 = Math.floor((area.left - 2) * ratio);
+      const y0 = Math.floor((area.top - 2) * ratio);
+      const w = Math.ceil((area.width + 4) * ratio);
+      const h = Math.ceil((area.height + 4) * ratio);
+      if (ctx) {
+        const px = ctx.getImageData(x0, y0, w, h).data;
+        for (let i = 0; i < px.length; i += 4) {
+          const off = (r: number, g: number, b: number) => Math.max(Math.abs(px[i] - r), Math.abs(px[i + 1] - g), Math.abs(px[i + 2] - b));
+          if (off(br, bg, bb) > 24 && off(gr, gg, gb) > 24) drawn++;
+          if (off(cr, cg, cb) < 40) ceiling++;
+        }
+      }
+      return { samples: app.plot.series.samples.slice(), drawnPixels: drawn, ceilingPixels: ceiling, pixels: w * h };
+    },
     version: () => bridge.current?.version ?? -1,
     sceneJson: () => JSON.stringify(app.scene),
     messages: () => messages.shown.slice(),
     camera: () => ({ position: camera.position.toArray(), target: controls.center().toArray() }),
-    /** World centre of balloon i's root sphere (what a click should aim at). */
+    /** World centre of balloon i's root sphere, at its size now (what a click should aim at). */
     balloonCenter(i: number): [number, number, number] | null {
       const p = bridge.curr;
       const root = app.info?.trees[bridge.models[i] ?? 0]?.[0];
       const at = i * POSE_STRIDE;
       if (!root || p.length < at + POSE_STRIDE) return null;
       const q = new THREE.Quaternion(p[at + 3], p[at + 4], p[at + 5], p[at + 6]);
-      const c = new THREE.Vector3(...root.center).applyQuaternion(q).add(new THREE.Vector3(p[at], p[at + 1], p[at + 2]));
+      const scale = bridge.scales[i] ?? 1;
+      const c = new THREE.Vector3(...root.center)
+        .multiplyScalar(scale)
+        .applyQuaternion(q)
+        .add(new THREE.Vector3(p[at], p[at + 1], p[at + 2]));
       return [c.x, c.y, c.z];
     },
     /** Client pixel coordinates of a world point. */

@@ -83,8 +83,10 @@ export class Balloons {
   private mesh: THREE.InstancedMesh;
   private readonly material: THREE.MeshPhysicalMaterial;
   private capacity = 0;
-  /** Scale of each instance (model diameter / OBJ diameter). */
+  /** Scale of each instance's model (model diameter / OBJ diameter). */
   private scales = new Float32Array(0);
+  /** Scale of each instance as drawn: its model's times its body's size now (the gas's). */
+  private drawnScales = new Float32Array(0);
   private modelScale: number[] = [1];
   private palette: THREE.Color[] = [];
   private readonly scratchColor = new THREE.Color();
@@ -123,6 +125,7 @@ export class Balloons {
     this.group.add(mesh);
     this.capacity = capacity;
     this.scales = new Float32Array(capacity);
+    this.drawnScales = new Float32Array(capacity);
     this.mesh = mesh;
     return mesh;
   }
@@ -151,10 +154,17 @@ export class Balloons {
     this.mesh.geometry = count > CROWD_BALLOONS ? this.assets.crowdGeometry : this.assets.geometry;
   }
 
-  /** Writes interpolated poses into the instance matrices. */
-  update(prev: Float32Array, curr: Float32Array, count: number, alpha: number): void {
+  /**
+   * Writes interpolated poses into the instance matrices, each scaled by its
+   * body's size now (`bodyScales`, one per body; 1 where it is short): the
+   * pose is the mesh frame's origin, so translate · rotate · scale draws a
+   * shrunken balloon where the engine has it.
+   */
+  update(prev: Float32Array, curr: Float32Array, count: number, alpha: number, bodyScales: Float32Array): void {
     const n = Math.min(count, this.capacity);
-    writeInstanceMatrices(this.mesh.instanceMatrix.array as Float32Array, prev, curr, n, alpha, this.scales);
+    const drawn = this.drawnScales;
+    for (let i = 0; i < n; i++) drawn[i] = this.scales[i] * (i < bodyScales.length ? bodyScales[i] : 1);
+    writeInstanceMatrices(this.mesh.instanceMatrix.array as Float32Array, prev, curr, n, alpha, drawn);
     this.mesh.count = n;
     this.mesh.instanceMatrix.clearUpdateRanges();
     this.mesh.instanceMatrix.addUpdateRange(0, n * 16);

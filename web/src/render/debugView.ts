@@ -137,8 +137,12 @@ export class DebugView {
     this.group.visible = on;
   }
 
-  /** Places every node of every balloon's tree (current poses, no interpolation: it is a debug view). */
-  update(poses: Float32Array, offset: number, count: number, models: Uint32Array | null): void {
+  /**
+   * Places every node of every balloon's tree (current poses, no
+   * interpolation: it is a debug view), each tree at its body's size now
+   * (`scales`, 1 where short), as the engine collides with it.
+   */
+  update(poses: Float32Array, offset: number, count: number, models: Uint32Array | null, scales: Float32Array | null = null): void {
     if (!this.group.visible) return;
     let needed = 0;
     for (let i = 0; i < count; i++) needed += this.trees[models ? models[i] : 0]?.length ?? 0;
@@ -148,13 +152,14 @@ export class DebugView {
       const tree = this.trees[models ? models[i] : 0];
       if (!tree) continue;
       const o = offset + i * POSE_STRIDE;
+      const s = scales && i < scales.length ? scales[i] : 1;
       this.quaternion.set(poses[o + 3], poses[o + 4], poses[o + 5], poses[o + 6]);
       for (const node of tree) {
-        this.position.set(node.center[0], node.center[1], node.center[2]).applyQuaternion(this.quaternion);
+        this.position.set(node.center[0] * s, node.center[1] * s, node.center[2] * s).applyQuaternion(this.quaternion);
         this.position.x += poses[o];
         this.position.y += poses[o + 1];
         this.position.z += poses[o + 2];
-        this.scale.setScalar(node.radius);
+        this.scale.setScalar(node.radius * s);
         this.matrix.compose(this.position, this.quaternion, this.scale);
         this.spheres.setMatrixAt(k, this.matrix);
         this.spheres.setColorAt(k, this.color.setHex(DEPTH_COLORS[Math.min(node.depth, DEPTH_COLORS.length - 1)]));

@@ -78,7 +78,7 @@ export class WorldView {
       balloons.setBodies(bridge.colors, bridge.models);
       this.drawnVersion = f.version;
     }
-    balloons.update(bridge.prev, bridge.curr, f.count, bridge.alpha(nowAbs));
+    balloons.update(bridge.prev, bridge.curr, f.count, bridge.alpha(nowAbs), bridge.scales);
     const ribbons = this.ribbons;
     const tables = bridge.ribbons;
     if (ribbons && f.version !== this.ribbonVersion && (tables.offsets[tables.bodies.length] ?? 0) * RIBBON_POINT_STRIDE === f.ribbonFloats) {
@@ -87,7 +87,7 @@ export class WorldView {
     }
     if (ribbons && this.ribbonVersion === f.version) ribbons.update(bridge.ribbonsPrev, bridge.ribbonsCurr, bridge.alpha(nowAbs));
     if (this.debug.visible) {
-      this.debug.update(bridge.curr, 0, f.count, bridge.models);
+      this.debug.update(bridge.curr, 0, f.count, bridge.models, bridge.scales);
       this.debug.setRibbonPoints(bridge.ribbonsCurr);
       if (this.contactsFrame !== f) {
         this.debug.setContacts(bridge.contacts, f.contactCount);

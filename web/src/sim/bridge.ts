@@ -3,7 +3,7 @@
 // far between the two steps of a frame the display is (interpolation).
 
 import type { EngineStats, RibbonTables } from "./engine";
-import type { Frame, FromWorker, ToWorker, Vec3Tuple, WorldInfo } from "./protocol";
+import type { CensusSample, Frame, FromWorker, ToWorker, Vec3Tuple, WorldInfo } from "./protocol";
 import { frameViews } from "./frameLayout";
 import { setEngineConstants } from "../scene/sceneSchema";
 
@@ -11,6 +11,8 @@ export interface BridgeEvents {
   ready(info: WorldInfo): void;
   frame(frame: Frame): void;
   stats(stats: EngineStats, stepsPerSecond: number): void;
+  /** A look at where the balloons float (for the plot). */
+  census(sample: CensusSample): void;
   error(message: string, fatal: boolean): void;
 }
 
@@ -27,6 +29,8 @@ export class SimBridge {
   /** Every ribbon's points before and after the frame's last step (`RIBBON_POINT_STRIDE` each). */
   ribbonsPrev = new Float32Array(0);
   ribbonsCurr = new Float32Array(0);
+  /** Each body's size over its shape's in the current frame (its gas's). */
+  scales = new Float32Array(0);
   /** Each ribbon's first point, balloon and colour,. */
   ribbons: RibbonTables = { offsets: new Uint32Array(1), bodies: new Uint32Array(0), colors: new Uint32Array(0), weights: new Float32Array(0) };
   info: WorldInfo | null = null;
@@ -61,6 +65,7 @@ export class SimBridge {
         this.contacts = views.contacts;
         this.ribbonsPrev = views.ribbonsPrev;
         this.ribbonsCurr = views.ribbonsCurr;
+        this.scales = views.scales;
         if (msg.colors) this.colors = msg.colors;
         if (msg.models) this.models = msg.models;
         if (msg.ribbons) this.ribbons = msg.ribbons;
@@ -72,6 +77,9 @@ export class SimBridge {
       }
       case "stats":
         this.events.stats(msg.stats, msg.stepsPerSecond);
+        break;
+      case "census":
+        this.events.census(msg.sample);
         break;
       case "error":
         this.events.error(msg.message, msg.fatal);
@@ -119,6 +127,11 @@ export class SimBridge {
   /** Asks for contacts in every frame (debug view on), or for none. */
   setDebug(on: boolean): void {
     this.send({ type: "debug", on });
+  }
+
+  /** Time-lapse: simulated seconds per real second (1: real time). */
+  setRate(rate: number): void {
+    this.send({ type: "rate", rate });
   }
 
   singleStep(): void {

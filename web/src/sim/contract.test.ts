@@ -49,7 +49,7 @@ describe("strides", () => {
     }
     const contacts = engine.contacts(1_000_000);
     expect(contacts.view.length).toBe(contacts.count * CONTACT_STRIDE);
-    expect(frameFloats(n, contacts.count)).toBe(2 * poses.length + contacts.view.length);
+    expect(frameFloats(n, contacts.count)).toBe(2 * poses.length + contacts.view.length + n);
   });
 });
 
@@ -75,7 +75,7 @@ describe("ribbons", () => {
     expect(tables.offsets[n]).toBe(engine.ribbonPointCount());
     const points = engine.ribbonPoints();
     expect(points.length).toBe(engine.ribbonPointCount() * RIBBON_POINT_STRIDE);
-    expect(frameFloats(n, 0, points.length)).toBe(2 * n * POSE_STRIDE + 2 * points.length);
+    expect(frameFloats(n, 0, points.length)).toBe(2 * n * POSE_STRIDE + 2 * points.length + n);
     expect([...tables.bodies].sort((a, b) => a - b)).toEqual([...Array(n).keys()]);
     for (const c of tables.colors) expect(c).toBeLessThanOrEqual(0xffffff);
     expect(Array.from(tables.weights), "the default ribbons carry no weight").toEqual(Array(n).fill(0));
@@ -155,6 +155,69 @@ describe("ribbons", () => {
     }
     expect(engine.stateHash()).toBe(hash);
     expect(engine.ribbonLength()).toBe(1);
+  });
+});
+
+describe("gas and time-lapse", () => {
+  it("every frame's scales are one per body, 1 at the fill, below 1 after an hour", () => {
+    engine.loadDefaultScene();
+    const n = engine.bodyCount();
+    let scales = engine.bodyScales();
+    expect(scales.length).toBe(n);
+    expect(frameFloats(n, 0, 0)).toBe(2 * n * POSE_STRIDE + scales.length);
+    for (const s of scales) expect(s).toBeCloseTo(1, 1);
+    expect(engine.simTime()).toBe(0);
+    expect(engine.airTemperatureC()).toBeCloseTo(20, 3);
+    let steps = 0;
+    let jumps = 0;
+    while (engine.simTime() < 3600) {
+      const done = engine.advance(Math.min(60, 3600 - engine.simTime()), 200);
+      expect(done.seconds).toBeGreaterThan(0);
+      steps += done.steps;
+      jumps += done.jumps;
+    }
+    expect(engine.simTime()).toBeCloseTo(3600, 3);
+    expect(jumps, `the sleeping pile jumps (${steps} steps)`).toBeGreaterThan(0);
+    scales = engine.bodyScales();
+    for (const s of scales) expect(s).toBeLessThan(1);
+    const counts = engine.floatCounts();
+    expect(counts.ceiling + counts.hovering + counts.floor).toBe(n);
+    expect(counts.groups.length).toBe(1);
+    expect(counts.time_s).toBeCloseTo(engine.simTime(), 6);
+    expect(counts.mean_lift_fraction).toBeGreaterThan(0);
+    expect(counts.mean_lift_fraction).toBeLessThan(1);
+  }, 120_000);
+
+  it("a balloon added by the page carries its group's gas", () => {
+    engine.loadDefaultScene();
+    const n = engine.bodyCount();
+    engine.addBalloonOnFloor(0.5, 0.5, 0);
+    while (engine.simTime() < 1200) engine.advance(60, 1000);
+    expect(engine.bodyScales()[n]).toBeLessThan(1);
+  }, 120_000);
+
+  it("refuses a bad span or budget, naming advance, and keeps the world", () => {
+    engine.loadDefaultScene();
+    const hash = engine.stateHash();
+    for (const [seconds, steps] of [
+      [NaN, 10],
+      [-1, 10],
+      [engine.constants.max_advance_s + 1, 10],
+      [1, 0],
+      [1, engine.constants.max_steps_per_call + 1],
+    ]) {
+      let thrown: unknown = null;
+      try {
+        engine.advance(seconds, steps);
+      } catch (e) {
+        thrown = e;
+      }
+      expect(thrown).toBeInstanceOf(EngineError);
+      expect((thrown as EngineError).kind).toBe("BadArgument");
+      expect((thrown as EngineError).message).toMatch(/^advance: /);
+    }
+    expect(engine.stateHash()).toBe(hash);
+    expect(engine.simTime()).toBe(0);
   });
 });
 

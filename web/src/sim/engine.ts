@@ -8,7 +8,7 @@
 
 import type * as Glue from "../../public/wasm/up_wasm";
 
-export type { Constants, EngineStats, NamedColor, Scene, SceneLimits, WorldSummary } from "../../public/wasm/up_wasm";
+export type { AdvanceReport, Constants, EngineStats, FloatCounts, NamedColor, Scene, SceneLimits, WorldSummary } from "../../public/wasm/up_wasm";
 
 /** The glue module as `import()` returns it. */
 export type GlueModule = typeof Glue;
@@ -160,6 +160,39 @@ export class Engine {
 
   step(n = 1): void {
     this.call(() => this.e.step(n));
+  }
+
+  /**
+   * Advances `seconds` of simulated time, stepping while anything moves and
+   * jumping the gas alone while everything sleeps, in at most `maxSteps`
+   * steps: says how far it got (less than asked when the steps ran out).
+   */
+  advance(seconds: number, maxSteps: number): Glue.AdvanceReport {
+    return this.call(() => this.e.advance(seconds, maxSteps));
+  }
+
+  /** Simulated seconds since the world was built. */
+  simTime(): number {
+    return this.e.sim_time();
+  }
+
+  /** The room's air temperature now, °C. */
+  airTemperatureC(): number {
+    return this.call(() => this.e.air_temperature_c());
+  }
+
+  /**
+   * Every body's size over its shape's (1 without gas), dense order: one
+   * view of wasm memory, valid until the next call into the engine.
+   */
+  bodyScales(): Float32Array {
+    const n = this.call(() => this.e.write_body_scales());
+    return new Float32Array(this.memory.buffer, this.e.body_scales_ptr(), n);
+  }
+
+  /** Where the balloons float now, in all and per group (a look the engine's census remembers). */
+  floatCounts(): Glue.FloatCounts {
+    return this.call(() => this.e.float_counts());
   }
 
   bodyCount(): number {

@@ -7,7 +7,7 @@ describe("frame buffer layout", () => {
     const prev = Float32Array.from({ length: 14 }, (_, i) => i);
     const curr = Float32Array.from({ length: 14 }, (_, i) => 100 + i);
     const contacts = Float32Array.from({ length: 3 * CONTACT_STRIDE }, (_, i) => 1000 + i);
-    expect(frameFloats(count, 3)).toBe(28 + 24);
+    expect(frameFloats(count, 3)).toBe(28 + 24 + 2);
     const buffer = new ArrayBuffer(frameFloats(count, 3) * 4 + 64); // a reused buffer may be larger
     const w = frameViews(buffer, count, 3);
     w.contacts.set(contacts); // the worker copies contacts first, then the poses
@@ -30,7 +30,7 @@ describe("frame buffer layout", () => {
 
   it("puts the ribbons' previous and current points after the contacts", () => {
     const ribbonFloats = 2 * RIBBON_POINT_STRIDE;
-    expect(frameFloats(1, 2, ribbonFloats)).toBe(14 + 16 + 12);
+    expect(frameFloats(1, 2, ribbonFloats)).toBe(14 + 16 + 12 + 1);
     const buffer = new ArrayBuffer(frameFloats(1, 2, ribbonFloats) * 4);
     const w = frameViews(buffer, 1, 2, ribbonFloats);
     w.ribbonsCurr.fill(9);
@@ -43,6 +43,20 @@ describe("frame buffer layout", () => {
     expect(Array.from(v.ribbonsCurr)).toEqual(Array(6).fill(9));
     expect(v.contacts[15]).toBe(7);
     expect(() => frameViews(buffer, 1, 2, ribbonFloats + 3)).toThrow(/ribbon points/);
+  });
+
+  it("ends with one scale per body, after the ribbons", () => {
+    const ribbonFloats = 3 * RIBBON_POINT_STRIDE;
+    const buffer = new ArrayBuffer(frameFloats(2, 1, ribbonFloats) * 4);
+    const w = frameViews(buffer, 2, 1, ribbonFloats);
+    w.scales.set([0.9, 0.8]);
+    w.ribbonsCurr.fill(5);
+    w.curr.fill(4);
+    const v = frameViews(buffer, 2, 1, ribbonFloats);
+    expect(v.scales.length).toBe(2);
+    expect(v.scales.byteOffset + v.scales.byteLength).toBe(buffer.byteLength);
+    expect(Array.from(v.scales)).toEqual([Math.fround(0.9), Math.fround(0.8)]);
+    expect(v.ribbonsCurr[8]).toBe(5);
   });
 
   it("refuses a buffer too small for what the frame claims", () => {

@@ -1,9 +1,10 @@
 // Layout of one frame buffer from the worker: the poses before and after the
 // last step, then (only while the debug view is on) the step's contacts, then
-// the ribbons' points before and after the last step.
+// the ribbons' points before and after the last step, then each body's size
+// over its shape's (its gas's; 1 without gas).
 //
-//   [ previous poses | current poses | contacts          | previous ribbons | current ribbons ]
-//     count × 7        count × 7       contactCount × 8    ribbonFloats       ribbonFloats      floats
+//   [ previous poses | current poses | contacts          | previous ribbons | current ribbons | scales ]
+//     count × 7        count × 7       contactCount × 8    ribbonFloats       ribbonFloats      count     floats
 
 import { POSE_STRIDE } from "../render/poseMath";
 import type { ContactStride, PoseStride, RibbonPointStride } from "../../public/wasm/up_wasm";
@@ -52,11 +53,13 @@ export interface FrameViews {
   /** Every ribbon's points before and after the last step, `RIBBON_POINT_STRIDE` each. */
   ribbonsPrev: Float32Array<ArrayBuffer>;
   ribbonsCurr: Float32Array<ArrayBuffer>;
+  /** Each body's size now over its shape's, one per body (a balloon shrinks as its gas leaves). */
+  scales: Float32Array<ArrayBuffer>;
 }
 
 /** Floats a frame of `count` bodies, `contactCount` contacts and `ribbonFloats` floats of ribbon points needs. */
 export function frameFloats(count: number, contactCount: number, ribbonFloats = 0): number {
-  return 2 * count * POSE_STRIDE + contactCount * CONTACT_STRIDE + 2 * ribbonFloats;
+  return 2 * count * POSE_STRIDE + contactCount * CONTACT_STRIDE + 2 * ribbonFloats + count;
 }
 
 /** Views of the parts of a frame buffer (no copy). */
@@ -75,5 +78,6 @@ export function frameViews(buffer: ArrayBuffer, count: number, contactCount: num
     contacts: new Float32Array(buffer, poses * 8, contactCount * CONTACT_STRIDE),
     ribbonsPrev: new Float32Array(buffer, ribbons * 4, ribbonFloats),
     ribbonsCurr: new Float32Array(buffer, (ribbons + ribbonFloats) * 4, ribbonFloats),
+    scales: new Float32Array(buffer, (ribbons + 2 * ribbonFloats) * 4, count),
   };
 }

@@ -27,6 +27,18 @@ describe("picking", () => {
     expect(pickBalloon(ray([0, -0.5, 10], [0, 0, -1]), poses, 2, roots, leaves, null)).toBeNull();
   });
 
+  it("picks a shrunken balloon by its size now", () => {
+    const poses = new Float32Array([0, 0, 0, 0, 0, 0, 1]);
+    const roots = [{ center: [0, 0.2, 0] as [number, number, number], radius: 1 }];
+    const leaves = [[{ center: [0, 0.5, 0] as [number, number, number], radius: 0.3 }]];
+    const through = ray([0, 0.5, 10], [0, 0, -1]);
+    expect(pickBalloon(through, poses, 1, roots, leaves, null, new Float32Array([1]))?.distance).toBeCloseTo(9.7, 5);
+    // At half size the leaf sits 0.25 m up with a radius of 0.15: the ray at 0.5 m passes above it.
+    expect(pickBalloon(through, poses, 1, roots, leaves, null, new Float32Array([0.5]))).toBeNull();
+    const hit = pickBalloon(ray([0, 0.25, 10], [0, 0, -1]), poses, 1, roots, leaves, null, new Float32Array([0.5]));
+    expect(hit?.distance).toBeCloseTo(9.85, 5);
+  });
+
   it("finds the floor point under a ray", () => {
     const p = rayHorizontalPlane(ray([1, 5, 1], [1, -1, 0]), 0);
     expect(p).toEqual([6, 0, 1]);

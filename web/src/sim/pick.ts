@@ -41,7 +41,9 @@ export function raySphere(ray: Ray, cx: number, cy: number, cz: number, r: numbe
 
 /**
  * The nearest balloon hit by `ray`, or `null`. `roots[m]` and `leaves[m]` are
- * model m's root and leaf spheres; `models[i]` is body i's model (0 when null).
+ * model m's root and leaf spheres; `models[i]` is body i's model (0 when null);
+ * `scales[i]` is body i's size over its model's (1 when null or short: a
+ * balloon that has lost gas is smaller, about its mesh frame's origin).
  */
 export function pickBalloon(
   ray: Ray,
@@ -50,6 +52,7 @@ export function pickBalloon(
   roots: BodySphere[],
   leaves: BodySphere[][],
   models: Uint32Array | null,
+  scales: Float32Array | null = null,
 ): Hit | null {
   let best: Hit | null = null;
   const c = [0, 0, 0];
@@ -57,13 +60,14 @@ export function pickBalloon(
     const m = models ? models[i] : 0;
     const root = roots[m];
     if (!root) continue;
+    const s = scales && i < scales.length ? scales[i] : 1;
     const o = i * POSE_STRIDE;
-    transformPoint(poses, o, root.center[0], root.center[1], root.center[2], c);
-    const tRoot = raySphere(ray, c[0], c[1], c[2], root.radius);
+    transformPoint(poses, o, root.center[0] * s, root.center[1] * s, root.center[2] * s, c);
+    const tRoot = raySphere(ray, c[0], c[1], c[2], root.radius * s);
     if (tRoot === Infinity || (best && tRoot > best.distance)) continue;
     for (const leaf of leaves[m] ?? [root]) {
-      transformPoint(poses, o, leaf.center[0], leaf.center[1], leaf.center[2], c);
-      const t = raySphere(ray, c[0], c[1], c[2], leaf.radius);
+      transformPoint(poses, o, leaf.center[0] * s, leaf.center[1] * s, leaf.center[2] * s, c);
+      const t = raySphere(ray, c[0], c[1], c[2], leaf.radius * s);
       if (t < (best ? best.distance : Infinity)) {
         best = {
           index: i,

@@ -5,6 +5,7 @@
 // buffer back. No typed array is allocated per frame on either side.
 
 import type { Constants, EngineStats, RibbonTables, RoomMesh, TreeNode } from "./engine";
+import type { FloatSample } from "../ui/floatPlot";
 
 export type Vec3Tuple = [number, number, number];
 
@@ -13,6 +14,8 @@ export type ToWorker =
   | { type: "load"; sceneJson: string | null }
   | { type: "pause"; paused: boolean }
   | { type: "step" }
+  /** Time-lapse: simulated seconds per real second (1: real time, fixed steps; more: `Engine.advance`). */
+  | { type: "rate"; rate: number }
   /** Debug view on or off: contacts travel in the frames only while it is on. */
   | { type: "debug"; on: boolean }
   | { type: "addOnFloor"; x: number; z: number }
@@ -73,12 +76,24 @@ export interface Frame {
   simTime: number;
   steps: number;
   paused: boolean;
+  /** The room's air temperature now, °C. */
+  airTemperatureC: number;
+  /** The time-lapse rate asked for, and the one the clock achieved over the last second or so. */
+  rate: number;
+  achievedRate: number;
+}
+
+/** Where the balloons floated at simulated time `t` (shares of all balloons), and their mean lift left (0–1). */
+export interface CensusSample extends FloatSample {
+  meanLiftFraction: number;
 }
 
 export type FromWorker =
   | { type: "ready"; info: WorldInfo }
   | Frame
   | { type: "stats"; stats: EngineStats; stepsPerSecond: number }
+  /** A look at where the balloons float, every simulated second to minute (`censusInterval`). */
+  | { type: "census"; sample: CensusSample }
   | { type: "error"; message: string; fatal: boolean }
   /** The engine's message when it refuses the scene of `validate` request `id`, else null. */
   | { type: "validated"; id: number; error: string | null };

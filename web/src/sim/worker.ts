@@ -1,11 +1,15 @@
 // The physics worker: owns the engine, steps it at a fixed timestep and sends
 // poses to the main thread in ping-pong buffers. The main thread never waits
 // for physics: with thousands of balloons a step may take longer than a frame,
-// and the page still draws and answers input.
+// and the page still draws and answers input. In time-lapse (a rate above 1)
+// each tick asks the engine to advance rate × the tick's time within a budget
+// of steps (timeLapse.ts); every simulated second to minute it looks at where
+// the balloons float and sends that for the plot.
 
 import { Engine, glueUrl, type GlueModule } from "./engine";
 import { RIBBON_POINT_STRIDE, checkLayout, frameFloats, frameViews } from "./frameLayout";
 import type { FromWorker, ToWorker, WorldInfo } from "./protocol";
+import { TimeLapse, censusInterval } from "./timeLapse";
 
 /** Most steps taken in one tick; beyond that the simulation runs slow rather than spiral. */
 const MAX_STEPS_PER_TICK = 4;
@@ -39,8 +43,13 @@ class WorkerState {
   pendingSingleSteps = 0;
   accumulator = 0;
   lastTick = 0;
-  simTime = 0;
   steps = 0;
+  /** The time-lapse rate and what it achieves. */
+  readonly lapse = new TimeLapse();
+  /** Simulated time of the next look at where the balloons float, s. */
+  nextCensus = 0;
+  /** Whether the last time-lapse tick ran out of steps before its span: the next one starts at once. */
+  lapseBehind = false;
   /** Bumped whenever bodies are added or removed or the world is rebuilt: picks name the version they were made in. */
   version = 0;
   versionSent = -1;
@@ -95,8 +104,8 @@ function load(sceneJson: string | null): void {
   state.currentSceneJson = info.sceneJson;
   state.dtMs = info.dt * 1000;
   state.paletteSize = Math.max(1, info.palette.length);
-  state.simTime = 0;
   state.steps = 0;
+  state.nextCensus = 0;
   state.accumulator = 0;
   state.version++;
   state.dirty = true;
@@ -136,6 +145,7 @@ function sendFrame(previous: Previous | null): void {
   const ribbons = state.engine.ribbonPoints();
   out.ribbonsPrev.set(previous && previous.ribbons.length === ribbons.length ? previous.ribbons : ribbons);
   out.ribbonsCurr.set(ribbons);
+  out.scales.set(state.engine.bodyScales());
   const frame: FromWorker = {
     type: "frame",
     buffer,
@@ -145,9 +155,12 @@ function sendFrame(previous: Previous | null): void {
     contactTotal: contacts?.total ?? 0,
     version: state.version,
     stepTime: state.lastStepTime,
-    simTime: state.simTime,
+    simTime: state.engine.simTime(),
     steps: state.steps,
     paused: state.paused,
+    airTemperatureC: state.engine.airTemperatureC(),
+    rate: state.lapse.rate,
+    achievedRate: state.lapse.lapsing ? state.lapse.achieved : 1,
   };
   if (state.versionSent !== state.version) {
     frame.colors = state.engine.colors().slice();
@@ -196,31 +209,70 @@ function grown(array: Float32Array<ArrayBuffer>, length: number): Float32Array<A
   return array.length < length ? new Float32Array(Math.ceil(length * 1.5)) : array;
 }
 
-function stepN(n: number): Previous | null {
-  if (!state.engine || n <= 0) return null;
-  if (n > 1) state.engine.step(n - 1);
-  const poses = state.engine.poses();
+/** Keeps the poses and ribbon points now, for interpolation toward the next ones. */
+function capturePrevious(engine: Engine): Previous {
+  const poses = engine.poses();
   state.previousPoses = grown(state.previousPoses, poses.length);
   const previousPoses = state.previousPoses.subarray(0, poses.length);
   previousPoses.set(poses);
-  const ribbons = state.engine.ribbonPoints();
+  const ribbons = engine.ribbonPoints();
   state.previousRibbons = grown(state.previousRibbons, ribbons.length);
   const previousRibbons = state.previousRibbons.subarray(0, ribbons.length);
   previousRibbons.set(ribbons);
-  const previous = { poses: previousPoses, ribbons: previousRibbons };
+  return { poses: previousPoses, ribbons: previousRibbons };
+}
+
+function stepN(n: number): Previous | null {
+  if (!state.engine || n <= 0) return null;
+  if (n > 1) state.engine.step(n - 1);
+  const previous = capturePrevious(state.engine);
   state.engine.step(1);
   state.steps += n;
   state.stepsSinceStats += n;
-  state.simTime += (n * state.dtMs) / 1000;
   state.lastStepTime = now();
   return previous;
+}
+
+/** One time-lapse tick of `realSeconds`: advances rate × that, within the step budget; null when nothing moved on. */
+function lapseTick(realSeconds: number): Previous | null {
+  const engine = state.engine;
+  if (!engine) return null;
+  const plan = state.lapse.plan(realSeconds);
+  const seconds = Math.min(plan.seconds, engine.constants.max_advance_s);
+  if (seconds <= 0) return null;
+  const previous = capturePrevious(engine);
+  const start = performance.now();
+  const done = engine.advance(seconds, Math.min(plan.maxSteps, engine.constants.max_steps_per_call));
+  state.lapse.record(done, performance.now() - start, realSeconds);
+  // Half a step short is done (the engine's clock sums f32 steps).
+  state.lapseBehind = done.seconds < seconds - state.dtMs / 2000;
+  state.steps += done.steps;
+  state.stepsSinceStats += done.steps;
+  state.lastStepTime = now();
+  return previous;
+}
+
+/** Looks at where the balloons float once the clock has passed the next look's time, and sends it. */
+function census(): void {
+  const engine = state.engine;
+  if (!engine || engine.simTime() < state.nextCensus) return;
+  const c = engine.floatCounts();
+  const total = Math.max(1, c.ceiling + c.hovering + c.floor);
+  post({
+    type: "census",
+    sample: { t: c.time_s, ceiling: c.ceiling / total, hovering: c.hovering / total, floor: c.floor / total, meanLiftFraction: c.mean_lift_fraction },
+  });
+  state.nextCensus = c.time_s + censusInterval(state.lapse.rate);
 }
 
 function tick(): void {
   state.tickTimer = null;
   const t = now();
   let due = 0;
-  if (state.engine && !state.paused) {
+  const lapsing = !!state.engine && !state.paused && state.lapse.lapsing;
+  if (lapsing) {
+    state.accumulator = 0;
+  } else if (state.engine && !state.paused) {
     state.accumulator += t - state.lastTick;
     due = Math.floor(state.accumulator / state.dtMs);
     if (due > MAX_STEPS_PER_TICK) {
@@ -236,10 +288,12 @@ function tick(): void {
     due = state.pendingSingleSteps;
     state.pendingSingleSteps = 0;
   }
+  const realSeconds = (t - state.lastTick) / 1000;
   state.lastTick = t;
   try {
-    const previous = stepN(due);
-    if (due > 0 || state.dirty) sendFrame(previous);
+    const previous = lapsing ? lapseTick(realSeconds) : stepN(due);
+    census();
+    if (previous || state.dirty) sendFrame(previous);
     if (state.engine && t - state.lastStats > STATS_INTERVAL_MS) {
       const seconds = (t - state.lastStats) / 1000;
       post({ type: "stats", stats: state.engine.stats(), stepsPerSecond: state.lastStats > 0 ? state.stepsSinceStats / seconds : 0 });
@@ -256,7 +310,10 @@ function tick(): void {
 
 function schedule(): void {
   if (state.tickTimer !== null) return;
-  const wait = state.paused ? 50 : Math.max(0, state.dtMs - state.accumulator - (now() - state.lastTick));
+  // A time-lapse that fell behind steps on at once: the worker's thread is its
+  // own, and each tick still ends within its budget to send a frame and read messages.
+  const behind = !state.paused && state.lapse.lapsing && state.lapseBehind;
+  const wait = state.paused ? 50 : behind ? 0 : Math.max(0, state.dtMs - state.accumulator - (now() - state.lastTick));
   state.tickTimer = setTimeout(tick, wait);
 }
 
@@ -322,6 +379,14 @@ function handle(msg: ToWorker): void {
         break;
       case "step":
         state.pendingSingleSteps++;
+        break;
+      case "rate":
+        state.lapse.setRate(msg.rate);
+        state.accumulator = 0;
+        state.lastTick = now();
+        // The plot's grain follows the rate: the next look comes at the new pace.
+        state.nextCensus = Math.min(state.nextCensus, state.engine.simTime() + censusInterval(msg.rate));
+        state.dirty = true;
         break;
 
       case "addOnFloor": {

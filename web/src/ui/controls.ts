@@ -183,7 +183,7 @@ export class Controls {
   private pick(clientX: number, clientY: number) {
     const b = this.bridge;
     if (!b.current) return null;
-    return pickBalloon(this.ray(clientX, clientY), b.curr, b.current.count, this.roots, this.leaves, b.models);
+    return pickBalloon(this.ray(clientX, clientY), b.curr, b.current.count, this.roots, this.leaves, b.models, b.scales);
   }
 
   /** The ribbon free end within `RIBBON_END_PIXELS` of the pointer, if any. */

@@ -1,10 +1,28 @@
-// The heads-up display: balloon count, frames per second, and milliseconds
-// per physics step by stage.
+// The heads-up display: balloon count, the simulated clock (time since the
+// start, the room's temperature, the time-lapse rate asked and achieved),
+// frames per second, and milliseconds per physics step by stage.
 
 import type { EngineStats } from "../sim/engine";
+import { formatAchievedRate, formatCelsius, formatClock, formatRate } from "./clock";
+
+/** What the clock line shows. */
+export interface ClockReading {
+  /** Simulated seconds since the start. */
+  simTime: number;
+  airTemperatureC: number;
+  rate: number;
+  achievedRate: number;
+}
+
+/** The clock line's text: "Clock 1:02:03 · 20.0 °C · ×3 600 (now ×2 900)". */
+export function clockText(c: ClockReading): string {
+  const pace = c.rate === 1 ? formatRate(1) : `${formatRate(c.rate)} (now ${formatAchievedRate(c.achievedRate)})`;
+  return `Clock ${formatClock(c.simTime)} · ${formatCelsius(c.airTemperatureC)} · ${pace}`;
+}
 
 export class Hud {
   private readonly count: HTMLElement;
+  private readonly clock: HTMLElement;
   private readonly fps: HTMLElement;
   private readonly physics: HTMLElement;
   private readonly stages: HTMLElement;
@@ -16,11 +34,13 @@ export class Hud {
   constructor(root: HTMLElement) {
     root.innerHTML = `
       <div id="hud-count" class="hud-big">Balloons: 0</div>
+      <div id="hud-clock">Clock 0:00:00</div>
       <div id="hud-fps">FPS: –</div>
       <div id="hud-physics">Physics: – ms/step</div>
       <table id="hud-stages"></table>
       <div id="hud-mode"></div>`;
     this.count = root.querySelector("#hud-count")!;
+    this.clock = root.querySelector("#hud-clock")!;
     this.fps = root.querySelector("#hud-fps")!;
     this.physics = root.querySelector("#hud-physics")!;
     this.stages = root.querySelector("#hud-stages")!;
@@ -42,6 +62,11 @@ export class Hud {
     if (n === this.lastCount) return;
     this.lastCount = n;
     this.count.textContent = `Balloons: ${n}`;
+  }
+
+  setClock(reading: ClockReading): void {
+    const text = clockText(reading);
+    if (this.clock.textContent !== text) this.clock.textContent = text;
   }
 
   setStats(stats: EngineStats, stepsPerSecond: number): void {

@@ -1,10 +1,15 @@
 // The lil-gui panel: the scene's parameters (any change rebuilds the world
 // from the edited scene, but the ribbon length, which re-ties the ribbons in
-// the running world), reset, pause / single step, the debug view, a
-// screenshot and the share link.
+// the running world), reset, pause / single step, the time-lapse, the debug
+// view, a screenshot and the share link.
 
 import GUI from "lil-gui";
 import type { PanelParams } from "../scene/sceneParams";
+import { TIME_LAPSE_RATES } from "../sim/timeLapse";
+import { formatRate } from "./clock";
+
+/** The time-lapse menu: each rate's name ("real time", "×60", …) to its value. */
+export const TIME_LAPSE_OPTIONS: Record<string, number> = Object.fromEntries(TIME_LAPSE_RATES.map((r) => [formatRate(r), r]));
 
 /** Longest ribbon the panel's slider offers, m (a scene may tie longer ones). */
 const PANEL_MAX_RIBBON_M = 4;
@@ -17,6 +22,8 @@ export interface PanelActions {
   reset(): void;
   togglePause(): void;
   step(): void;
+  /** Time-lapse: simulated seconds per real second (1: real time). */
+  timeLapse(rate: number): void;
   debugTrees(on: boolean): void;
   screenshot(): void;
   share(): void;
@@ -25,7 +32,7 @@ export interface PanelActions {
 export class Panel {
   readonly gui: GUI;
   private readonly params: PanelParams;
-  private readonly view = { trees: false };
+  private readonly view = { trees: false, timeLapse: 1 };
   private readonly pauseButton: ReturnType<GUI["add"]>;
   private readonly buttons = {
     pause: () => this.actions.togglePause(),
@@ -74,6 +81,9 @@ export class Panel {
     const sim = this.gui.addFolder("Simulation");
     this.pauseButton = sim.add(this.buttons, "pause").name("pause (space)");
     sim.add(this.buttons, "step").name("single step (N)");
+    tag(sim.add(this.view, "timeLapse", TIME_LAPSE_OPTIONS), "timeLapse")
+      .name("time-lapse")
+      .onChange((rate: number) => actions.timeLapse(Number(rate)));
     sim.add(this.buttons, "reset").name("reset scene");
     sim.add(this.view, "trees").name("sphere trees (D)").onChange((on: boolean) => actions.debugTrees(on));
     sim.add(this.buttons, "screenshot").name("screenshot (S)");

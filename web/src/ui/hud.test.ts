@@ -1,0 +1,11 @@
+import { describe, expect, it } from "vitest";
+import { clockText } from "./hud";
+
+describe("the HUD's clock line", () => {
+  it("shows the time since the start, the room's temperature and the pace", () => {
+    expect(clockText({ simTime: 3723, airTemperatureC: 20, rate: 1, achievedRate: 1 })).toBe("Clock 1:02:03 · 20.0 °C · real time");
+    expect(clockText({ simTime: 5 * 3600, airTemperatureC: 12.34, rate: 3600, achievedRate: 2873 })).toBe(
+      "Clock 5:00:00 · 12.3 °C · ×3\u2009600 (now ×2\u2009900)",
+    );
+  });
+});
