@@ -19,10 +19,11 @@
 //!   with the method's name (scene errors name the scene and key instead);
 //!   a refused call leaves the world as it was. Bad arguments (NaN, out of
 //!   range, too fast, too many) are errors, never traps.
-//! - Bulk data (poses, colours, contacts, the room, trees) are read as views
-//!   of wasm memory, one view per array, never one call per body: a
-//!   `write_*` call fills the array and returns its length (floats of poses,
-//!   bodies, contacts or tree nodes: see each), the room's arrays have
+//! - Bulk data (poses, colours, contacts, the room, trees, a model's
+//!   surface) are read as views of wasm memory, one view per array, never
+//!   one call per body: a `write_*` call fills the array and returns its
+//!   length (floats of poses, bodies, contacts, tree nodes or mesh vertices:
+//!   see each), the room's arrays have
 //!   `*_len()`, and the view is that many elements (times the stride) at
 //!   `*_ptr()` in the module's `memory`. A view is valid until the next call
 //!   (memory may grow and move).
