@@ -12,6 +12,7 @@ use up_scene::scene::{
 use crate::contacts::{CONTACT_FLOATS, MAX_CONTACTS};
 use crate::error::ERROR_KINDS;
 use crate::gas::MAX_ADVANCE_S;
+use crate::model_mesh::MESH_VERTEX_FLOATS;
 use crate::ribbons::{MAX_RIBBON_LENGTH_M, RIBBON_POINT_FLOATS};
 use crate::state::{CAPACITY, MAX_SPEED, MAX_SPIN, MAX_STEPS_PER_CALL, POSE_FLOATS, TREE_FLOATS};
 
@@ -74,6 +75,8 @@ pub struct Constants {
     pub tree_stride: u32,
     /// Floats per ribbon point: x, y, z.
     pub ribbon_point_stride: u32,
+    /// Floats per vertex of a model's surface (position or normal): x, y, z.
+    pub mesh_vertex_stride: u32,
     /// Width of the ribbon drawn, m (the engine's ribbon, 5 mm curling ribbon).
     pub ribbon_width_m: f32,
     /// Radius of a weight at a ribbon's free end, m (as it collides).
@@ -113,6 +116,7 @@ impl Constants {
             contact_stride: CONTACT_FLOATS as u32,
             tree_stride: TREE_FLOATS as u32,
             ribbon_point_stride: RIBBON_POINT_FLOATS as u32,
+            mesh_vertex_stride: MESH_VERTEX_FLOATS as u32,
             ribbon_width_m: up_physics::ribbon::RIBBON_WIDTH,
             weight_radius_m: up_physics::ribbon::WEIGHT_RADIUS,
             max_ribbon_length_m: MAX_RIBBON_LENGTH_M,
@@ -163,6 +167,8 @@ pub struct WorldSummary {
     pub color_names: Vec<String>,
     /// Diameter of each balloon model, m.
     pub diameters: Vec<f32>,
+    /// Whether each balloon model is foil (drawn with `write_model_mesh`'s surface).
+    pub foil: Vec<bool>,
     /// s per step.
     pub dt: f32,
 }

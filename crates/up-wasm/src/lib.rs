@@ -19,10 +19,11 @@
 //!   with the method's name (scene errors name the scene and key instead);
 //!   a refused call leaves the world as it was. Bad arguments (NaN, out of
 //!   range, too fast, too many) are errors, never traps.
-//! - Bulk data (poses, colours, contacts, the room, trees) are read as views
-//!   of wasm memory, one view per array, never one call per body: a
-//!   `write_*` call fills the array and returns its length (floats of poses,
-//!   bodies, contacts or tree nodes: see each), the room's arrays have
+//! - Bulk data (poses, colours, contacts, the room, trees, a model's
+//!   surface) are read as views of wasm memory, one view per array, never
+//!   one call per body: a `write_*` call fills the array and returns its
+//!   length (floats of poses, bodies, contacts, tree nodes or mesh vertices:
+//!   see each), the room's arrays have
 //!   `*_len()`, and the view is that many elements (times the stride) at
 //!   `*_ptr()` in the module's `memory`. A view is valid until the next call
 //!   (memory may grow and move).
@@ -37,6 +38,7 @@ mod contacts;
 mod error;
 mod gas;
 mod info;
+mod model_mesh;
 mod ribbons;
 mod state;
 
@@ -47,6 +49,7 @@ pub use contacts::{CONTACT_FLOATS, MAX_CONTACTS};
 pub use error::{CallError, WasmError, ERROR_KINDS};
 pub use gas::{AdvanceReport, FloatCounts, GroupFloat, MAX_ADVANCE_S};
 pub use info::{Constants, EngineStats, NamedColor, SceneLimits, WorldSummary};
+pub use model_mesh::{MeshBuffers, MESH_VERTEX_FLOATS};
 pub use ribbons::{pack_rgb, MAX_RIBBON_LENGTH_M, RIBBON_POINT_FLOATS};
 pub use state::{
     State, CAPACITY, MAX_SPEED, MAX_SPIN, MAX_STEPS_PER_CALL, POSE_FLOATS, TREE_FLOATS,
@@ -67,6 +70,8 @@ export type ContactStride = 8;
 export type TreeStride = 6;
 /** Floats per ribbon point: x, y, z (`constants().ribbon_point_stride`). */
 export type RibbonPointStride = 3;
+/** Floats per mesh vertex position or normal: x, y, z (`constants().mesh_vertex_stride`). */
+export type MeshVertexStride = 3;
 "#;
 
 #[wasm_bindgen(typescript_custom_section)]
@@ -437,6 +442,32 @@ impl Engine {
     pub fn tree_ptr(&self) -> *const f32 {
         self.state.tree.as_ptr()
     }
+
+    /// Writes model `model`'s surface, body frame, for `mesh_positions_ptr`
+    /// and `mesh_normals_ptr` (`MESH_VERTEX_FLOATS` per vertex) and
+    /// `mesh_indices_ptr` (three per triangle, counter-clockwise seen from
+    /// outside, `mesh_index_len` of them); returns the vertex count. The page
+    /// draws foil models (`world_info().foil`) with it.
+    pub fn write_model_mesh(&mut self, model: u32) -> Result<u32, CallError> {
+        named("write_model_mesh", self.state.write_model_mesh(model)).map(|n| n as u32)
+    }
+
+    pub fn mesh_positions_ptr(&self) -> *const f32 {
+        self.state.mesh.positions.as_ptr()
+    }
+
+    pub fn mesh_normals_ptr(&self) -> *const f32 {
+        self.state.mesh.normals.as_ptr()
+    }
+
+    /// Indices at `mesh_indices_ptr` after `write_model_mesh`.
+    pub fn mesh_index_len(&self) -> u32 {
+        self.state.mesh.indices.len() as u32
+    }
+
+    pub fn mesh_indices_ptr(&self) -> *const u32 {
+        self.state.mesh.indices.as_ptr()
+    }
 }
 
 #[cfg(test)]
@@ -450,6 +481,7 @@ mod tests {
             ("ContactStride", CONTACT_FLOATS),
             ("TreeStride", TREE_FLOATS),
             ("RibbonPointStride", RIBBON_POINT_FLOATS),
+            ("MeshVertexStride", MESH_VERTEX_FLOATS),
         ] {
             let line = format!("export type {name} = {value};");
             assert!(STRIDE_TYPES.contains(&line), "{line} in {STRIDE_TYPES}");

@@ -11,6 +11,7 @@ use up_scene::scene::Scene;
 use crate::contacts::write_contacts;
 use crate::error::{finite, WasmError};
 use crate::info::{EngineStats, WorldSummary};
+use crate::model_mesh::MeshBuffers;
 use crate::ribbons::RibbonTables;
 use up_scene::float_census::FloatCensus;
 
@@ -68,6 +69,8 @@ pub struct State {
     pub scales: Vec<f32>,
     /// How high each balloon has been, for where it floats (`gas.rs`); made afresh with each world.
     pub census: Option<FloatCensus>,
+    /// The surface `write_model_mesh` wrote last (`model_mesh.rs`).
+    pub mesh: MeshBuffers,
 }
 
 /// `Ok` when a velocity stays within `MAX_SPEED` and `MAX_SPIN`, else why not.
@@ -423,6 +426,7 @@ impl State {
             colors: loaded.built.colors.clone(),
             color_names: loaded.built.color_names.clone(),
             diameters: loaded.scene.balloons.iter().map(|g| g.diameter()).collect(),
+            foil: self.model_foil()?,
             dt: loaded.built.world.def().dt,
         })
     }

@@ -68,6 +68,7 @@ fn before_a_world_every_method_answers_no_world_or_nothing() {
     refused(e.drag_to(0.0, 1.0, 0.0), "NoWorld", "drag_to");
     refused(e.release(), "NoWorld", "release");
     refused(e.write_model_tree(0), "NoWorld", "write_model_tree");
+    refused(e.write_model_mesh(0), "NoWorld", "write_model_mesh");
     refused(e.advance(1.0, 10), "NoWorld", "advance");
     refused(e.write_body_scales(), "NoWorld", "write_body_scales");
     refused(e.air_temperature_c(), "NoWorld", "air_temperature_c");
@@ -77,6 +78,7 @@ fn before_a_world_every_method_answers_no_world_or_nothing() {
     assert_eq!(e.model_count(), 0);
     assert_eq!(e.room_vertices_len(), 0);
     assert_eq!(e.room_triangles_len(), 0);
+    assert_eq!(e.mesh_index_len(), 0);
     assert_eq!(e.contact_total(), 0);
     assert_eq!(e.state_hash(), 0);
     for ptr in [
@@ -85,6 +87,8 @@ fn before_a_world_every_method_answers_no_world_or_nothing() {
         e.room_vertices_ptr(),
         e.tree_ptr(),
         e.body_scales_ptr(),
+        e.mesh_positions_ptr(),
+        e.mesh_normals_ptr(),
     ] {
         assert!(!ptr.is_null(), "an empty view, not a null pointer");
     }
@@ -202,6 +206,7 @@ fn out_of_range_indices_points_and_models_are_refused() {
         "OutOfRange",
         "write_model_tree",
     );
+    refused(e.write_model_mesh(1), "OutOfRange", "write_model_mesh");
     refused(
         e.add_balloon(0.0, 1.0, 0.0, 0, 1),
         "OutOfRange",

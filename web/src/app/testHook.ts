@@ -55,6 +55,28 @@ export function createTestHook(app: App) {
         text: document.getElementById("hud-clock")?.textContent ?? "",
       };
     },
+    /**
+     * The foil balloons: InstancedMeshes named "foil-balloons" in the scene
+     * graph and the instances they draw, and the dense indices of the
+     * frame's bodies whose model is foil.
+     */
+    foil() {
+      let meshes = 0;
+      let drawn = 0;
+      scene.traverse((o) => {
+        const mesh = o as THREE.InstancedMesh;
+        if (mesh.isInstancedMesh && mesh.name === "foil-balloons") {
+          meshes++;
+          drawn += mesh.count;
+        }
+      });
+      const isFoil = app.info?.foilMeshes.map((m) => m !== null) ?? [];
+      const bodies: number[] = [];
+      bridge.models.forEach((m, i) => {
+        if (isFoil[m]) bodies.push(i);
+      });
+      return { meshes, drawn, bodies };
+    },
     /** Each body's size over its shape's in the current frame (its gas's). */
     bodyScales: () => Array.from(bridge.scales),
     /**

@@ -2,6 +2,8 @@
 // (MeshPhysicalMaterial with clearcoat and sheen, lit by the environment
 // map), each instance tinted with its colour from the per-colour MTL files.
 // Poses go straight from the worker's frame into `instanceMatrix.array`.
+// Balloons of foil groups are drawn by FoilBalloons (foilBalloons.ts) with
+// the engine's foil pillow; the latex mesh draws them at size 0.
 
 import * as THREE from "three";
 import { OBJLoader } from "three/examples/jsm/loaders/OBJLoader.js";
@@ -9,6 +11,8 @@ import { mergeGeometries, mergeVertices } from "three/examples/jsm/utils/BufferG
 import { colorNameOfMtlFile, parseMtl } from "./mtl";
 import { writeInstanceMatrices } from "./poseMath";
 import { CROWD_BALLOONS, revolutionProfile, thinProfile } from "./crowdLod";
+import { FoilBalloons } from "./foilBalloons";
+import type { ModelMesh } from "../sim/engine";
 
 /** Rings kept (every n-th) and segments around of the crowd geometry: 20 × 12, about 450 triangles. */
 const CROWD_RING_STEP = 2;
@@ -88,6 +92,8 @@ export class Balloons {
   /** Scale of each instance as drawn: its model's times its body's size now (the gas's). */
   private drawnScales = new Float32Array(0);
   private modelScale: number[] = [1];
+  /** The foil balloons, when the world has a foil group. */
+  foil: FoilBalloons | null = null;
   private palette: THREE.Color[] = [];
   private readonly scratchColor = new THREE.Color();
 
@@ -130,15 +136,28 @@ export class Balloons {
     return mesh;
   }
 
-  /** Colours by index (MTL Kd when the name has a file, else the engine's RGB) and model sizes. */
-  setWorld(palette: [number, number, number][], colorNames: string[], diameters: number[]): void {
+  /**
+   * Colours by index (MTL Kd when the name has a file, else the engine's
+   * RGB), model sizes, and each foil model's surface (null: latex).
+   */
+  setWorld(palette: [number, number, number][], colorNames: string[], diameters: number[], foilMeshes: (ModelMesh | null)[]): void {
     this.palette = palette.map((rgb, i) => {
       const fromMtl = this.assets.mtlColors.get(colorNames[i]?.toLowerCase() ?? "");
       const [r, g, b] = fromMtl ?? rgb;
       // MTL Kd (and the engine's palette) are display sRGB, as three's MTLLoader reads them.
       return new THREE.Color().setRGB(r, g, b, THREE.SRGBColorSpace);
     });
-    this.modelScale = diameters.map((d) => d / this.assets.diameter);
+    // A zero scale draws nothing: a foil body's latex instance stays in place, so the latex path is unchanged.
+    this.modelScale = diameters.map((d, m) => (foilMeshes[m] ? 0 : d / this.assets.diameter));
+    if (this.foil) {
+      this.group.remove(this.foil.group);
+      this.foil.dispose();
+      this.foil = null;
+    }
+    if (foilMeshes.some((m) => m !== null)) {
+      this.foil = new FoilBalloons(foilMeshes);
+      this.group.add(this.foil.group);
+    }
   }
 
   /** New bodies or a new order: re-tint every instance. */
@@ -152,6 +171,7 @@ export class Balloons {
     if (this.mesh.instanceColor) this.mesh.instanceColor.needsUpdate = true;
     this.mesh.count = count;
     this.mesh.geometry = count > CROWD_BALLOONS ? this.assets.crowdGeometry : this.assets.geometry;
+    this.foil?.setBodies(colors, models, this.palette);
   }
 
   /**
@@ -169,6 +189,7 @@ export class Balloons {
     this.mesh.instanceMatrix.clearUpdateRanges();
     this.mesh.instanceMatrix.addUpdateRange(0, n * 16);
     this.mesh.instanceMatrix.needsUpdate = true;
+    this.foil?.update(prev, curr, alpha, bodyScales);
   }
 
   get count(): number {

@@ -37,7 +37,7 @@ export class WorldView {
     this.assets = assets;
     this.balloons = new Balloons(assets);
     this.scene.add(this.balloons.group);
-    if (this.info) this.balloons.setWorld(this.info.palette, this.info.colorNames, this.info.diameters);
+    if (this.info) this.balloons.setWorld(this.info.palette, this.info.colorNames, this.info.diameters, this.info.foilMeshes);
   }
 
   /** A new world from the engine; returns whether its room differs from the one drawn. */
@@ -57,7 +57,7 @@ export class WorldView {
       this.scene.add(this.ribbons.group);
     }
     this.ribbonVersion = -1;
-    this.balloons?.setWorld(info.palette, info.colorNames, info.diameters);
+    this.balloons?.setWorld(info.palette, info.colorNames, info.diameters, info.foilMeshes);
     this.drawnVersion = -1;
     return roomChanged;
   }

@@ -221,6 +221,38 @@ describe("gas and time-lapse", () => {
   });
 });
 
+describe("foil models", () => {
+  it("the engine says which models are foil and hands over their surface in the page's stride", () => {
+    engine.loadSceneJson(
+      JSON.stringify({ balloons: [{ count: 2 }, { count: 3, kind: "foil", size_in: 18 }] }),
+    );
+    expect(engine.worldInfo().foil).toEqual([false, true]);
+    const stride = engine.constants.mesh_vertex_stride;
+    expect(stride).toBe(3);
+    const mesh = engine.modelMesh(1);
+    const vertices = mesh.positions.length / stride;
+    expect(Number.isInteger(vertices) && vertices > 100).toBe(true);
+    expect(mesh.normals.length).toBe(mesh.positions.length);
+    expect(mesh.indices.length % 3).toBe(0);
+    expect(Math.max(...mesh.indices)).toBe(vertices - 1);
+    // An 18-inch pillow standing on edge: about 46 cm across in x, 12.5 cm thick in z.
+    const extent = (axis: number) => {
+      const c = mesh.positions.filter((_, i) => i % stride === axis);
+      return Math.max(...c) - Math.min(...c);
+    };
+    expect(extent(0)).toBeCloseTo(18 * engine.constants.scene.metres_per_inch, 2);
+    expect(extent(2)).toBeGreaterThan(0.1);
+    expect(extent(2)).toBeLessThan(0.15);
+    // Copies: a later call does not change them.
+    const first = mesh.positions[0];
+    engine.modelMesh(0);
+    expect(mesh.positions[0]).toBe(first);
+    expect(() => engine.modelMesh(2)).toThrow(/write_model_mesh: balloon model 2/);
+    engine.loadDefaultScene();
+    expect(engine.worldInfo().foil.every((f) => !f)).toBe(true);
+  });
+});
+
 describe("colours", () => {
   it("every colour the engine names is accepted by it, and drawn in the RGB it lists", () => {
     const names = engine.constants.colors.map((c) => c.name);

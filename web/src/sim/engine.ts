@@ -40,6 +40,16 @@ export interface RoomMesh {
   triangles: Uint32Array;
 }
 
+/** A balloon model's surface, body frame (the frame the poses place). */
+export interface ModelMesh {
+  /** x, y, z per vertex (`constants.mesh_vertex_stride`). */
+  positions: Float32Array;
+  /** Unit, x, y, z per vertex. */
+  normals: Float32Array;
+  /** Three per triangle, counter-clockwise seen from outside. */
+  indices: Uint32Array;
+}
+
 /** The last step's contacts, as `write_contacts` wrote them. */
 export interface Contacts {
   /** `constants.contact_stride` floats per contact: a view, valid until the next call. */
@@ -337,6 +347,18 @@ export class Engine {
       nodes.push({ center: [f[o], f[o + 1], f[o + 2]], radius: f[o + 3], depth: f[o + 4], leaf: f[o + 5] > 0.5 });
     }
     return nodes;
+  }
+
+  /** The surface of balloon model `model`, copied out of wasm memory. */
+  modelMesh(model: number): ModelMesh {
+    const n = this.call(() => this.e.write_model_mesh(model));
+    const floats = n * this.constants.mesh_vertex_stride;
+    const buffer = this.memory.buffer;
+    return {
+      positions: new Float32Array(buffer, this.e.mesh_positions_ptr(), floats).slice(),
+      normals: new Float32Array(buffer, this.e.mesh_normals_ptr(), floats).slice(),
+      indices: new Uint32Array(buffer, this.e.mesh_indices_ptr(), this.e.mesh_index_len()).slice(),
+    };
   }
 
   worldInfo(): Glue.WorldSummary {

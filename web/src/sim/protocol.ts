@@ -4,7 +4,7 @@
 // transfers it; the main thread keeps the newest frame and hands the previous
 // buffer back. No typed array is allocated per frame on either side.
 
-import type { Constants, EngineStats, RibbonTables, RoomMesh, TreeNode } from "./engine";
+import type { Constants, EngineStats, ModelMesh, RibbonTables, RoomMesh, TreeNode } from "./engine";
 import type { FloatSample } from "../ui/floatPlot";
 
 export type Vec3Tuple = [number, number, number];
@@ -45,6 +45,8 @@ export interface WorldInfo {
   colorNames: string[];
   /** Diameter of each balloon model, m. */
   diameters: number[];
+  /** Each foil model's surface (drawn instead of the latex OBJ); null for a latex model. */
+  foilMeshes: (ModelMesh | null)[];
   /** s per step. */
   dt: number;
   capacity: number;

@@ -81,6 +81,8 @@ function worldInfo(e: Engine): WorldInfo {
   const info = e.worldInfo();
   const trees = [];
   for (let m = 0; m < e.modelCount(); m++) trees.push(e.modelTree(m));
+  // Latex balloons are drawn with the page's OBJ; foil ones need the engine's pillow.
+  const foilMeshes = info.foil.map((foil, m) => (foil ? e.modelMesh(m) : null));
   return {
     sceneJson: e.sceneJson(),
     defaultSceneJson: e.defaultSceneJson(),
@@ -89,6 +91,7 @@ function worldInfo(e: Engine): WorldInfo {
     palette: info.colors,
     colorNames: info.color_names,
     diameters: info.diameters,
+    foilMeshes,
     dt: info.dt,
     capacity: e.capacity(),
     constants: e.constants,

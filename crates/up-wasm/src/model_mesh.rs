@@ -1,0 +1,62 @@
+//! The balloon models' surfaces for the page: a foil group's balloons are
+//! drawn with the engine's own foil pillow (`up_scene::foil_mesh`), which no
+//! asset file holds, so the page reads it here (latex balloons are drawn
+//! with the OBJ the page loads, and need nothing from this module).
+//!
+//! `write_model_mesh(model)` fills three arrays, each a view of wasm memory
+//! until the next call: positions and normals, `MESH_VERTEX_FLOATS` per
+//! vertex in the body frame (the frame the poses place), and triangle
+//! indices, three per triangle, counter-clockwise seen from outside.
+
+use crate::error::WasmError;
+use crate::state::State;
+
+/// Floats per mesh vertex position (and per normal): x, y, z.
+pub const MESH_VERTEX_FLOATS: usize = 3;
+
+/// Model `model`'s surface as the page reads it (see the module).
+#[derive(Default)]
+pub struct MeshBuffers {
+    pub positions: Vec<f32>,
+    pub normals: Vec<f32>,
+    pub indices: Vec<u32>,
+}
+
+impl State {
+    /// Whether each balloon model (one per group, in group order) is foil.
+    pub fn model_foil(&self) -> Result<Vec<bool>, WasmError> {
+        Ok(self
+            .loaded()?
+            .built
+            .balloon_models
+            .iter()
+            .map(|m| m.spec.kind == up_physics::EnvelopeKind::Foil)
+            .collect())
+    }
+
+    /// Writes model `model`'s surface into `mesh`; returns the vertex count.
+    pub fn write_model_mesh(&mut self, model: u32) -> Result<usize, WasmError> {
+        let loaded = self.loaded.as_ref().ok_or(WasmError::NoWorld)?;
+        let models = &loaded.built.balloon_models;
+        let m = models.get(model as usize).ok_or_else(|| {
+            WasmError::OutOfRange(format!(
+                "balloon model {model}: the scene has {} models",
+                models.len()
+            ))
+        })?;
+        let out = &mut self.mesh;
+        out.positions.clear();
+        out.normals.clear();
+        out.indices.clear();
+        out.positions
+            .extend(m.mesh.positions.iter().flat_map(|p| p.to_array()));
+        out.normals
+            .extend(m.mesh.normals.iter().flat_map(|n| n.to_array()));
+        out.indices.extend(m.mesh.indices.iter().flatten());
+        Ok(m.mesh.positions.len())
+    }
+}
+
+#[cfg(test)]
+#[path = "model_mesh_tests.rs"]
+mod tests;
