@@ -12,6 +12,7 @@ import { colorNameOfMtlFile, parseMtl } from "./mtl";
 import { writeInstanceMatrices } from "./poseMath";
 import { CROWD_BALLOONS, revolutionProfile, thinProfile } from "./crowdLod";
 import { FoilBalloons } from "./foilBalloons";
+import { balloonInstances } from "./balloonInstances";
 import type { ModelMesh } from "../sim/engine";
 
 /** Rings kept (every n-th) and segments around of the crowd geometry: 20 × 12, about 450 triangles. */
@@ -119,15 +120,7 @@ export class Balloons {
       this.group.remove(this.mesh);
       this.mesh.dispose();
     }
-    const mesh = new THREE.InstancedMesh(this.assets.geometry, this.material, capacity);
-    mesh.name = "balloons";
-    mesh.instanceMatrix.setUsage(THREE.DynamicDrawUsage);
-    mesh.castShadow = true;
-    mesh.receiveShadow = true;
-    // Instances move every frame; culling by the base geometry's bounds would hide them.
-    mesh.frustumCulled = false;
-    mesh.count = 0;
-    mesh.setColorAt(0, this.scratchColor.set(1, 1, 1));
+    const mesh = balloonInstances(this.assets.geometry, this.material, capacity, "balloons");
     this.group.add(mesh);
     this.capacity = capacity;
     this.scales = new Float32Array(capacity);

@@ -7,6 +7,7 @@
 import * as THREE from "three";
 import type { ModelMesh } from "../sim/engine";
 import { bodiesByFoilModel, gatherPoses } from "./foilRouting";
+import { balloonInstances } from "./balloonInstances";
 import { POSE_STRIDE, writeInstanceMatrices } from "./poseMath";
 
 /** Texels across the crimp normal map. */
@@ -130,15 +131,7 @@ export class FoilBalloons {
       this.group.remove(old.mesh);
       old.mesh.dispose();
     }
-    const mesh = new THREE.InstancedMesh(geometry, this.material, capacity);
-    mesh.name = "foil-balloons";
-    mesh.instanceMatrix.setUsage(THREE.DynamicDrawUsage);
-    mesh.castShadow = true;
-    mesh.receiveShadow = true;
-    // Instances move every frame; culling by the base geometry's bounds would hide them.
-    mesh.frustumCulled = false;
-    mesh.count = 0;
-    mesh.setColorAt(0, this.scratchColor.set(1, 1, 1));
+    const mesh = balloonInstances(geometry, this.material, capacity, "foil-balloons");
     this.group.add(mesh);
     return { mesh, capacity, bodies: new Uint32Array(0) };
   }
