@@ -24,7 +24,7 @@ use crate::gas::{EnvelopeDef, Gas};
 /// island a second or two of steps to settle again, so the thresholds are
 /// as coarse as the picture allows: a balloon pressed to the ceiling wakes
 /// a few times an hour, and one hovering on a 0.25 g/m ribbon (which bobs
-/// with a period of ≈ 15 s and takes ≈ 10 s to settle) comes down in
+/// with a period of ≈ 15 s and takes tens of seconds to settle) comes down in
 /// steps of at most ≈ 16 cm (`docs/perf-log.md`, the time-lapse entry).
 /// A balloon so leaves the ceiling late by at most that much lift.
 pub const WAKE_LIFT_CHANGE: f64 = 0.05;
