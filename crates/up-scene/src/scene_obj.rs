@@ -89,6 +89,41 @@ fn push_vec3(out: &mut String, tag: &str, v: Vec3) {
     let _ = writeln!(out, "{tag} {:.6} {:.6} {:.6}", v.x, v.y, v.z);
 }
 
+/// One object of the file: its vertices and normals (world frame) and its
+/// triangles, indexing both.
+struct ObjObject<'a> {
+    name: String,
+    material: &'a str,
+    /// Smooth shading (`s 1`) or flat (`s off`).
+    smooth: bool,
+    vertices: Vec<Vec3>,
+    normals: Vec<Vec3>,
+    triangles: &'a [[u32; 3]],
+}
+
+impl ObjObject<'_> {
+    /// Appends the object to `obj`; `next` holds the file's next vertex and
+    /// normal indices (OBJ counts from 1 over the whole file) and moves on.
+    fn write(&self, obj: &mut String, next: &mut (u32, u32)) {
+        let _ = writeln!(obj, "o {}", self.name);
+        for &p in &self.vertices {
+            push_vec3(obj, "v", p);
+        }
+        for &n in &self.normals {
+            push_vec3(obj, "vn", n);
+        }
+        let shading = if self.smooth { "1" } else { "off" };
+        let _ = writeln!(obj, "usemtl {}\ns {shading}", self.material);
+        for t in self.triangles {
+            let [a, b, c] = t.map(|i| i + next.0);
+            let [na, nb, nc] = t.map(|i| i + next.1);
+            let _ = writeln!(obj, "f {a}//{na} {b}//{nb} {c}//{nc}");
+        }
+        next.0 += self.vertices.len() as u32;
+        next.1 += self.normals.len() as u32;
+    }
+}
+
 fn push_material(mtl: &mut String, name: &str, rgb: [f32; 3], shine: bool) {
     let [r, g, b] = rgb;
     let (ks, ns) = if shine { (0.35, 120.0) } else { (0.1, 20.0) };
@@ -121,7 +156,7 @@ pub fn scene_obj_text(built: &BuiltScene, mtllib: &str) -> (String, String) {
         world.ribbon_count()
     );
     // OBJ indices count from 1 over the whole file.
-    let (mut next_vertex, mut next_normal) = (1u32, 1u32);
+    let mut next = (1u32, 1u32);
     for &id in world.body_ids() {
         let (Some(pose), Some(user_data)) = (world.pose(id), world.user_data(id)) else {
             continue;
@@ -138,21 +173,19 @@ pub fn scene_obj_text(built: &BuiltScene, mtllib: &str) -> (String, String) {
         let mesh = &model.mesh;
         // The size its gas has left it (1 without gas).
         let scale = world.body_scale(id).unwrap_or(1.0);
-        let _ = writeln!(obj, "o balloon_{}", id.index);
-        for &p in &mesh.positions {
-            push_vec3(&mut obj, "v", pose.position + pose.rotation * (p * scale));
-        }
-        for &n in &mesh.normals {
-            push_vec3(&mut obj, "vn", pose.rotation * n);
-        }
-        let _ = writeln!(obj, "usemtl {material}\ns 1");
-        for t in &mesh.indices {
-            let [a, b, c] = t.map(|i| i + next_vertex);
-            let [na, nb, nc] = t.map(|i| i + next_normal);
-            let _ = writeln!(obj, "f {a}//{na} {b}//{nb} {c}//{nc}");
-        }
-        next_vertex += mesh.positions.len() as u32;
-        next_normal += mesh.normals.len() as u32;
+        let object = ObjObject {
+            name: format!("balloon_{}", id.index),
+            material: &material,
+            smooth: true,
+            vertices: mesh
+                .positions
+                .iter()
+                .map(|&p| pose.position + pose.rotation * (p * scale))
+                .collect(),
+            normals: mesh.normals.iter().map(|&n| pose.rotation * n).collect(),
+            triangles: &mesh.indices,
+        };
+        object.write(&mut obj, &mut next);
     }
     for id in world.ribbon_ids() {
         let (Some(body), Some(points)) = (world.ribbon_body(id), world.ribbon_points(id)) else {
@@ -166,21 +199,15 @@ pub fn scene_obj_text(built: &BuiltScene, mtllib: &str) -> (String, String) {
         };
         let material = use_material(&mut mtl, material_name("ribbon", color), rgb, false);
         let strip = ribbon_strip(points, RIBBON_WIDTH);
-        let _ = writeln!(obj, "o ribbon_{}", body.index);
-        for &p in &strip.vertices {
-            push_vec3(&mut obj, "v", p);
-        }
-        for &n in &strip.normals {
-            push_vec3(&mut obj, "vn", n);
-        }
-        let _ = writeln!(obj, "usemtl {material}\ns off");
-        for t in &strip.triangles {
-            let [a, b, c] = t.map(|i| i + next_vertex);
-            let [na, nb, nc] = t.map(|i| i + next_normal);
-            let _ = writeln!(obj, "f {a}//{na} {b}//{nb} {c}//{nc}");
-        }
-        next_vertex += strip.vertices.len() as u32;
-        next_normal += strip.normals.len() as u32;
+        let object = ObjObject {
+            name: format!("ribbon_{}", body.index),
+            material: &material,
+            smooth: false,
+            vertices: strip.vertices,
+            normals: strip.normals,
+            triangles: &strip.triangles,
+        };
+        object.write(&mut obj, &mut next);
     }
     (obj, mtl)
 }

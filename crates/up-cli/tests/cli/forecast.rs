@@ -202,11 +202,9 @@ fn run_hours_writes_a_row_set_every_k_simulated_minutes() {
         "--out",
         &out,
     ]);
-    let csv = std::fs::read_to_string(&out).unwrap();
-    let mut times: Vec<f64> = csv
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').next().unwrap().parse().unwrap())
+    let mut times: Vec<f64> = csv_rows(&out, "t,id,x,y,z,qx,qy,qz,qw")
+        .iter()
+        .map(|r| r[0])
         .collect();
     times.dedup();
     // Start, then every second minute of the six: 0, 2, 4, 6 min.

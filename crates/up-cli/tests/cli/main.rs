@@ -60,6 +60,16 @@ fn up_err(args: &[&str]) -> String {
     err
 }
 
+/// The rows of a CSV file of numbers whose first line is `header`.
+fn csv_rows(path: &str, header: &str) -> Vec<Vec<f64>> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some(header), "{path}");
+    lines
+        .map(|l| l.split(',').map(|f| f.parse::<f64>().unwrap()).collect())
+        .collect()
+}
+
 /// The last line of standard output, as JSON.
 fn last_json(text: &str) -> Value {
     let line = text.lines().last().expect("some output");

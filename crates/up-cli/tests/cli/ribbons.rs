@@ -73,23 +73,13 @@ fn ribbons_out_writes_every_point_of_every_ribbon_every_k_steps() {
         "--ribbons-out",
         &ribbons,
     ]);
-    let text = std::fs::read_to_string(&ribbons).unwrap();
-    let mut lines = text.lines();
-    assert_eq!(lines.next(), Some("t,balloon,point,x,y,z"));
-    let rows: Vec<Vec<f64>> = lines
-        .map(|l| l.split(',').map(|f| f.parse::<f64>().unwrap()).collect())
-        .collect();
+    let rows = csv_rows(&ribbons, "t,balloon,point,x,y,z");
     // 15 steps: the start, steps 5, 10, 15; three ribbons of 9 points each.
-    assert_eq!(rows.len(), 4 * 3 * 9, "{text}");
+    assert_eq!(rows.len(), 4 * 3 * 9, "{rows:?}");
     assert!(rows.iter().all(|r| r.len() == 6));
     // The balloons are numbered as in --out.
-    let poses = std::fs::read_to_string(&out).unwrap();
-    let mut ids: Vec<u64> = poses
-        .lines()
-        .skip(1)
-        .take(3)
-        .map(|l| l.split(',').nth(1).unwrap().parse().unwrap())
-        .collect();
+    let poses = csv_rows(&out, "t,id,x,y,z,qx,qy,qz,qw");
+    let mut ids: Vec<u64> = poses.iter().take(3).map(|r| r[1] as u64).collect();
     ids.sort();
     let mut balloons: Vec<u64> = rows.iter().map(|r| r[1] as u64).collect();
     balloons.sort();

@@ -99,14 +99,9 @@ fn run_writes_the_trajectory_csv_every_k_steps() {
         "--out",
         &csv,
     ]);
-    let text = std::fs::read_to_string(&csv).unwrap();
-    let mut lines = text.lines();
-    assert_eq!(lines.next(), Some("t,id,x,y,z,qx,qy,qz,qw"));
-    let rows: Vec<Vec<f64>> = lines
-        .map(|l| l.split(',').map(|f| f.parse::<f64>().unwrap()).collect())
-        .collect();
+    let rows = csv_rows(&csv, "t,id,x,y,z,qx,qy,qz,qw");
     // 15 steps: the start, steps 5, 10, 15; two balloons each.
-    assert_eq!(rows.len(), 4 * 2, "{text}");
+    assert_eq!(rows.len(), 4 * 2, "{rows:?}");
     assert!(rows.iter().all(|r| r.len() == 9));
     assert_eq!(rows[0][0], 0.0);
     assert!((rows.last().unwrap()[0] - 0.25).abs() < 1e-3);
