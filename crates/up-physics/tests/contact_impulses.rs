@@ -63,7 +63,10 @@ fn the_floor_carries_an_air_filled_balloons_net_weight() {
     let (push, net_weight) = rest_against_room(heavy, Vec3::new(0.0, 0.5, 0.0));
     assert!(net_weight.y < 0.0, "the balloon should be heavier than air");
     let error = (push + net_weight).length() / net_weight.length();
-    assert!(error < 0.01, "push {push} N against net weight {net_weight} N");
+    assert!(
+        error < 0.01,
+        "push {push} N against net weight {net_weight} N"
+    );
 }
 
 #[test]
@@ -71,7 +74,11 @@ fn the_ceiling_holds_a_helium_balloons_net_lift() {
     let (push, net_weight) = rest_against_room(reference_balloon(), Vec3::new(0.0, 1.5, 0.0));
     assert!(net_weight.y > 0.0, "the balloon should lift");
     let error = (push + net_weight).length() / net_weight.length();
-    assert!(error < 0.01, "push {push} N against net lift {} N", -net_weight);
+    assert!(
+        error < 0.01,
+        "push {push} N against net lift {} N",
+        -net_weight
+    );
 }
 
 #[test]
@@ -79,8 +86,12 @@ fn a_head_on_collision_s_impulses_are_the_momentum_each_balloon_changed_by() {
     let (mut world, shape) = world_with(free_space());
     let a = add(&mut world, shape, Vec3::new(-0.5, 1.0, 0.0), Quat::IDENTITY);
     let b = add(&mut world, shape, Vec3::new(0.5, 1.0, 0.0), Quat::IDENTITY);
-    world.set_velocity(a, Vec3::new(2.0, 0.0, 0.0), Vec3::ZERO).unwrap();
-    world.set_velocity(b, Vec3::new(-2.0, 0.0, 0.0), Vec3::ZERO).unwrap();
+    world
+        .set_velocity(a, Vec3::new(2.0, 0.0, 0.0), Vec3::ZERO)
+        .unwrap();
+    world
+        .set_velocity(b, Vec3::new(-2.0, 0.0, 0.0), Vec3::ZERO)
+        .unwrap();
     let mass = world.effective_mass(a).unwrap();
     let v0 = world.linear_velocity(a).unwrap();
     let (mut on_a, mut on_b, mut peak, mut peak_total) = (Vec3::ZERO, Vec3::ZERO, 0.0f32, 0.0f32);

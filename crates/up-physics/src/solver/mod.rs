@@ -26,6 +26,7 @@ mod one_sided_tests;
 mod overflow_tests;
 pub(crate) mod parallel;
 pub(crate) mod position_skips;
+pub(crate) mod probe;
 pub(crate) mod softness;
 #[cfg(test)]
 mod stabilize_tests;
@@ -268,6 +269,7 @@ impl Solver {
         &mut self,
         p: &SolveParams,
         grab: Option<&GrabSpring>,
+        mut probe: Option<&mut probe::SubstepProbe>,
         after_positions: &mut dyn FnMut(&mut [BodyState]),
     ) {
         let h = p.dt / p.substeps as f32;
@@ -294,14 +296,25 @@ impl Solver {
             },
         );
         for _ in 0..p.substeps {
+            if let Some(probe) = probe.as_deref_mut() {
+                probe.before(&self.states);
+            }
             integrate::integrate_velocities(
                 &mut self.states,
                 &self.forces,
                 &self.awake,
                 p.angular_damping,
-                grab,
                 h,
             );
+            if let Some(probe) = probe.as_deref_mut() {
+                probe.after(&self.states, &self.forces, h);
+            }
+            if let Some(g) = grab {
+                let impulse = integrate::apply_grab(&mut self.states, g, h);
+                if let Some(probe) = probe.as_deref_mut() {
+                    probe.grabbed(g.state, impulse);
+                }
+            }
             self.velocity_pass(contact_constraint::warm_start);
             for _ in 0..p.iterations {
                 self.velocity_pass(|c, a, b| contact_constraint::solve(c, a, b, &push));
