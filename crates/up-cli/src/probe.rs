@@ -66,8 +66,7 @@ impl ProbeCsv {
             let (lo, hi) = (ids.clone().min(), ids.max());
             match (lo, hi) {
                 (Some(lo), Some(hi)) => bail!(
-                    "--probe {id}: expected a balloon id from {lo} to {hi} (as --out numbers the {} balloons)",
-                    world.body_count()
+                    "--probe {id}: expected a balloon id from {lo} to {hi}, as --out numbers the balloons"
                 ),
                 _ => bail!("--probe {id}: the scene has no balloons to probe"),
             }
@@ -95,6 +94,8 @@ impl ProbeCsv {
     fn row(&mut self, t: f64, f: &ForceBreakdown) -> std::io::Result<()> {
         write!(self.file, "{t}")?;
         for v in [f.weight, f.buoyancy, f.drag, f.contact, f.ribbon, f.other] {
+            // + 0 turns −0 (a zero component of −ρ·V·g, say) into 0.
+            let v = v + glam::Vec3::ZERO;
             write!(self.file, ",{},{},{}", v.x, v.y, v.z)?;
         }
         writeln!(self.file)
