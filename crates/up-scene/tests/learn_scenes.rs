@@ -115,7 +115,7 @@ fn the_cold_room_shrinks_every_balloon_by_the_ratio_of_temperatures() {
     let ceiling = built.room.bounds().max.y;
     for k in 0..ids.len() {
         let ratio = v1[k] / v0[k];
-        let charles = (cold / t0) as f32;
+        let charles = cold / t0;
         assert!(
             (ratio - charles).abs() <= 0.01 * charles,
             "balloon {k}: volume × {ratio}, T₁/T₀ = {charles}"
