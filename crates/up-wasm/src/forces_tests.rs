@@ -103,3 +103,27 @@ fn bad_probes_and_cards_are_refused() {
     assert_eq!(s.body_card(n as u32).unwrap_err().kind(), "OutOfRange");
     assert_eq!(s.body_card(0).unwrap().gas, BodyGas::Helium);
 }
+
+#[test]
+fn each_teaching_scene_loads_in_the_page_s_engine_with_its_caption() {
+    let scenes = [
+        include_str!("../../../assets/scenes/learn-terminal-speed.toml"),
+        include_str!("../../../assets/scenes/learn-helium-and-air.toml"),
+        include_str!("../../../assets/scenes/learn-cold-room.toml"),
+        include_str!("../../../assets/scenes/learn-throw.toml"),
+    ];
+    for text in scenes {
+        let mut s = State::default();
+        s.load_toml(text).expect("a teaching scene loads");
+        s.set_force_probe(0).unwrap();
+        s.step(10).unwrap();
+        assert_eq!(s.write_forces().unwrap(), 1);
+        let json = s.scene_json().unwrap();
+        assert!(
+            json.contains("\"about\"") && json.contains("\"caption\""),
+            "{json}"
+        );
+        let card = s.body_card(0).unwrap();
+        assert!(card.terminal_speed_m_s > 0.5, "{card:?}");
+    }
+}
