@@ -1,5 +1,5 @@
 import { describe, expect, it } from "vitest";
-import { FORCE_FLOATS, ForceProbe, PROBE_ALL, PROBE_OFF, findForceRow, forceRowCount, netForce, readForceRow, type ForceSource } from "./forcesFrame";
+import { FORCE_FLOATS, ForceProbe, PROBE_ALL, checkForceLayout, PROBE_OFF, findForceRow, forceRowCount, netForce, readForceRow, type ForceSource } from "./forcesFrame";
 import type { BodyCard } from "./engine";
 
 /** A row as the engine writes it: index, six forces, centre of mass, centre of buoyancy, knot. */
@@ -127,5 +127,12 @@ describe("the worker's force probe", () => {
     expect(probe.selected).toBe(-1);
     probe.apply(engine);
     expect(engine.told).toEqual([PROBE_ALL, PROBE_ALL]);
+  });
+});
+
+describe("the force rows' layout", () => {
+  it("is checked against the engine's", () => {
+    expect(() => checkForceLayout({ force_floats: FORCE_FLOATS })).not.toThrow();
+    expect(() => checkForceLayout({ force_floats: FORCE_FLOATS + 3 })).toThrow(/floats per body's forces/);
   });
 });

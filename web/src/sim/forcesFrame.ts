@@ -12,6 +12,13 @@ import type { BodyCard } from "./engine";
  */
 export const FORCE_FLOATS = 28;
 
+/** Throws unless the engine writes force rows of `FORCE_FLOATS` floats: a page built against another engine says so at start. */
+export function checkForceLayout(constants: { force_floats: number }): void {
+  if (constants.force_floats !== FORCE_FLOATS) {
+    throw new Error(`the physics engine does not match the page: it writes ${constants.force_floats} floats per body's forces, the page reads ${FORCE_FLOATS}; rebuild both`);
+  }
+}
+
 /** The kinds of force in a row, in the row's order. */
 export const FORCE_KINDS = ["weight", "buoyancy", "drag", "contact", "ribbon", "other"] as const;
 export type ForceKind = (typeof FORCE_KINDS)[number];

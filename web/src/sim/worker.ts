@@ -10,7 +10,7 @@ import { Engine, glueUrl, type GlueModule } from "./engine";
 import { RIBBON_POINT_STRIDE, checkLayout, frameFloats, frameViews } from "./frameLayout";
 import type { FromWorker, ToWorker, WorldInfo } from "./protocol";
 import { TimeLapse, censusInterval } from "./timeLapse";
-import { ForceProbe } from "./forcesFrame";
+import { ForceProbe, checkForceLayout } from "./forcesFrame";
 
 /** Most steps taken in one tick; beyond that the simulation runs slow rather than spiral. */
 const MAX_STEPS_PER_TICK = 4;
@@ -337,6 +337,7 @@ function handle(msg: ToWorker): void {
         state.wasmBytes = bytes;
         const e = Engine.load(glue, bytes);
         checkLayout(e.constants);
+        checkForceLayout(e.constants);
         return e;
       });
       state.started
