@@ -54,6 +54,12 @@ test("a click on a balloon shows its card, outline, force arrows and plots; Esc 
   const card = await page.locator("#balloon-card").textContent();
   for (const word of ["mass", "volume", "helium", "net lift", "speed", "height", "tilt", "terminal speed"]) expect(card).toContain(word);
   await page.screenshot({ path: "/tmp/physics-card.png" });
+  // The selected balloon up close: its outline and arrows.
+  const at = await page.evaluate(() => {
+    const c = window.__up!.balloonCenter(0)!;
+    return window.__up!.project(c[0], c[1], c[2]);
+  });
+  await page.screenshot({ path: "/tmp/physics-arrows.png", clip: { x: Math.max(0, at.x - 110), y: Math.max(0, at.y - 130), width: 220, height: 240 } });
   await testInfo.attach("card and arrows", { path: "/tmp/physics-card.png", contentType: "image/png" });
 
   // The plot fills as the simulated clock runs.

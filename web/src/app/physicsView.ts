@@ -131,6 +131,8 @@ export class PhysicsView {
     }
     this.card.show(card);
     this.plot.canvas.hidden = !card;
+    // The motion plot takes the float plot's place while a balloon is selected (style.css).
+    document.body.classList.toggle("balloon-selected", !!card);
     const row = forces && selected >= 0 ? findForceRow(forces.rows, selected) : null;
     this.legend.show(this.arrows.arrows.length > 0 || (this.forcesOnAll && !!forces) || !!card, row);
     this.plot.draw();

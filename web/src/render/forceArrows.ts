@@ -26,7 +26,7 @@ export const FORCE_STYLE: Record<ForceKind, { color: string; label: string }> = 
   drag: { color: "#ffd21f", label: "air drag" },
   contact: { color: "#ff5ce1", label: "contact" },
   ribbon: { color: "#f4f4f4", label: "ribbon's pull" },
-  other: { color: "#9dff4a", label: "your hand" },
+  other: { color: "#9dff4a", label: "hand, fields" },
 };
 
 /** One arrow: a force and where it is drawn. */

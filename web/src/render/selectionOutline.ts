@@ -8,8 +8,8 @@ import { POSE_STRIDE, writeInstanceMatrices } from "./poseMath";
 import type { ModelMesh, TreeNode } from "../sim/engine";
 
 /** How much larger the shell is than the balloon. */
-export const OUTLINE_GROWTH = 1.07;
-export const OUTLINE_COLOR = "#fff27a";
+export const OUTLINE_GROWTH = 1.12;
+export const OUTLINE_COLOR = "#ffffff";
 
 /** What the outline needs of a world: each model's shape and size. */
 export interface OutlineModels {

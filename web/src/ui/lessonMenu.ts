@@ -81,6 +81,8 @@ export class LessonMenu {
 
   constructor(gui: GUI, lessons: Lesson[], actions: LessonActions) {
     this.folder = gui.addFolder("Learn");
+    // First in the panel: the way in for a learner.
+    gui.$children.prepend(this.folder.domElement);
     const options: Record<string, string> = { "choose a scene…": "" };
     for (const l of lessons) options[l.title] = l.file;
     const menu = this.folder.add(this.view, "lesson", options).name("teaching scene");

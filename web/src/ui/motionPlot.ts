@@ -111,8 +111,8 @@ export class MotionPlot {
 
   constructor(
     parent: HTMLElement,
-    private readonly width = 300,
-    private readonly height = 200,
+    private readonly width = 270,
+    private readonly height = 160,
   ) {
     this.canvas = document.createElement("canvas");
     this.canvas.id = "motion-plot";
@@ -124,7 +124,7 @@ export class MotionPlot {
     this.canvas.style.width = `${width}px`;
     this.canvas.style.height = `${height}px`;
     this.canvas.hidden = true;
-    const h = (height - 56) / 2;
+    const h = (height - 52) / 2;
     this.panels = [
       { top: 16, height: h, field: 1, label: "height (m)", color: MOTION_COLORS.height, minSpan: 0.2 },
       { top: 16 + h + 18, height: h, field: 2, label: "vertical speed (m/s)", color: MOTION_COLORS.speed, minSpan: 0.2 },
