@@ -11,7 +11,7 @@ import type { SimBridge } from "../sim/bridge";
 import type { WorldInfo } from "../sim/protocol";
 import { findForceRow, type Vec3 } from "../sim/forcesFrame";
 import { BalloonCard, ForceLegend } from "../ui/balloonCard";
-import { MotionPlot } from "../ui/motionPlot";
+import { MotionPlot, WINDOW_S } from "../ui/motionPlot";
 import { SceneCaption, aboutOfScene } from "../ui/caption";
 import { LessonMenu, loadLessons, type Lesson } from "../ui/lessonMenu";
 import type GUI from "lil-gui";
@@ -125,6 +125,7 @@ export class PhysicsView {
       this.arrows.set(arrows, this.view);
     }
     if (newFrame && card && f) {
+      this.plot.window = WINDOW_S * Math.max(1, f.rate);
       // The terminal speed is a size; the balloon reaches it going up when it lifts, down when it sinks.
       const terminal = card.net_lift_n >= 0 ? card.terminal_speed_m_s : -card.terminal_speed_m_s;
       this.plot.push(f.simTime, card.height_m, card.vertical_speed_m_s, terminal);

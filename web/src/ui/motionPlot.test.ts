@@ -1,5 +1,5 @@
 import { describe, expect, it } from "vitest";
-import { SampleRing, WINDOW_S, extent, timeRange, valueRange } from "./motionPlot";
+import { SampleRing, WINDOW_S, extent, timeRange, timeText, valueRange } from "./motionPlot";
 
 describe("the motion plot's ring buffer", () => {
   it("keeps samples oldest first and overwrites the oldest when full", () => {
@@ -57,5 +57,13 @@ describe("the motion plot's axes", () => {
     const r = valueRange(-0.9, 0.05, 0.2);
     expect(r.low).toBeLessThanOrEqual(-0.9);
     expect(r.high).toBeGreaterThanOrEqual(0.05);
+  });
+});
+
+describe("the motion plot's time labels", () => {
+  it("switch from seconds to minutes to hours", () => {
+    expect(timeText(42)).toBe("42 s");
+    expect(timeText(900)).toBe("15 min");
+    expect(timeText(5400 * 10)).toBe("15.0 h");
   });
 });

@@ -104,6 +104,8 @@ export class MotionPlot {
   readonly ring = new SampleRing();
   /** The terminal speed drawn, signed as the balloon goes (up when it lifts), m/s; NaN: none. */
   terminal = NaN;
+  /** Simulated seconds shown: `WINDOW_S` in real time, that many real seconds' worth in a time-lapse. */
+  window = WINDOW_S;
   private dirty = false;
   private lastDraw = -Infinity;
   private readonly panels: Panel[];
@@ -223,9 +225,9 @@ export class MotionPlot {
     ctx.fillStyle = MOTION_COLORS.text;
     ctx.textBaseline = "bottom";
     ctx.textAlign = "left";
-    ctx.fillText(`${t0.toFixed(0)} s`, this.left, this.height - 2);
+    ctx.fillText(timeText(t0), this.left, this.height - 2);
     ctx.textAlign = "right";
-    ctx.fillText(`${t1.toFixed(0)} s`, right, this.height - 2);
+    ctx.fillText(timeText(t1), right, this.height - 2);
     ctx.textAlign = "center";
     ctx.fillText("simulated time", (this.left + right) / 2, this.height - 2);
     ctx.textAlign = "left";
@@ -233,11 +235,18 @@ export class MotionPlot {
 
   /** Samples in the time window now (for the test hook). */
   pointsShown(): number {
-    const [t0] = timeRange(this.ring.length ? this.ring.get(0, 0) : NaN, this.ring.lastTime());
+    const [t0] = timeRange(this.ring.length ? this.ring.get(0, 0) : NaN, this.ring.lastTime(), this.window);
     let n = 0;
     for (let i = 0; i < this.ring.length; i++) if (this.ring.get(i, 0) >= t0) n++;
     return n;
   }
+}
+
+/** A time on the axis: seconds up to ten minutes, then minutes, then hours. */
+export function timeText(t: number): string {
+  if (t < 600) return `${t.toFixed(0)} s`;
+  if (t < 36_000) return `${(t / 60).toFixed(0)} min`;
+  return `${(t / 3600).toFixed(1)} h`;
 }
 
 function signedText(v: number): string {
