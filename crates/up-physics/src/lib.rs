@@ -43,6 +43,6 @@ pub use snapshot::SnapshotError;
 pub use up_geom;
 pub use world::limits;
 pub use world::{
-    Advance, ContactInfo, PhysicsError, StepStats, World, WorldDef, MAX_BODIES, MAX_JUMP_S,
-    WAKE_GROWTH, WAKE_LIFT_CHANGE, WAKE_LIFT_FLOOR, WAKE_SHRINK,
+    Advance, ContactInfo, ForceBreakdown, ForceProbe, PhysicsError, StepStats, World, WorldDef,
+    MAX_BODIES, MAX_JUMP_S, WAKE_GROWTH, WAKE_LIFT_CHANGE, WAKE_LIFT_FLOOR, WAKE_SHRINK,
 };

@@ -18,11 +18,14 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Location, SceneError};
 use crate::palette::{color_rgb, DEFAULT_COLOR_COUNT, PALETTE};
 
+#[path = "scene_about.rs"]
+mod about;
 #[path = "scene_lines.rs"]
 mod lines;
 #[path = "scene_validate.rs"]
 mod validate;
 
+pub use about::{AboutSpec, MAX_CAPTION_CHARS, MAX_TITLE_CHARS};
 pub use lines::KeyLines;
 pub use validate::{
     MAX_BALLOON_DIAMETER_M, MAX_BALLOON_GROUPS, MAX_GROUP_COLORS, MAX_RIBBON_LENGTH_M,
@@ -75,6 +78,9 @@ pub struct Scene {
     pub balloons: Vec<BalloonGroup>,
     pub air: AirSpec,
     pub sim: SimSpec,
+    /// A title and caption for a page (`about`); optional.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub about: Option<AboutSpec>,
     /// Where the scene came from: for messages and for paths relative to the file.
     #[serde(skip)]
     pub source: SceneSource,
@@ -507,6 +513,7 @@ impl Default for Scene {
             }],
             air: AirSpec::default(),
             sim: SimSpec::default(),
+            about: None,
             source: SceneSource::default(),
         }
     }

@@ -94,6 +94,7 @@ impl Checker<'_> {
 }
 
 pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
+    super::about::check(scene)?;
     let c = Checker { scene };
     let room = &scene.room;
     let (lo, hi) = (MIN_ROOM_SIZE_M, MAX_ROOM_SIZE_M);

@@ -77,6 +77,8 @@ pub struct Constants {
     pub ribbon_point_stride: u32,
     /// Floats per vertex of a model's surface (position or normal): x, y, z.
     pub mesh_vertex_stride: u32,
+    /// Floats per probed body's forces (`forces.rs`).
+    pub force_floats: u32,
     /// Width of the ribbon drawn, m (the engine's ribbon, 5 mm curling ribbon).
     pub ribbon_width_m: f32,
     /// Radius of a weight at a ribbon's free end, m (as it collides).
@@ -117,6 +119,7 @@ impl Constants {
             tree_stride: TREE_FLOATS as u32,
             ribbon_point_stride: RIBBON_POINT_FLOATS as u32,
             mesh_vertex_stride: MESH_VERTEX_FLOATS as u32,
+            force_floats: crate::forces::FORCE_FLOATS as u32,
             ribbon_width_m: up_physics::ribbon::RIBBON_WIDTH,
             weight_radius_m: up_physics::ribbon::WEIGHT_RADIUS,
             max_ribbon_length_m: MAX_RIBBON_LENGTH_M,

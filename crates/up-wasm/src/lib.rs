@@ -36,6 +36,7 @@
 mod clock;
 mod contacts;
 mod error;
+mod forces;
 mod gas;
 mod info;
 mod model_mesh;
@@ -47,6 +48,7 @@ use wasm_bindgen::prelude::*;
 
 pub use contacts::{CONTACT_FLOATS, MAX_CONTACTS};
 pub use error::{CallError, WasmError, ERROR_KINDS};
+pub use forces::{BodyCard, BodyGas, FORCE_FLOATS, PROBE_ALL, PROBE_OFF};
 pub use gas::{AdvanceReport, FloatCounts, GroupFloat, MAX_ADVANCE_S};
 pub use info::{Constants, EngineStats, NamedColor, SceneLimits, WorldSummary};
 pub use model_mesh::{MeshBuffers, MESH_VERTEX_FLOATS};
@@ -72,6 +74,8 @@ export type TreeStride = 6;
 export type RibbonPointStride = 3;
 /** Floats per mesh vertex position or normal: x, y, z (`constants().mesh_vertex_stride`). */
 export type MeshVertexStride = 3;
+/** Floats per probed body: index, 6 forces, 3 points, xyz each (`constants().force_floats`). */
+export type ForceStride = 28;
 "#;
 
 #[wasm_bindgen(typescript_custom_section)]
@@ -479,6 +483,7 @@ mod tests {
         for (name, value) in [
             ("PoseStride", POSE_FLOATS),
             ("ContactStride", CONTACT_FLOATS),
+            ("ForceStride", FORCE_FLOATS),
             ("TreeStride", TREE_FLOATS),
             ("RibbonPointStride", RIBBON_POINT_FLOATS),
             ("MeshVertexStride", MESH_VERTEX_FLOATS),

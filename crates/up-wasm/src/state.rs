@@ -71,6 +71,8 @@ pub struct State {
     pub census: Option<FloatCensus>,
     /// The surface `write_model_mesh` wrote last (`model_mesh.rs`).
     pub mesh: MeshBuffers,
+    /// The probed forces `write_forces` wrote last (`forces.rs`).
+    pub forces: Vec<f32>,
 }
 
 /// `Ok` when a velocity stays within `MAX_SPEED` and `MAX_SPIN`, else why not.
@@ -184,7 +186,7 @@ impl State {
             .map_or(0, |l| l.built.world.body_count())
     }
 
-    fn body_at(&self, index: u32) -> Result<BodyId, WasmError> {
+    pub(crate) fn body_at(&self, index: u32) -> Result<BodyId, WasmError> {
         let ids = self.world()?.body_ids();
         ids.get(index as usize).copied().ok_or_else(|| {
             WasmError::OutOfRange(format!(

@@ -30,7 +30,6 @@ pub(crate) fn integrate_velocities(
     forces: &[BodyForces],
     awake: &[u32],
     angular_damping: f32,
-    grab: Option<&GrabSpring>,
     h: f32,
 ) {
     parallel::for_each_body(awake, states, |i, s| {
@@ -46,15 +45,18 @@ pub(crate) fn integrate_velocities(
             s.freeze_runaway();
         }
     });
-    if let Some(g) = grab {
-        let s = &mut states[g.state as usize];
-        let r = s.dq * g.anchor;
-        let point = g.center0 + s.dp + r;
-        let mut force = g.stiffness * (g.target - point) - g.damping * s.point_velocity(r);
-        let len = force.norm();
-        if len > g.max_force {
-            force *= g.max_force / len;
-        }
-        s.apply_impulse(h * force, r);
+}
+
+/// The grab spring's pull on its body over substep `h`; returns the impulse, N·s.
+pub(crate) fn apply_grab(states: &mut [BodyState], g: &GrabSpring, h: f32) -> Vec3 {
+    let s = &mut states[g.state as usize];
+    let r = s.dq * g.anchor;
+    let point = g.center0 + s.dp + r;
+    let mut force = g.stiffness * (g.target - point) - g.damping * s.point_velocity(r);
+    let len = force.norm();
+    if len > g.max_force {
+        force *= g.max_force / len;
     }
+    s.apply_impulse(h * force, r);
+    h * force
 }

@@ -26,6 +26,7 @@ mod one_sided_tests;
 mod overflow_tests;
 pub(crate) mod parallel;
 pub(crate) mod position_skips;
+pub(crate) mod probe;
 pub(crate) mod softness;
 #[cfg(test)]
 mod stabilize_tests;
@@ -37,7 +38,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use body_lanes::{Displacements, Poses, Velocities};
 use body_state::BodyState;
 use coloring::{Coloring, Moving};
-use contact_constraint::{Bias, ContactGroup, GroupAnchors, GroupRecords, PreparedContact};
+use contact_constraint::{
+    Bias, ContactGroup, ContactTotals, GroupAnchors, GroupRecords, PreparedContact,
+};
 use integrate::GrabSpring;
 use joint_constraint::{JointColouring, PreparedJoint};
 use lanes::LANES;
@@ -248,6 +251,17 @@ impl Solver {
         self.groups[g].stored(&self.records[g], slot % LANES)
     }
 
+    /// What the narrowphase's `i`-th contact gave over the step, if the
+    /// constraints are this step's `count` contacts.
+    pub fn totals(&self, i: usize, count: usize) -> Option<ContactTotals> {
+        if self.coloring.slot.len() != count {
+            return None;
+        }
+        let slot = *self.coloring.slot.get(i)? as usize;
+        let g = self.groups.get(slot / LANES)?;
+        Some(g.totals(slot % LANES))
+    }
+
     /// Runs the substeps over prepared `states`, `forces` and constraints.
     /// `after_positions` runs once a substep on the states, after the joints
     /// and before the relax pass (the ribbons).
@@ -255,6 +269,7 @@ impl Solver {
         &mut self,
         p: &SolveParams,
         grab: Option<&GrabSpring>,
+        mut probe: Option<&mut probe::SubstepProbe>,
         after_positions: &mut dyn FnMut(&mut [BodyState]),
     ) {
         let h = p.dt / p.substeps as f32;
@@ -281,14 +296,25 @@ impl Solver {
             },
         );
         for _ in 0..p.substeps {
+            if let Some(probe) = probe.as_deref_mut() {
+                probe.before(&self.states);
+            }
             integrate::integrate_velocities(
                 &mut self.states,
                 &self.forces,
                 &self.awake,
                 p.angular_damping,
-                grab,
                 h,
             );
+            if let Some(probe) = probe.as_deref_mut() {
+                probe.after(&self.states, &self.forces, h);
+            }
+            if let Some(g) = grab {
+                let impulse = integrate::apply_grab(&mut self.states, g, h);
+                if let Some(probe) = probe.as_deref_mut() {
+                    probe.grabbed(g.state, impulse);
+                }
+            }
             self.velocity_pass(contact_constraint::warm_start);
             for _ in 0..p.iterations {
                 self.velocity_pass(|c, a, b| contact_constraint::solve(c, a, b, &push));
@@ -314,6 +340,7 @@ impl Solver {
             on_velocities(g, sides, |c, a, b| {
                 contact_constraint::solve(c, a, b, relax)
             });
+            g.add_substep();
         });
     }
 

@@ -48,7 +48,7 @@ pub(super) fn solve_bounce_stabilize(solver: &mut Solver) {
         friction: 0.5,
         angular_damping: 2.0,
     };
-    solver.solve(&params, None, &mut |_| {});
+    solver.solve(&params, None, None, &mut |_| {});
     solver.restitution(0.4, 0.01);
     solver.stabilize(&Stabilization {
         slop: 0.0005,

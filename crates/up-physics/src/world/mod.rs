@@ -19,6 +19,7 @@ mod joints;
 pub mod limits;
 mod place;
 mod prepare;
+mod probe;
 mod queries;
 mod ribbons;
 mod state;
@@ -44,6 +45,7 @@ pub use contacts::ContactInfo;
 pub use def::WorldDef;
 pub use error::PhysicsError;
 pub use gas::{Advance, MAX_JUMP_S, WAKE_GROWTH, WAKE_LIFT_CHANGE, WAKE_LIFT_FLOOR, WAKE_SHRINK};
+pub use probe::{ForceBreakdown, ForceProbe};
 pub use step::StepStats;
 
 pub(crate) use place::roots_within;
@@ -74,6 +76,11 @@ struct Stages {
     gas_woken: Vec<u32>,
     /// Awake bodies whose gas moved this step (`gas`).
     gas_moved: Vec<u32>,
+    /// The solver's constraints are the found contacts' (`contacts`): a
+    /// measurement's narrowphase since the step replaced them.
+    solved: bool,
+    /// The force probe's setting and records (`probe`).
+    probe: probe::ProbeStage,
 }
 
 impl Stages {

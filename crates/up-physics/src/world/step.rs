@@ -11,7 +11,8 @@
 //! 5. restitution and position: bounces, impulses kept for the next step,
 //!    overlap removed, results back to the bodies (`finish`);
 //! 6. continuous: fast bodies swept against the room (`continuous`); the
-//!    ribbons' points handed back (`ribbons`);
+//!    ribbons' points handed back (`ribbons`); the probed bodies' forces
+//!    (`probe`);
 //! 7. sleep: rest clocks and groups falling asleep (`sleep::rest`), bodies
 //!    gone non-finite taken out, spare capacity given back.
 //!
@@ -79,9 +80,11 @@ impl World {
 
         let grab = self.prepare_solver();
         self.prepare_ribbons();
+        self.begin_probe();
         counters.prepare_ms = clock.lap();
 
         self.solve(grab.as_ref());
+        self.stages.solved = true;
         counters.solve_ms = clock.lap();
 
         self.bounce();
@@ -91,8 +94,10 @@ impl World {
         self.finish_motion();
         counters.restitution_ms = clock.lap();
 
+        self.probe_before_sweep();
         self.sweep_fast_bodies();
         self.finish_ribbons();
+        self.finish_probe();
         counters.continuous_ms = clock.lap();
 
         self.update_sleep();
@@ -116,7 +121,10 @@ impl World {
     /// `ribbon::solve`).
     fn solve(&mut self, grab: Option<&GrabSpring>) {
         let params = self.solve_params();
-        let ribbons = &mut self.stages.ribbons;
+        let stages = &mut self.stages;
+        let probe = &mut stages.probe.substeps;
+        let probe = (!probe.is_empty()).then_some(probe);
+        let ribbons = &mut stages.ribbons;
         let input = SubstepInput {
             h: params.dt / params.substeps as f32,
             gravity: self.def.gravity,
@@ -133,10 +141,10 @@ impl World {
                 ribbon::solve::substep(active, &input, states);
             }
         };
-        self.stages
+        stages
             .solve
             .solver
-            .solve(&params, grab, &mut ribbons_substep);
+            .solve(&params, grab, probe, &mut ribbons_substep);
     }
 
     /// Bounces, for contacts that closed faster than the restitution threshold.

@@ -1,0 +1,281 @@
+//! The force probe: the forces on chosen bodies over the last step, as the
+//! step integrated them (`ForceBreakdown`), for views that draw forces and
+//! for the CLI's probe. Off (the default), the step does nothing for it.
+//!
+//! Weight, buoyancy and the scene's forces are the step's `BodyForces`; the
+//! drag is what the implicit update took off each substep
+//! (`solver::probe`); the contacts are their constraints' impulses over the
+//! step (`ContactInfo`) and the room's continuous hits; the ribbon's is its
+//! mean pull on the knot; the grab spring's is its impulse. Each is a mean
+//! over the step: an impulse over `dt`. Joints' corrections (balloons tied
+//! to one another) are not in it.
+
+use glam::Vec3;
+
+use super::World;
+use crate::body::BodyId;
+use crate::contact::STATIC_BODY;
+use crate::forces::buoyancy::buoyancy_force;
+use crate::forces::drag::terminal_velocity;
+use crate::forces::gravity::gravity_force;
+
+/// The forces on one body over the last step, world frame, N: the values
+/// the step integrated (drag as the substeps applied it, averaged over the
+/// step; contacts as the solver's impulses over the step / dt).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ForceBreakdown {
+    /// m·g, at the centre of mass.
+    pub weight: Vec3,
+    /// ρ_air·V·g upward, at the centre of buoyancy.
+    pub buoyancy: Vec3,
+    pub drag: Vec3,
+    /// Every contact summed (room and balloons), normal + friction.
+    pub contact: Vec3,
+    /// The ribbon's pull at the knot; zero without a ribbon.
+    pub ribbon: Vec3,
+    /// The user's grab and forces, the scene's force fields.
+    pub other: Vec3,
+    pub center_of_mass: Vec3,
+    pub center_of_buoyancy: Vec3,
+    pub knot: Option<Vec3>,
+}
+
+impl ForceBreakdown {
+    /// All the forces summed, N.
+    pub fn total(&self) -> Vec3 {
+        self.weight + self.buoyancy + self.drag + self.contact + self.ribbon + self.other
+    }
+}
+
+/// Which bodies the step records the forces of.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ForceProbe {
+    #[default]
+    Off,
+    One(BodyId),
+    All,
+}
+
+/// The probe's setting and buffers; never part of the state.
+#[derive(Clone, Debug, Default)]
+pub(super) struct ProbeStage {
+    probe: ForceProbe,
+    pub substeps: crate::solver::probe::SubstepProbe,
+    /// Per probed body: weight, buoyancy and the other forces, constant over the step.
+    constant: Vec<[Vec3; 3]>,
+    /// Per probed body: its velocity before the continuous sweep, m/s.
+    before_sweep: Vec<Vec3>,
+    /// The last step's, in the order of the dense indices it was taken at.
+    records: Vec<(BodyId, ForceBreakdown)>,
+}
+
+impl World {
+    /// What the next steps record (`probed_forces`); `Off` costs nothing.
+    /// Not kept by snapshots.
+    pub fn set_force_probe(&mut self, probe: ForceProbe) {
+        let stage = &mut self.stages.probe;
+        stage.probe = probe;
+        stage.records.clear();
+    }
+
+    pub fn force_probe(&self) -> ForceProbe {
+        self.stages.probe.probe
+    }
+
+    /// The last step's forces on `id`, if it is probed. A body asleep is at
+    /// rest: its contacts hold what its weight, buoyancy and ribbon do not.
+    pub fn probed_forces(&self, id: BodyId) -> Option<ForceBreakdown> {
+        let stage = &self.stages.probe;
+        match stage.probe {
+            ForceProbe::Off => return None,
+            ForceProbe::One(probed) if probed != id => return None,
+            _ => {}
+        }
+        let i = self.handles.dense(id)?;
+        if !self.bodies.awake[i] {
+            return Some(self.at_rest(i));
+        }
+        let records = &stage.records;
+        // Looked up by its dense index, unless a removal has moved it since.
+        let near = records.binary_search_by_key(&(i as u32), |(b, _)| {
+            self.handles.dense(*b).map_or(u32::MAX, |d| d as u32)
+        });
+        match near {
+            Ok(k) if records[k].0 == id => Some(records[k].1),
+            _ => records.iter().find(|(b, _)| *b == id).map(|(_, f)| *f),
+        }
+    }
+
+    /// √(2·|buoyancy − weight| / (ρ·C_D·A)) for body `id` now, m/s: the
+    /// speed at which drag balances its net lift (or net weight).
+    pub fn terminal_speed(&self, id: BodyId) -> Option<f32> {
+        let i = self.handles.dense(id)?;
+        let shape = &self.shapes[self.bodies.shape[i] as usize];
+        let size = self.bodies.size[i];
+        let v = terminal_velocity(
+            self.def.gravity.length(),
+            self.air.air_density(),
+            shape.volume(size.scale),
+            size.mass,
+            self.def.drag_coefficient,
+            shape.def.reference_area * size.scale * size.scale,
+        );
+        Some(v.abs())
+    }
+
+    /// Body `id`'s mass now (gas, envelope and knot), kg.
+    pub fn body_mass(&self, id: BodyId) -> Option<f32> {
+        self.handles.dense(id).map(|i| self.bodies.size[i].mass)
+    }
+
+    /// Body `id`'s volume now, m³.
+    pub fn body_volume(&self, id: BodyId) -> Option<f32> {
+        let i = self.handles.dense(id)?;
+        let shape = &self.shapes[self.bodies.shape[i] as usize];
+        Some(shape.volume(self.bodies.size[i].scale))
+    }
+
+    /// The centre of buoyancy of the body at dense index `i`, world frame.
+    fn center_of_buoyancy(&self, i: usize) -> Vec3 {
+        let shape = &self.shapes[self.bodies.shape[i] as usize];
+        let arm = shape.buoyancy_arm * self.bodies.size[i].scale;
+        self.bodies.center[i] + self.bodies.rotation[i] * arm
+    }
+
+    /// The ribbon's pull on the body at dense index `i`, and its knot.
+    fn ribbon_on(&self, i: usize) -> (Vec3, Option<Vec3>) {
+        let ribbon = self.ribbons.on(self.bodies.id[i]);
+        match ribbon.and_then(|r| self.ribbons.get(r)) {
+            Some(r) => (r.pull, r.points.first().copied()),
+            None => (Vec3::ZERO, None),
+        }
+    }
+
+    /// A sleeper's forces: at rest, the contacts balance the rest.
+    fn at_rest(&self, i: usize) -> ForceBreakdown {
+        let g = self.def.gravity;
+        let weight = gravity_force(self.bodies.size[i].mass, g);
+        let shape = &self.shapes[self.bodies.shape[i] as usize];
+        let volume = shape.volume(self.bodies.size[i].scale);
+        let buoyancy = buoyancy_force(self.air.air_density(), volume, g);
+        let (ribbon, knot) = self.ribbon_on(i);
+        ForceBreakdown {
+            weight,
+            buoyancy,
+            contact: -(weight + buoyancy + ribbon),
+            ribbon,
+            center_of_mass: self.bodies.center[i],
+            center_of_buoyancy: self.center_of_buoyancy(i),
+            knot,
+            ..ForceBreakdown::default()
+        }
+    }
+
+    /// Before the substeps: the bodies probed this step and their constant forces.
+    pub(super) fn begin_probe(&mut self) {
+        let stage = &mut self.stages.probe;
+        let solver = &self.stages.solve.solver;
+        let awake = &solver.awake;
+        match stage.probe {
+            ForceProbe::Off => {
+                if !stage.substeps.is_empty() {
+                    stage.substeps.begin(std::iter::empty());
+                }
+                return;
+            }
+            ForceProbe::One(id) => {
+                let i = self.handles.dense(id).filter(|&i| self.bodies.awake[i]);
+                stage.substeps.begin(i.map(|i| i as u32).into_iter());
+            }
+            ForceProbe::All => stage.substeps.begin(awake.iter().copied()),
+        }
+        let g = self.def.gravity;
+        let no_fields = self.fields.is_empty();
+        stage.constant.clear();
+        stage
+            .constant
+            .extend(stage.substeps.bodies.iter().map(|&i| {
+                let i = i as usize;
+                let f = &solver.forces[i];
+                let weight = gravity_force(self.bodies.size[i].mass, g);
+                // Without fields the rest is the user's force alone, exactly.
+                let other = if no_fields {
+                    self.bodies.force[i]
+                } else {
+                    f.force - weight - f.buoyancy
+                };
+                [weight, f.buoyancy, other]
+            }));
+    }
+
+    /// Before the continuous sweep: the velocities it may change.
+    pub(super) fn probe_before_sweep(&mut self) {
+        let stage = &mut self.stages.probe;
+        stage.before_sweep.clear();
+        let v = &self.bodies.linear_velocity;
+        let bodies = &stage.substeps.bodies;
+        stage
+            .before_sweep
+            .extend(bodies.iter().map(|&i| v[i as usize]));
+    }
+
+    /// After the step's motion: each probed body's breakdown.
+    pub(super) fn finish_probe(&mut self) {
+        if self.stages.probe.substeps.is_empty() {
+            self.stages.probe.records.clear();
+            return;
+        }
+        let dt = self.def.dt;
+        let mut contact = vec![Vec3::ZERO; self.stages.probe.substeps.bodies.len()];
+        {
+            let bodies = &self.stages.probe.substeps.bodies;
+            let slot = |body: u32| bodies.binary_search(&body).ok();
+            let contacts = &self.stages.narrow.found.contacts;
+            let solver = &self.stages.solve.solver;
+            for (i, c) in contacts.iter().enumerate() {
+                let (ka, kb) = (
+                    slot(c.body_a),
+                    (c.body_b != STATIC_BODY).then(|| slot(c.body_b)).flatten(),
+                );
+                if ka.is_none() && kb.is_none() {
+                    continue;
+                }
+                let Some(t) = solver.totals(i, contacts.len()) else {
+                    continue;
+                };
+                // A takes −λ·n and its friction; B the opposite.
+                let on_a = -t.normal_impulse * c.normal + t.tangent_impulse;
+                if let Some(k) = ka {
+                    contact[k] += on_a;
+                }
+                if let Some(k) = kb {
+                    contact[k] -= on_a;
+                }
+            }
+        }
+        let mut records = std::mem::take(&mut self.stages.probe.records);
+        records.clear();
+        let stage = &self.stages.probe;
+        for (k, &i) in stage.substeps.bodies.iter().enumerate() {
+            let i = i as usize;
+            let mass = 1.0 / self.bodies.inv_mass[i];
+            // The continuous sweep's bounce off the room is a contact too.
+            let swept = mass * (self.bodies.linear_velocity[i] - stage.before_sweep[k]);
+            let [weight, buoyancy, other] = stage.constant[k];
+            let (ribbon, knot) = self.ribbon_on(i);
+            let breakdown = ForceBreakdown {
+                weight,
+                buoyancy,
+                drag: stage.substeps.drag[k] / dt,
+                contact: (contact[k] + swept) / dt,
+                ribbon,
+                other: other + stage.substeps.grab[k] / dt,
+                center_of_mass: self.bodies.center[i],
+                center_of_buoyancy: self.center_of_buoyancy(i),
+                knot,
+            };
+            records.push((self.bodies.id[i], breakdown));
+        }
+        self.stages.probe.records = records;
+    }
+}
