@@ -4,13 +4,15 @@
 // The numbers are the engine's (`Engine::write_forces`), never recomputed here.
 
 import type { BodyCard } from "./engine";
+import type { ForceStride } from "../../public/wasm/up_wasm";
 
 /**
  * Floats per body in the engine's force rows (`constants().force_floats`):
  * index, then weight, buoyancy, drag, contact, ribbon, other (N, x y z each),
  * centre of mass, centre of buoyancy, knot (m, x y z each; NaN without a ribbon).
+ * Typed by the module's .d.ts (`ForceStride`): a page built against another layout does not compile.
  */
-export const FORCE_FLOATS = 28;
+export const FORCE_FLOATS: ForceStride = 28;
 
 /** Throws unless the engine writes force rows of `FORCE_FLOATS` floats: a page built against another engine says so at start. */
 export function checkForceLayout(constants: { force_floats: number }): void {
