@@ -47,7 +47,7 @@ export class PhysicsView {
     private readonly camera: THREE.Camera,
   ) {
     scene.add(this.arrows.group, this.outline.mesh);
-    this.card = new BalloonCard(parent, () => this.select(-1));
+    this.card = new BalloonCard(parent, () => this.select(-1), document.getElementById("hud"));
     this.legend = new ForceLegend(parent);
     this.plot = new MotionPlot(parent);
     this.caption = new SceneCaption(parent);

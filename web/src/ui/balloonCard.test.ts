@@ -28,8 +28,7 @@ describe("the balloon card", () => {
     expect(rows["net lift"]).toBe("+0.081 N (+8.2 g): rises");
     expect(rows.speed).toBe("0.61 m/s (vertical +0.60)");
     expect(rows["terminal speed"]).toBe("0.74 m/s");
-    expect(rows.height).toBe("1.23 m");
-    expect(rows.tilt).toBe("12°");
+    expect(rows["height, tilt"]).toBe("1.23 m, 12°");
   });
 
   it("says a heavier-than-air balloon sinks, and names both gases when mixed", () => {
@@ -45,7 +44,9 @@ describe("the balloon card", () => {
     expect(signed(0.5, 1)).toBe("+0.5");
     expect(newtons([0, -0.05321, 0])).toBe("0.0532 N");
     expect(newtons([3, 4, 0])).toBe("5.00 N");
-    expect(newtons([0, 0, 0])).toBe("0 N");
+    expect(newtons([0, 0, 0])).toBe("0.0000 N");
+    expect(newtons([3.9e-15, 0, 0])).toBe("0.0000 N");
+    expect(newtons([0, 0.00042, 0])).toBe("0.0004 N");
   });
 
   it("states the arrows' scale in newtons per metre", () => {

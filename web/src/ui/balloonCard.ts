@@ -35,15 +35,14 @@ export function cardRows(card: BodyCard): [string, string][] {
     ["net lift", `${signed(lift, 3)} N (${signed(card.net_lift_g, 1)} g): ${liftWord}`],
     ["speed", `${card.speed_m_s.toFixed(2)} m/s (vertical ${signed(card.vertical_speed_m_s, 2)})`],
     ["terminal speed", `${card.terminal_speed_m_s.toFixed(2)} m/s`],
-    ["height", `${card.height_m.toFixed(2)} m`],
-    ["tilt", `${card.tilt_deg.toFixed(0)}°`],
+    ["height, tilt", `${card.height_m.toFixed(2)} m, ${card.tilt_deg.toFixed(0)}°`],
   ];
 }
 
-/** A force's size in newtons, written to three significant places ("0.0532 N"). */
+/** A force's size in newtons: three significant places ("0.0532 N"), to a ten-thousandth below a thousandth. */
 export function newtons(force: readonly number[]): string {
   const m = Math.hypot(force[0], force[1], force[2]);
-  return `${m === 0 ? "0" : m.toPrecision(3)} N`;
+  return `${m >= 0.001 ? m.toPrecision(3) : m.toFixed(4)} N`;
 }
 
 /** The legend's scale line: newtons per metre of arrow, and what a 10 cm arrow is. */
@@ -51,7 +50,7 @@ export function scaleText(newtonsPerMetre = NEWTONS_PER_METRE): string {
   return `arrow length: 1 m = ${newtonsPerMetre} N (10 cm = ${(newtonsPerMetre / 10).toPrecision(2)} N); longer than ${MAX_ARROW_M} m: cut`;
 }
 
-/** The selected balloon's card, top left under the HUD; its × deselects. */
+/** The selected balloon's card, top left under the HUD (`above`); its × deselects. */
 export class BalloonCard {
   readonly element: HTMLElement;
   private readonly title: HTMLElement;
@@ -59,7 +58,11 @@ export class BalloonCard {
   private lastWrite = -Infinity;
   private shownIndex = -2;
 
-  constructor(parent: HTMLElement, close: () => void) {
+  constructor(
+    parent: HTMLElement,
+    close: () => void,
+    private readonly above: HTMLElement | null = null,
+  ) {
     this.element = document.createElement("section");
     this.element.id = "balloon-card";
     this.element.hidden = true;
@@ -88,6 +91,8 @@ export class BalloonCard {
     if (card.index === this.shownIndex && now - this.lastWrite < REFRESH_MS) return;
     this.lastWrite = now;
     this.shownIndex = card.index;
+    // The HUD grows a line when paused or in a mode: the card stays clear of it.
+    if (this.above) this.element.style.top = `${Math.round(this.above.getBoundingClientRect().bottom) + 6}px`;
     this.title.textContent = `Balloon ${card.index + 1}`;
     this.body.replaceChildren(
       ...cardRows(card).map(([label, value]) => {

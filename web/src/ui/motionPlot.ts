@@ -114,7 +114,7 @@ export class MotionPlot {
   constructor(
     parent: HTMLElement,
     private readonly width = 270,
-    private readonly height = 160,
+    private readonly height = 150,
   ) {
     this.canvas = document.createElement("canvas");
     this.canvas.id = "motion-plot";
