@@ -137,3 +137,38 @@ test("helium and air: a helium balloon's buoyancy points up, an air balloon's we
   expect([...seen].sort()).toEqual(["air", "helium"]);
   await page.screenshot({ path: "/tmp/physics-forces-on-all.png" });
 });
+
+test("terminal speed: the selected balloon climbs at the engine's terminal speed, where its forces balance", async ({ page, consoleErrors }) => {
+  await open(page, sceneHash(SMALL));
+  await page.waitForFunction(() => window.__up!.physics().lessons.length > 0);
+  const lesson = (await physics(page)).lessons.find((l) => l.file === "scenes/learn-terminal-speed.toml")!;
+  expect(lesson).toBeTruthy();
+  // Chosen while paused, the scene waits at its start: the balloon stays where the click aims,
+  // and the plot follows it from rest once the clock runs again.
+  await pause(page);
+  await chooseLesson(page, lesson.title);
+  await page.locator("#scene-caption .close").click();
+  await clickBalloon(page, 0);
+  await page.waitForFunction(() => window.__up!.physics().cardShown);
+  await page.keyboard.press(" ");
+  await page.waitForFunction(
+    () => {
+      const c = window.__up!.physics().card;
+      return !!c && c.vertical_speed_m_s >= 0.995 * c.terminal_speed_m_s;
+    },
+    null,
+    { timeout: 60_000, polling: 100 },
+  );
+  await page.keyboard.press(" ");
+  const s = await physics(page);
+  const weight = s.arrows.find((a) => a.kind === "weight")!;
+  const drag = s.arrows.find((a) => a.kind === "drag")!;
+  expect(drag.force[1], "drag holds the rising balloon back").toBeLessThan(0);
+  // At 99.5 % of the terminal speed the net force is 1 % of the net lift: under 5 % of the weight.
+  const net = s.arrows.filter((a) => a.body === 0).reduce((sum, a) => sum + a.force[1], 0);
+  expect(Math.abs(net), `net vertical force ${net} N against a weight of ${weight.force[1]} N`).toBeLessThan(0.05 * Math.abs(weight.force[1]));
+  expect(s.plot.terminal).toBeCloseTo(s.card!.terminal_speed_m_s, 6);
+  await page.waitForTimeout(1500);
+  await page.screenshot({ path: "/tmp/physics-terminal.png" });
+  expect(consoleErrors).toEqual([]);
+});
