@@ -11,6 +11,7 @@ mod export_obj;
 mod fit_spheres;
 mod forecast;
 mod heap_meter;
+mod probe;
 mod run;
 mod scene_arg;
 mod soak;

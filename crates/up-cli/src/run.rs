@@ -63,6 +63,8 @@ pub struct RunArgs {
     /// spawn (the scene still gives the room for the summary).
     #[arg(long, value_name = "FILE")]
     pub load_state: Option<PathBuf>,
+    #[command(flatten)]
+    pub probe: crate::probe::ProbeArgs,
 }
 
 /// Builds the scene's world, or restores it from the snapshot `load_state`
@@ -121,6 +123,7 @@ pub fn run(args: &RunArgs) -> Result<()> {
     };
 
     // Create output files first: a bad path fails before the simulation runs.
+    let mut probe = crate::probe::ProbeCsv::create(&args.probe, world)?;
     let mut csv = CsvOut::create(
         args.out.as_deref(),
         "t,id,x,y,z,qx,qy,qz,qw",
@@ -146,12 +149,18 @@ pub fn run(args: &RunArgs) -> Result<()> {
     let start_time = world.time();
     let started = Instant::now();
     let ran = match length {
-        Length::Steps(steps) => step_every_frame(world, steps, args.every, &mut write_rows)?,
+        Length::Steps(steps) => {
+            let mut each_step = |world: &World| probe.as_mut().map_or(Ok(()), |p| p.write(world));
+            step_every_frame(world, steps, args.every, &mut write_rows, &mut each_step)?
+        }
         Length::Lapse { seconds } => time_lapse(world, seconds, args.every, &mut write_rows)?,
     };
     let wall = started.elapsed().as_secs_f64();
     for out in [csv, ribbons_csv].into_iter().flatten() {
         out.commit()?;
+    }
+    if let Some(probe) = probe {
+        probe.commit()?;
     }
     if let Some(path) = &args.save_state {
         write_atomically(path, &world.snapshot())?;
@@ -196,17 +205,20 @@ struct Ran {
     max_penetration: f32,
 }
 
-/// Steps `steps` frames, writing rows every `every` and after the last.
+/// Steps `steps` frames, writing rows every `every` and after the last,
+/// and `each_step`'s after every step.
 fn step_every_frame(
     world: &mut World,
     steps: u64,
     every: u64,
     write_rows: &mut dyn FnMut(&World) -> Result<()>,
+    each_step: &mut dyn FnMut(&World) -> Result<()>,
 ) -> Result<Ran> {
     let progress = progress_bar(steps, "steps");
     let mut max_penetration = 0.0f32;
     for step in 1..=steps {
         world.step();
+        each_step(world)?;
         max_penetration = max_penetration.max(world.stats().max_penetration);
         if step % every == 0 || step == steps {
             write_rows(world)?;

@@ -88,7 +88,7 @@ fn the_floor_carries_a_resting_balloons_net_weight_awake_or_asleep() {
         mass: 0.02,
         ..reference_balloon()
     };
-    let (mut world, id) = one_balloon(heavy, 2.5, Vec3::new(0.0, 0.5, 0.0));
+    let (mut world, id) = one_balloon(heavy.clone(), 2.5, Vec3::new(0.0, 0.5, 0.0));
     world.set_force_probe(ForceProbe::All);
     steps(&mut world, 10 * 60);
     let f = world.probed_forces(id).unwrap();
@@ -102,6 +102,21 @@ fn the_floor_carries_a_resting_balloons_net_weight_awake_or_asleep() {
         f.buoyancy
     );
     assert!(f.drag.length() <= 1e-3 * net_weight);
+
+    // Asleep it is at rest: the floor carries the same.
+    let def = WorldDef {
+        room: Some(room(2.0, 2.0, 2.5, None)),
+        ..WorldDef::default()
+    };
+    let mut world = World::new(def).unwrap();
+    let shape = world.add_shape(heavy).unwrap();
+    let id = add(&mut world, shape, Vec3::new(0.0, 0.5, 0.0), Quat::IDENTITY);
+    world.set_force_probe(ForceProbe::One(id));
+    steps(&mut world, 10 * 60);
+    assert_eq!(world.is_awake(id), Some(false), "it fell asleep");
+    let asleep = world.probed_forces(id).unwrap();
+    assert!((asleep.contact - f.contact).length() <= 0.01 * net_weight);
+    assert_eq!(asleep.total(), Vec3::ZERO);
 }
 
 #[test]
@@ -178,4 +193,27 @@ fn probing_changes_nothing_in_the_step() {
         })),
         off
     );
+}
+
+#[test]
+fn a_hand_holding_a_balloon_still_carries_its_net_lift_as_other() {
+    let (mut world, id) = one_balloon(reference_balloon(), 3.0, Vec3::new(0.0, 1.5, 0.0));
+    let at = world.center_of_mass(id).unwrap();
+    world.grab(id, at).unwrap();
+    world.set_grab_target(at).unwrap();
+    world.set_force_probe(ForceProbe::One(id));
+    steps(&mut world, 5 * 60);
+    let f = world.probed_forces(id).unwrap();
+    let lift = f.weight + f.buoyancy;
+    assert!(lift.y > 0.0);
+    assert!(
+        (f.other + lift).length() <= 0.01 * lift.length(),
+        "the hand pulls {} N against a net lift of {lift} N",
+        f.other
+    );
+    assert_eq!(f.contact, Vec3::ZERO);
+    // Let go, the hand's share is gone.
+    world.release_grab();
+    world.step();
+    assert_eq!(world.probed_forces(id).unwrap().other, Vec3::ZERO);
 }

@@ -92,6 +92,8 @@ fn all_probed_a_helium_balloon_is_lifted_and_an_air_balloon_pulled_down() {
 fn bad_probes_and_cards_are_refused() {
     let mut s = State::default();
     assert_eq!(s.set_force_probe(PROBE_ALL), Err(WasmError::NoWorld));
+    assert_eq!(s.write_forces(), Err(WasmError::NoWorld));
+    assert_eq!(s.body_card(0), Err(WasmError::NoWorld));
     let mut s = loaded();
     let n = s.body_count() as i32;
     for which in [n, -3, i32::MIN] {

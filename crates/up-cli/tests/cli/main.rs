@@ -4,6 +4,7 @@
 //! a few simulated hours as a time-lapse in a small room).
 
 mod forecast;
+mod probe;
 mod ribbons;
 mod run;
 mod saved_state;
