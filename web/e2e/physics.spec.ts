@@ -167,7 +167,8 @@ test("terminal speed: the selected balloon climbs at the engine's terminal speed
   // At 99.5 % of the terminal speed the net force is 1 % of the net lift: under 5 % of the weight.
   const net = s.arrows.filter((a) => a.body === 0).reduce((sum, a) => sum + a.force[1], 0);
   expect(Math.abs(net), `net vertical force ${net} N against a weight of ${weight.force[1]} N`).toBeLessThan(0.05 * Math.abs(weight.force[1]));
-  expect(s.plot.terminal).toBeCloseTo(s.card!.terminal_speed_m_s, 6);
+  // The plot's line is the card's terminal speed of a frame at most before (it moves a little with the air's density).
+  expect(s.plot.terminal).toBeCloseTo(s.card!.terminal_speed_m_s, 3);
   await page.waitForTimeout(1500);
   await page.screenshot({ path: "/tmp/physics-terminal.png" });
   expect(consoleErrors).toEqual([]);
