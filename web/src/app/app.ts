@@ -17,6 +17,7 @@ import { Panel, type PanelActions } from "../ui/panel";
 import type { KeyAction } from "../ui/input";
 import { applyParams, paramsFromScene, withRibbonLength, type PanelParams } from "../scene/sceneParams";
 import { ShareLink } from "./shareLink";
+import { PhysicsView } from "./physicsView";
 import type { PageElements } from "./page";
 
 /** Most balloons the panel's slider offers (the engine's capacity may be higher). */
@@ -37,6 +38,8 @@ export class App {
   readonly controls: Controls;
   /** Where the balloons float against simulated time. */
   readonly plot: FloatPlot;
+  /** The selected balloon, force arrows, motion plots, teaching scenes. */
+  readonly physics: PhysicsView;
   panel: Panel | null = null;
   /** The engine's description of the world shown (null until the first is ready). */
   info: WorldInfo | null = null;
@@ -66,7 +69,9 @@ export class App {
       census: (sample) => this.plot.push(sample),
       error: (message, fatal) => this.engineError(message, fatal),
     });
+    this.physics = new PhysicsView(this.stage.scene, document.body, this.bridge, this.stage.camera);
     this.controls = new Controls(this.stage.camera, this.stage.renderer.domElement, this.bridge, {
+      select: (index) => this.physics.select(index),
       action: (a) => this.keyAction(a),
       placement: (on) => this.hud.setMode(on ? "Placement mode: click the floor to add a balloon · CTRL to go back" : ""),
     });
@@ -99,8 +104,13 @@ export class App {
     if (roomChanged) this.stage.fitToRoom(box.halfWidth, box.halfDepth, box.top);
     this.controls.setWorld(box, info.trees, this.firstWorld || roomChanged);
     this.firstWorld = false;
-    if (!this.panel) this.panel = new Panel(params, this.panelActions, Math.min(PANEL_MAX_BALLOONS, info.capacity));
-    else this.panel.set(params);
+    if (!this.panel) {
+      this.panel = new Panel(params, this.panelActions, Math.min(PANEL_MAX_BALLOONS, info.capacity));
+      const assets = new URL("assets/", document.baseURI).href;
+      this.physics.addMenu(this.panel.gui, assets, () => this.messages.clear()).catch((e: Error) => this.messages.error(`The teaching scenes failed to load: ${e.message}`));
+    } else this.panel.set(params);
+    // A teaching scene's address is the scene the engine read from its file.
+    if (this.physics.worldReady(info, this.scene)) this.link.set(info.sceneJson);
     this.page.loading.hidden = true;
   }
 
@@ -140,6 +150,7 @@ export class App {
       this.setDebug(!this.world.debug.visible);
       this.panel?.setDebugTrees(this.world.debug.visible);
     } else if (a.kind === "screenshot") this.screenshot();
+    else if (a.kind === "deselect") this.physics.select(-1);
   }
 
   private readonly panelActions: PanelActions = {
@@ -187,6 +198,7 @@ export class App {
     if (current) this.hud.setClock(current);
     this.hud.frame(now);
     this.plot.draw();
+    this.physics.update(this.world.assets, this.bridge.alpha(performance.timeOrigin + now));
     const { renderer, scene, camera } = this.stage;
     const renderStart = performance.now();
     renderer.render(scene, camera);

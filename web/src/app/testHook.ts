@@ -110,6 +110,8 @@ export function createTestHook(app: App) {
       return { samples: app.plot.series.samples.slice(), drawnPixels: drawn, ceilingPixels: ceiling, pixels: w * h };
     },
     version: () => bridge.current?.version ?? -1,
+    /** The selected balloon, its card, the force arrows drawn, the motion plot, the caption, the teaching scenes. */
+    physics: () => app.physics.snapshot(),
     sceneJson: () => JSON.stringify(app.scene),
     messages: () => messages.shown.slice(),
     camera: () => ({ position: camera.position.toArray(), target: controls.center().toArray() }),

@@ -5,6 +5,7 @@
 import type { EngineStats, RibbonTables } from "./engine";
 import type { CensusSample, Frame, FromWorker, ToWorker, Vec3Tuple, WorldInfo } from "./protocol";
 import { frameViews } from "./frameLayout";
+import type { ForcesPayload } from "./forcesFrame";
 import { setEngineConstants } from "../scene/sceneSchema";
 
 export interface BridgeEvents {
@@ -34,6 +35,8 @@ export class SimBridge {
   /** Each ribbon's first point, balloon and colour,. */
   ribbons: RibbonTables = { offsets: new Uint32Array(1), bodies: new Uint32Array(0), colors: new Uint32Array(0), weights: new Float32Array(0) };
   info: WorldInfo | null = null;
+  /** The newest frame's forces and selected body's card (null while nothing is probed). */
+  forces: ForcesPayload | null = null;
   paused = false;
   /** Validation requests waiting for the worker's answer, by id. */
   private readonly validations = new Map<number, (error: string | null) => void>();
@@ -70,6 +73,7 @@ export class SimBridge {
         if (msg.models) this.models = msg.models;
         if (msg.ribbons) this.ribbons = msg.ribbons;
         this.paused = msg.paused;
+        this.forces = msg.forces ?? null;
         this.events.frame(msg);
         // The previous frame's buffer goes back to the worker for refilling.
         if (old) this.send({ type: "return", buffer: old.buffer }, [old.buffer]);
@@ -117,6 +121,21 @@ export class SimBridge {
 
   load(sceneJson: string | null): void {
     this.send({ type: "load", sceneJson });
+  }
+
+  /** Builds the world from a scene file in TOML. */
+  loadToml(sceneToml: string): void {
+    this.send({ type: "loadToml", sceneToml });
+  }
+
+  /** Selects body `index` of the current frame (-1: none); the worker keeps following it. */
+  select(index: number): void {
+    this.send({ type: "select", index, version: this.current?.version ?? -1 });
+  }
+
+  /** Every balloon's forces in the frames, or only the selected one's. */
+  setForcesOnAll(on: boolean): void {
+    this.send({ type: "forcesOnAll", on });
   }
 
   setPaused(paused: boolean): void {

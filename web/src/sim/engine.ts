@@ -8,7 +8,7 @@
 
 import type * as Glue from "../../public/wasm/up_wasm";
 
-export type { AdvanceReport, Constants, EngineStats, FloatCounts, NamedColor, Scene, SceneLimits, WorldSummary } from "../../public/wasm/up_wasm";
+export type { AdvanceReport, BodyCard, Constants, EngineStats, FloatCounts, NamedColor, Scene, SceneLimits, WorldSummary } from "../../public/wasm/up_wasm";
 
 /** The glue module as `import()` returns it. */
 export type GlueModule = typeof Glue;
@@ -379,6 +379,25 @@ export class Engine {
   /** The most contacts `contacts()` returns. */
   maxContacts(): number {
     return this.constants.max_contacts;
+  }
+
+  /** What the next steps record forces of: -1 nothing, -2 every body, else the body at that dense index. */
+  setForceProbe(which: number): void {
+    this.call(() => this.e.set_force_probe(which));
+  }
+
+  /**
+   * The last step's recorded forces (`constants.force_floats` floats per
+   * body, see forcesFrame.ts): a view, valid until the next call.
+   */
+  forces(): Float32Array {
+    const n = this.call(() => this.e.write_forces());
+    return new Float32Array(this.memory.buffer, this.e.forces_ptr(), n * this.constants.force_floats);
+  }
+
+  /** What the engine says of the body at dense `index` now: mass, gas, lift, motion. */
+  bodyCard(index: number): Glue.BodyCard {
+    return this.call(() => this.e.body_card(index));
   }
 
   stateHash(): bigint {

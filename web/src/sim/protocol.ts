@@ -6,12 +6,19 @@
 
 import type { Constants, EngineStats, ModelMesh, RibbonTables, RoomMesh, TreeNode } from "./engine";
 import type { FloatSample } from "../ui/floatPlot";
+import type { ForcesPayload } from "./forcesFrame";
 
 export type Vec3Tuple = [number, number, number];
 
 export type ToWorker =
   | { type: "init"; wasmUrl: string; sceneJson: string | null }
   | { type: "load"; sceneJson: string | null }
+  /** Builds the world from a scene file in TOML (the teaching scenes). */
+  | { type: "loadToml"; sceneToml: string }
+  /** Selects body `index` of frame `version` (its forces and card travel in the frames); -1: none. */
+  | { type: "select"; index: number; version: number }
+  /** Every balloon's forces in the frames, or only the selected one's. */
+  | { type: "forcesOnAll"; on: boolean }
   | { type: "pause"; paused: boolean }
   | { type: "step" }
   /** Time-lapse: simulated seconds per real second (1: real time, fixed steps; more: `Engine.advance`). */
@@ -83,6 +90,8 @@ export interface Frame {
   /** The time-lapse rate asked for, and the one the clock achieved over the last second or so. */
   rate: number;
   achievedRate: number;
+  /** The probed forces and the selected body's card; only while a body is selected or all are shown. */
+  forces?: ForcesPayload;
 }
 
 /** Where the balloons floated at simulated time `t` (shares of all balloons), and their mean lift left (0–1). */

@@ -10,6 +10,7 @@ import { Engine, glueUrl, type GlueModule } from "./engine";
 import { RIBBON_POINT_STRIDE, checkLayout, frameFloats, frameViews } from "./frameLayout";
 import type { FromWorker, ToWorker, WorldInfo } from "./protocol";
 import { TimeLapse, censusInterval } from "./timeLapse";
+import { ForceProbe, checkForceLayout } from "./forcesFrame";
 
 /** Most steps taken in one tick; beyond that the simulation runs slow rather than spiral. */
 const MAX_STEPS_PER_TICK = 4;
@@ -68,6 +69,8 @@ class WorkerState {
 }
 
 const state = new WorkerState();
+/** Whose forces the engine records, and the selected body. */
+const probe = new ForceProbe();
 
 function post(message: FromWorker, transfer: Transferable[] = []): void {
   scope.postMessage(message, transfer);
@@ -99,10 +102,12 @@ function worldInfo(e: Engine): WorldInfo {
 }
 
 /** Builds the world from `sceneJson` (default scene when null) and announces it. */
-function load(sceneJson: string | null): void {
+function load(sceneJson: string | null, sceneToml?: string): void {
   if (!state.engine) return;
-  if (sceneJson === null) state.engine.loadDefaultScene();
+  if (sceneToml !== undefined) state.engine.loadSceneToml(sceneToml);
+  else if (sceneJson === null) state.engine.loadDefaultScene();
   else state.engine.loadSceneJson(sceneJson);
+  probe.worldRebuilt();
   const info = worldInfo(state.engine);
   state.currentSceneJson = info.sceneJson;
   state.dtMs = info.dt * 1000;
@@ -165,6 +170,8 @@ function sendFrame(previous: Previous | null): void {
     rate: state.lapse.rate,
     achievedRate: state.lapse.lapsing ? state.lapse.achieved : 1,
   };
+  const forces = probe.collect(state.engine);
+  if (forces) frame.forces = forces;
   if (state.versionSent !== state.version) {
     frame.colors = state.engine.colors().slice();
     frame.models = state.engine.models().slice();
@@ -172,7 +179,7 @@ function sendFrame(previous: Previous | null): void {
     state.versionSent = state.version;
   }
   state.dirty = false;
-  post(frame, [buffer]);
+  post(frame, forces ? [buffer, forces.rows.buffer] : [buffer]);
 }
 
 /**
@@ -294,7 +301,9 @@ function tick(): void {
   const realSeconds = (t - state.lastTick) / 1000;
   state.lastTick = t;
   try {
+    if (state.engine) probe.apply(state.engine);
     const previous = lapsing ? lapseTick(realSeconds) : stepN(due);
+    if (previous) probe.stepped();
     census();
     if (previous || state.dirty) sendFrame(previous);
     if (state.engine && t - state.lastStats > STATS_INTERVAL_MS) {
@@ -328,6 +337,7 @@ function handle(msg: ToWorker): void {
         state.wasmBytes = bytes;
         const e = Engine.load(glue, bytes);
         checkLayout(e.constants);
+        checkForceLayout(e.constants);
         return e;
       });
       state.started
@@ -375,6 +385,23 @@ function handle(msg: ToWorker): void {
           fail(err, false);
         }
         break;
+      case "loadToml":
+        try {
+          load(null, msg.sceneToml);
+        } catch (err) {
+          fail(err, false);
+        }
+        break;
+      case "select":
+        if (msg.index < 0 || msg.version === state.version) probe.select(msg.index);
+        probe.apply(state.engine);
+        state.dirty = true;
+        break;
+      case "forcesOnAll":
+        probe.setAll(msg.on);
+        probe.apply(state.engine);
+        state.dirty = true;
+        break;
       case "pause":
         state.paused = msg.paused;
         state.dirty = true;
@@ -401,6 +428,7 @@ function handle(msg: ToWorker): void {
       }
       case "pop":
         if (msg.version === state.version) {
+          probe.removed(msg.index, state.engine.bodyCount());
           state.engine.remove(msg.index);
           state.version++;
           state.dirty = true;

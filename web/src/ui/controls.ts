@@ -7,7 +7,7 @@
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
 import { anyArrowHeld, orbitAngles, orbitPosition, stepOrbit, type ArrowState } from "./orbit";
-import { arrowDirection, isClick, mapKeyDown, mapPointerDown, type KeyAction } from "./input";
+import { arrowDirection, clickSelection, isClick, mapKeyDown, mapPointerDown, type KeyAction } from "./input";
 import { pickBalloon, pickRibbonEnd, rayHorizontalPlane, type BodySphere, type Ray } from "../sim/pick";
 import type { SimBridge } from "../sim/bridge";
 import type { TreeNode } from "../sim/engine";
@@ -17,6 +17,8 @@ export interface ControlEvents {
   action(action: KeyAction): void;
   /** Placement mode was entered or left. */
   placement(on: boolean): void;
+  /** A click selected body `index` of the current frame, or empty space (-1). */
+  select(index: number): void;
 }
 
 /** How near the pointer, in CSS pixels, a ribbon's free end is grabbed. */
@@ -41,7 +43,7 @@ export class Controls {
   private readonly raycaster = new THREE.Raycaster();
   private readonly ndc = new THREE.Vector2();
   private readonly hitPoint = new THREE.Vector3();
-  private down: { x: number; y: number } | null = null;
+  private down: { x: number; y: number; select: number | null } | null = null;
 
   constructor(
     private readonly camera: THREE.PerspectiveCamera,
@@ -206,13 +208,14 @@ export class Controls {
   }
 
   private pointerDown(e: PointerEvent): void {
-    this.down = { x: e.clientX, y: e.clientY };
     const picking = !this.placement && e.button === 0;
     const hit = picking ? this.pick(e.clientX, e.clientY) : null;
     const end = picking ? this.pickRibbonEnd(e.clientX, e.clientY) : null;
     // A free end hidden behind a balloon is not grabbed through it.
     const overRibbonEnd = !!end && (!hit || end.distance <= hit.distance);
     const action = mapPointerDown({ button: e.button, shiftKey: e.shiftKey, altKey: e.altKey, overBalloon: !!hit, overRibbonEnd, placementMode: this.placement });
+    const selection = clickSelection(action, e.button);
+    this.down = { x: e.clientX, y: e.clientY, select: selection === "select" && hit ? hit.index : selection === "deselect" ? -1 : null };
     if (action === "grabRibbon" && end) {
       this.startDrag(e, end.position);
       this.bridge.grabRibbon(end.ribbon, end.point, end.position);
@@ -244,6 +247,7 @@ export class Controls {
       const p = this.floorPoint(e.clientX, e.clientY);
       if (p) this.bridge.addOnFloor(p[0], p[2]);
     }
+    if (down && down.select !== null && e.type === "pointerup" && isClick(e.clientX - down.x, e.clientY - down.y)) this.events.select(down.select);
     this.release();
     if (!this.placement) this.orbit.enabled = true;
   }

@@ -1,5 +1,5 @@
 import { describe, expect, it } from "vitest";
-import { arrowDirection, isClick, mapKeyDown, mapPointerDown } from "./input";
+import { arrowDirection, clickSelection, isClick, mapKeyDown, mapPointerDown } from "./input";
 
 const pointer = { button: 0, shiftKey: false, altKey: false, overBalloon: false, placementMode: false };
 
@@ -71,5 +71,24 @@ describe("pointer mapping", () => {
     expect(isClick(0, 0)).toBe(true);
     expect(isClick(3, 4)).toBe(true);
     expect(isClick(6, 0)).toBe(false);
+  });
+});
+
+describe("selection by click", () => {
+  it("selects on a click on a balloon, deselects on a click on empty space, with the left button only", () => {
+    expect(clickSelection(mapPointerDown({ ...pointer, overBalloon: true }), 0)).toBe("select");
+    expect(clickSelection(mapPointerDown(pointer), 0)).toBe("deselect");
+    expect(clickSelection(mapPointerDown({ ...pointer, button: 2 }), 2)).toBe("none");
+  });
+
+  it("leaves the selection on popping, on a ribbon's end and in placement mode", () => {
+    expect(clickSelection(mapPointerDown({ ...pointer, overBalloon: true, shiftKey: true }), 0)).toBe("none");
+    expect(clickSelection(mapPointerDown({ ...pointer, overBalloon: true, overRibbonEnd: true }), 0)).toBe("none");
+    expect(clickSelection(mapPointerDown({ ...pointer, overBalloon: true, placementMode: true }), 0)).toBe("none");
+  });
+
+  it("deselects on Esc, but not from a text field", () => {
+    expect(mapKeyDown({ key: "Escape" })).toEqual({ kind: "deselect" });
+    expect(mapKeyDown({ key: "Escape", inTextField: true })).toEqual({ kind: "none" });
   });
 });

@@ -8,6 +8,7 @@ export type KeyAction =
   | { kind: "singleStep" }
   | { kind: "toggleDebug" }
   | { kind: "screenshot" }
+  | { kind: "deselect" }
   | { kind: "none" };
 
 /** The fields of a KeyboardEvent the mapping reads. */
@@ -33,6 +34,8 @@ export function mapKeyDown(e: KeyFields): KeyAction {
   if (e.key === "Control") return e.repeat ? { kind: "none" } : { kind: "togglePlacement" };
   if (e.inTextField || e.repeat) return { kind: "none" };
   switch (e.key) {
+    case "Escape":
+      return { kind: "deselect" };
     case " ":
     case "p":
     case "P":
@@ -93,4 +96,17 @@ export const CLICK_SLOP_PX = 5;
 
 export function isClick(dx: number, dy: number): boolean {
   return Math.hypot(dx, dy) <= CLICK_SLOP_PX;
+}
+
+/**
+ * What a left click (a press released without a drag) does to the
+ * selection: on a balloon (its press grabbed it) it selects that balloon, on
+ * empty space (its press went to the camera) it deselects; anything else
+ * (popping, a ribbon's end, placement) leaves it.
+ */
+export function clickSelection(action: PointerAction, button: number): "select" | "deselect" | "none" {
+  if (button !== 0) return "none";
+  if (action === "grab") return "select";
+  if (action === "camera") return "deselect";
+  return "none";
 }
