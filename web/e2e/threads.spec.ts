@@ -71,6 +71,20 @@ test("the page is cross-origin isolated and steps on the threads asked for", asy
   await page.waitForFunction((b) => window.__up!.steps() > b + 10, before);
 });
 
+test("the panel's thread count restarts the engine on that many threads, with the scene shown", async ({ page }) => {
+  await open(page, `&threads=2${sceneHash(SCENE)}`);
+  const scene = await page.evaluate(() => window.__up!.sceneJson());
+  const input = page.locator('[data-key="threads"] input');
+  // The slider goes up to the machine's cores (two here): down to one.
+  await input.fill("1");
+  await input.press("Enter");
+  await page.waitForFunction(() => window.__up!.threads() === 1);
+  expect(await threadsOf(page)).toEqual({ threads: 1, isolated: true, text: "Threads: 1", pageIsolated: true });
+  expect(await page.evaluate(() => window.__up!.sceneJson()), "the same scene").toBe(scene);
+  // A fresh world of the scene's 30 balloons, stepping.
+  await page.waitForFunction(() => window.__up!.balloonCount() === 30 && window.__up!.steps() > 10);
+});
+
 test("a thread count in the address that is not one is refused with a message, and the default used", async ({ page }) => {
   await open(page, `&threads=zero${sceneHash(SCENE)}`);
   const messages = await page.evaluate(() => window.__up!.messages());
