@@ -40,6 +40,7 @@ mod gas;
 mod info;
 mod model_mesh;
 mod ribbons;
+mod squash;
 mod state;
 
 use glam::Vec3;
@@ -50,6 +51,7 @@ pub use error::{CallError, WasmError, ERROR_KINDS};
 pub use gas::{AdvanceReport, FloatCounts, GroupFloat, MAX_ADVANCE_S};
 pub use info::{Constants, EngineStats, NamedColor, SceneLimits, WorldSummary};
 pub use model_mesh::{MeshBuffers, MESH_VERTEX_FLOATS};
+pub use squash::{SQUASH_FLOATS, MEMBRANE_OVERPRESSURE_PA};
 pub use ribbons::{pack_rgb, MAX_RIBBON_LENGTH_M, RIBBON_POINT_FLOATS};
 pub use state::{
     State, CAPACITY, MAX_SPEED, MAX_SPIN, MAX_STEPS_PER_CALL, POSE_FLOATS, TREE_FLOATS,
@@ -72,6 +74,8 @@ export type TreeStride = 6;
 export type RibbonPointStride = 3;
 /** Floats per mesh vertex position or normal: x, y, z (`constants().mesh_vertex_stride`). */
 export type MeshVertexStride = 3;
+/** Floats per body of the squash table: nx·d, ny·d, nz·d, reach (`write_body_squash`). */
+export type SquashStride = 4;
 "#;
 
 #[wasm_bindgen(typescript_custom_section)]
@@ -177,6 +181,18 @@ impl Engine {
 
     pub fn body_scales_ptr(&self) -> *const f32 {
         self.state.scales.as_ptr()
+    }
+
+    /// Writes each body's deepest dent since the last call, `SQUASH_FLOATS`
+    /// per body, dense order (`squash.rs`), for `body_squash_ptr`; returns
+    /// how many bodies. Drawing only: the physics stays rigid.
+    pub fn write_body_squash(&mut self) -> Result<u32, CallError> {
+        named("write_body_squash", self.state.write_body_squash())?;
+        Ok((self.state.squash_out.len() / SQUASH_FLOATS) as u32)
+    }
+
+    pub fn body_squash_ptr(&self) -> *const f32 {
+        self.state.squash_out.as_ptr()
     }
 
     /// Where the balloons float now (at the ceiling, hovering, on the floor),
@@ -482,6 +498,7 @@ mod tests {
             ("TreeStride", TREE_FLOATS),
             ("RibbonPointStride", RIBBON_POINT_FLOATS),
             ("MeshVertexStride", MESH_VERTEX_FLOATS),
+            ("SquashStride", SQUASH_FLOATS),
         ] {
             let line = format!("export type {name} = {value};");
             assert!(STRIDE_TYPES.contains(&line), "{line} in {STRIDE_TYPES}");

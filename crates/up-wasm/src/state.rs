@@ -71,6 +71,9 @@ pub struct State {
     pub census: Option<FloatCensus>,
     /// The surface `write_model_mesh` wrote last (`model_mesh.rs`).
     pub mesh: MeshBuffers,
+    /// Each body's deepest dent since the page last read it, and what it read (`squash.rs`).
+    pub squash: crate::squash::SquashTable,
+    pub squash_out: Vec<f32>,
 }
 
 /// `Ok` when a velocity stays within `MAX_SPEED` and `MAX_SPIN`, else why not.
@@ -158,6 +161,7 @@ impl State {
         for _ in 0..n {
             self.world_mut()?.step();
             self.sum_last_step();
+            self.record_squash();
         }
         Ok(())
     }
@@ -427,6 +431,7 @@ impl State {
             color_names: loaded.built.color_names.clone(),
             diameters: loaded.scene.balloons.iter().map(|g| g.diameter()).collect(),
             foil: self.model_foil()?,
+            finishes: loaded.scene.balloons.iter().map(|g| g.finish()).collect(),
             dt: loaded.built.world.def().dt,
         })
     }
