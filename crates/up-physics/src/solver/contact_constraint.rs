@@ -83,6 +83,12 @@ pub(crate) struct ContactGroup {
     separation: F4,
     arm_a: V4,
     arm_b: V4,
+    /// What the step gave, for reports (`ContactTotals`), never read by the
+    /// solve: the normal impulses of its substeps summed, the largest of
+    /// them, and the tangent impulses summed (first tangent, second).
+    step_normal_impulse: F4,
+    peak_normal_impulse: F4,
+    step_tangent_impulse: [F4; 2],
 }
 
 /// Where the four contacts' spheres were at the step's start, to track the
@@ -193,11 +199,49 @@ impl ContactGroup {
         }
     }
 
+    /// What lane `i` gave over the step (`ContactTotals`).
+    pub fn totals(&self, i: usize) -> ContactTotals {
+        let normal = self.normal.lane(i);
+        let tangent = self.tangent.lane(i);
+        let t = [
+            self.step_tangent_impulse[0].as_array()[i],
+            self.step_tangent_impulse[1].as_array()[i],
+        ];
+        ContactTotals {
+            normal_impulse: self.step_normal_impulse.as_array()[i],
+            max_normal_impulse: self.peak_normal_impulse.as_array()[i],
+            // A takes −p for every impulse p that B takes (`solve`).
+            tangent_impulse: -(t[0] * tangent + t[1] * normal.cross(tangent)),
+        }
+    }
+
+    /// Adds the substep that just ended to the step's totals: each substep
+    /// applies its accumulated impulse whole (warm start, then the solve's
+    /// and the relax pass's changes to it).
+    #[inline]
+    pub fn add_substep(&mut self) {
+        self.step_normal_impulse += self.normal_impulse;
+        self.peak_normal_impulse = max(self.peak_normal_impulse, self.normal_impulse);
+        self.step_tangent_impulse[0] += self.tangent_impulse[0];
+        self.step_tangent_impulse[1] += self.tangent_impulse[1];
+    }
+
     /// Both tangents (the second as `tangents` makes it, bit for bit).
     #[inline]
     fn tangents(&self) -> [V4; 2] {
         [self.tangent, self.normal.cross(self.tangent)]
     }
+}
+
+/// What one contact gave over a step, N·s (`ContactInfo` carries it).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct ContactTotals {
+    /// Along the normal, summed over the substeps and the bounce; ≥ 0.
+    pub normal_impulse: f32,
+    /// The largest a single substep applied (the bounce counted in the last).
+    pub max_normal_impulse: f32,
+    /// Friction on body A, world frame, summed.
+    pub tangent_impulse: Vec3,
 }
 
 /// A right-handed orthonormal basis around `n`, the same on every platform.
@@ -430,6 +474,9 @@ pub(crate) fn apply_restitution(
     );
     let applied = total - c.normal_impulse;
     c.normal_impulse = total;
+    // The bounce belongs to the last substep's impulse.
+    c.step_normal_impulse += applied;
+    c.peak_normal_impulse = max(c.peak_normal_impulse, total);
     let p = applied * c.normal;
     a.apply_impulse(-p, arm_a);
     b.apply_impulse(p, arm_b);

@@ -37,7 +37,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use body_lanes::{Displacements, Poses, Velocities};
 use body_state::BodyState;
 use coloring::{Coloring, Moving};
-use contact_constraint::{Bias, ContactGroup, GroupAnchors, GroupRecords, PreparedContact};
+use contact_constraint::{
+    Bias, ContactGroup, ContactTotals, GroupAnchors, GroupRecords, PreparedContact,
+};
 use integrate::GrabSpring;
 use joint_constraint::{JointColouring, PreparedJoint};
 use lanes::LANES;
@@ -248,6 +250,17 @@ impl Solver {
         self.groups[g].stored(&self.records[g], slot % LANES)
     }
 
+    /// What the narrowphase's `i`-th contact gave over the step, if the
+    /// constraints are this step's `count` contacts.
+    pub fn totals(&self, i: usize, count: usize) -> Option<ContactTotals> {
+        if self.coloring.slot.len() != count {
+            return None;
+        }
+        let slot = *self.coloring.slot.get(i)? as usize;
+        let g = self.groups.get(slot / LANES)?;
+        Some(g.totals(slot % LANES))
+    }
+
     /// Runs the substeps over prepared `states`, `forces` and constraints.
     /// `after_positions` runs once a substep on the states, after the joints
     /// and before the relax pass (the ribbons).
@@ -314,6 +327,7 @@ impl Solver {
             on_velocities(g, sides, |c, a, b| {
                 contact_constraint::solve(c, a, b, relax)
             });
+            g.add_substep();
         });
     }
 

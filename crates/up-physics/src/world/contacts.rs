@@ -38,6 +38,7 @@ impl World {
             speculative_distance: self.def.speculative_distance,
         };
         narrow.update(&input, &broad.pairs, self.def.room.as_ref());
+        self.stages.solved = false;
         if all {
             return;
         }
@@ -71,25 +72,52 @@ pub struct ContactInfo {
     pub normal: Vec3,
     /// Negative when overlapping, m.
     pub separation: f32,
+    /// Total impulse along the normal that the contact gave over the last
+    /// step (all substeps and the bounce), N·s, ≥ 0: over the step's `dt`,
+    /// the mean force.
+    pub normal_impulse: f32,
+    /// Largest normal impulse the contact applied within one substep of the
+    /// last step, N·s (an impact's peak; over `World::substep_dt`, its force).
+    pub max_normal_impulse: f32,
+    /// Total friction impulse on body A over the last step, world frame, N·s.
+    pub tangent_impulse: Vec3,
 }
 
 impl World {
-    /// The contact points of the last step (empty after a body was removed since).
+    /// The contact points of the last step (empty after a body was removed
+    /// since); after `max_penetration_now`, that measurement's, with no impulses.
     pub fn contact_points(&self) -> impl Iterator<Item = ContactInfo> + '_ {
         let n = self.bodies.len();
         let contacts = &self.stages.narrow.found.contacts;
+        let solver = &self.stages.solve.solver;
+        let solved = self.stages.solved;
         let valid = contacts.iter().all(|c| {
             (c.body_a as usize) < n && (c.body_b == STATIC_BODY || (c.body_b as usize) < n)
         });
         contacts
             .iter()
             .take(if valid { contacts.len() } else { 0 })
-            .map(move |c| ContactInfo {
-                body_a: self.bodies.id[c.body_a as usize],
-                body_b: (c.body_b != STATIC_BODY).then(|| self.bodies.id[c.body_b as usize]),
-                point: 0.5 * (c.point_a + c.point_b),
-                normal: c.normal,
-                separation: c.separation,
+            .enumerate()
+            .map(move |(i, c)| {
+                let totals = solved
+                    .then(|| solver.totals(i, contacts.len()))
+                    .flatten()
+                    .unwrap_or_default();
+                ContactInfo {
+                    body_a: self.bodies.id[c.body_a as usize],
+                    body_b: (c.body_b != STATIC_BODY).then(|| self.bodies.id[c.body_b as usize]),
+                    point: 0.5 * (c.point_a + c.point_b),
+                    normal: c.normal,
+                    separation: c.separation,
+                    normal_impulse: totals.normal_impulse,
+                    max_normal_impulse: totals.max_normal_impulse,
+                    tangent_impulse: totals.tangent_impulse,
+                }
             })
+    }
+
+    /// The solver's substep, s: the step's `dt` over its substeps.
+    pub fn substep_dt(&self) -> f32 {
+        self.def.dt / self.def.substeps as f32
     }
 }

@@ -74,6 +74,9 @@ struct Stages {
     gas_woken: Vec<u32>,
     /// Awake bodies whose gas moved this step (`gas`).
     gas_moved: Vec<u32>,
+    /// The solver's constraints are the found contacts' (`contacts`): a
+    /// measurement's narrowphase since the step replaced them.
+    solved: bool,
 }
 
 impl Stages {

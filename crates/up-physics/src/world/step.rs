@@ -82,6 +82,7 @@ impl World {
         counters.prepare_ms = clock.lap();
 
         self.solve(grab.as_ref());
+        self.stages.solved = true;
         counters.solve_ms = clock.lap();
 
         self.bounce();
