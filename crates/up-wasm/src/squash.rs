@@ -8,12 +8,15 @@
 //! squash"). Two loads dent it:
 //!
 //! - an impact: a mass m meeting a spring k at speed v compresses it by
-//!   v·√(m/k), under a peak force v·√(k·m). The solver stops the approach
-//!   within a substep, so the contact's largest impulse in one substep, P,
-//!   is m·v (the bounce comes after), and d = P / √(k·m). In terms of the
-//!   step's whole impulse J = (1 + e)·m·v, that is J / ((1 + e)·√(k·m));
-//!   P needs no restitution and stays small under a steady load, which
-//!   spreads evenly over the substeps;
+//!   v·√(m/k), under a peak force v·√(k·m). The approach momentum m·v is
+//!   read from the contact's impulses: over the step the impact gives
+//!   J = (1 + e)·m·v (the approach and the bounce), so d = J / ((1 + e)·√(k·m)).
+//!   A steady load gives J too, F·dt each step, which that would read as a
+//!   far harder hit; but it spreads over the substeps, where an impact's
+//!   approach is stopped within one: the largest impulse of one substep, P,
+//!   is at least m·v in an impact (the bounce is counted in the last
+//!   substep, so up to (1 + e)·m·v) and only F·dt/substeps under a load.
+//!   The approach momentum is taken as the smaller of J/(1 + e) and P;
 //! - a steady load F = J / dt (a balloon pressed into a pile or a wall):
 //!   d = F / k.
 //!
@@ -28,9 +31,13 @@
 //!
 //! Per body (dense order) the table holds `SQUASH_FLOATS` floats: the unit
 //! normal times the dent depth (x, y, z, m, world frame, pointing from the
-//! balloon toward what it touches) and the distance from the body's origin to
-//! the contact point along that normal (m): the page flattens the drawn
-//! balloon against the plane that far out less the depth. Zero: no dent.
+//! balloon toward what it touches) and the reach: how far the balloon's
+//! surface (its model's mesh, at its size and pose now) extends from the
+//! body's origin along that normal, m. The page flattens the drawn balloon
+//! against the plane that far out less the depth. Zero: no dent. The reach
+//! is the mesh's, not the contact point's: the collision spheres only
+//! approximate the surface, and a plane set by them would cut the drawn
+//! balloon too deep or not at all.
 //! Each step keeps, per body, its deepest dent since the table was last read.
 
 use glam::Vec3;
@@ -63,12 +70,13 @@ pub struct Membrane {
 }
 
 /// The dent of membrane `own`, m, from a contact against `other` (None: the
-/// room, rigid and immovable) whose largest impulse within one substep was
-/// `peak_impulse` and whose impulse over the step of `dt` s was
-/// `step_impulse` (N·s); not capped.
+/// room, rigid and immovable) whose impulse over the step of `dt` s was
+/// `step_impulse` and whose largest impulse within one substep was
+/// `peak_impulse` (N·s), with restitution `restitution`; not capped.
 pub fn contact_depth(
     peak_impulse: f32,
     step_impulse: f32,
+    restitution: f32,
     dt: f32,
     own: Membrane,
     other: Option<Membrane>,
@@ -83,8 +91,9 @@ pub fn contact_depth(
     if !(stiffness > 0.0 && mass > 0.0 && own.stiffness > 0.0) {
         return 0.0;
     }
-    // v·√(k·m) with v = P/m.
-    let impact_force = peak_impulse * (stiffness / mass).sqrt();
+    // The approach momentum m·v, and the peak force v·√(k·m).
+    let approach = peak_impulse.min(step_impulse / (1.0 + restitution.max(0.0)));
+    let impact_force = approach * (stiffness / mass).sqrt();
     let load_force = if dt > 0.0 { step_impulse / dt } else { 0.0 };
     let force = impact_force.max(load_force);
     if force > 0.0 {
@@ -100,8 +109,6 @@ pub struct Impact {
     pub body_a: BodyId,
     /// None: the room.
     pub body_b: Option<BodyId>,
-    /// World frame, m.
-    pub point: Vec3,
     /// Unit, from A toward B.
     pub normal: Vec3,
     /// N·s over the step, ≥ 0.
@@ -123,12 +130,15 @@ pub struct SquashTable {
 
 impl SquashTable {
     /// Reads the dents of `impacts`, one step's contacts of `world`, keeping
-    /// each body's deepest; `radius(id)` is a body's radius now, m.
+    /// each body's deepest; `radius(id)` is a body's radius now, m, and
+    /// `reach(id, n)` how far its surface extends from its origin along the
+    /// world direction `n`, m.
     pub fn record(
         &mut self,
         world: &World,
         impacts: impl Iterator<Item = Impact>,
         radius: impl Fn(BodyId) -> f32,
+        reach: impl Fn(BodyId, Vec3) -> Option<f32>,
     ) {
         let ids = world.body_ids();
         if self.depths.len() != ids.len() {
@@ -145,7 +155,7 @@ impl SquashTable {
             }
             self.dense[slot] = i as u32;
         }
-        let dt = world.def().dt;
+        let (dt, restitution) = (world.def().dt, world.def().restitution);
         let membrane = |id: BodyId| {
             Some(Membrane {
                 stiffness: membrane_stiffness(radius(id), MEMBRANE_OVERPRESSURE_PA),
@@ -167,25 +177,24 @@ impl SquashTable {
                 None => None,
             };
             let (peak, total) = (c.max_normal_impulse, c.normal_impulse);
-            let depth_a = contact_depth(peak, total, dt, a, b);
-            self.keep(world, c.body_a, c.normal, c.point, depth_a, &radius);
+            let depth_a = contact_depth(peak, total, restitution, dt, a, b);
+            self.keep(c.body_a, c.normal, depth_a, &radius, &reach);
             if let (Some(id), Some(b)) = (c.body_b, b) {
-                let depth_b = contact_depth(peak, total, dt, b, Some(a));
-                self.keep(world, id, -c.normal, c.point, depth_b, &radius);
+                let depth_b = contact_depth(peak, total, restitution, dt, b, Some(a));
+                self.keep(id, -c.normal, depth_b, &radius, &reach);
             }
         }
     }
 
-    /// Keeps `depth` along `normal` (toward what `id` touches) at `point` when
-    /// it is the body's deepest, capped at `MAX_SQUASH_FRACTION` of its radius.
+    /// Keeps `depth` along `normal` (toward what `id` touches) when it is the
+    /// body's deepest, capped at `MAX_SQUASH_FRACTION` of its radius.
     fn keep(
         &mut self,
-        world: &World,
         id: BodyId,
         normal: Vec3,
-        point: Vec3,
         depth: f32,
         radius: &impl Fn(BodyId) -> f32,
+        reach: &impl Fn(BodyId, Vec3) -> Option<f32>,
     ) {
         let Some(&i) = self.dense.get(id.index as usize) else {
             return;
@@ -195,11 +204,10 @@ impl SquashTable {
         if !(depth >= MIN_SQUASH_M) || i >= self.depths.len() || depth <= self.depths[i] {
             return;
         }
-        let Some(pose) = world.pose(id) else {
+        let Some(reach) = reach(id, normal).filter(|r| r.is_finite()) else {
             return;
         };
-        let reach = (point - pose.position).dot(normal);
-        if !reach.is_finite() || !normal.is_finite() {
+        if !normal.is_finite() {
             return;
         }
         self.depths[i] = depth;
@@ -233,20 +241,27 @@ impl crate::state::State {
         };
         let world = &loaded.built.world;
         let groups = &loaded.scene.balloons;
+        let models = &loaded.built.balloon_models;
+        let group = |id: BodyId| world.user_data(id).map_or(0, up_scene::build::group_index);
         let radius = |id: BodyId| {
-            let group = world.user_data(id).map_or(0, up_scene::build::group_index);
-            let diameter = groups.get(group).map_or(0.0, |g| g.diameter());
+            let diameter = groups.get(group(id)).map_or(0.0, |g| g.diameter());
             0.5 * diameter * world.body_scale(id).unwrap_or(1.0)
+        };
+        // Only for the few dents deep enough to draw: a pass over the model's vertices.
+        let reach = |id: BodyId, n: Vec3| {
+            let mesh = &models.get(group(id))?.mesh;
+            let local = world.pose(id)?.rotation.inverse() * n;
+            let support = mesh.positions.iter().map(|p| p.dot(local)).fold(f32::MIN, f32::max);
+            Some(support * world.body_scale(id)?)
         };
         let impacts = world.contact_points().map(|c| Impact {
             body_a: c.body_a,
             body_b: c.body_b,
-            point: c.point,
             normal: c.normal,
             normal_impulse: c.normal_impulse,
             max_normal_impulse: c.max_normal_impulse,
         });
-        self.squash.record(world, impacts, radius);
+        self.squash.record(world, impacts, radius, reach);
     }
 
     /// Each body's deepest dent since the last call into `squash_out`, then forgotten.

@@ -167,8 +167,8 @@ export function addSquash(material: THREE.Material): void {
         {
           float along = dot(position, upSquash.n);
           // The flattened patch faces along the normal; its rim blends in over a depth.
-          float flat = smoothstep(upSquash.plane - upSquash.depth, upSquash.plane, along);
-          objectNormal = normalize(mix(objectNormal, upSquash.n, flat));
+          float flattened = smoothstep(upSquash.plane - upSquash.depth, upSquash.plane, along);
+          objectNormal = normalize(mix(objectNormal, upSquash.n, flattened));
         }`,
       )
       .replace(
