@@ -168,3 +168,4 @@ fn a_settled_pile_under_the_ceiling_is_not_dented() {
     state.write_body_squash().unwrap();
     assert!(state.squash_out.iter().all(|&v| v == 0.0), "{:?}", state.squash_out);
 }
+
