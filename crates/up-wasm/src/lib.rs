@@ -51,8 +51,8 @@ pub use error::{CallError, WasmError, ERROR_KINDS};
 pub use gas::{AdvanceReport, FloatCounts, GroupFloat, MAX_ADVANCE_S};
 pub use info::{Constants, EngineStats, NamedColor, SceneLimits, WorldSummary};
 pub use model_mesh::{MeshBuffers, MESH_VERTEX_FLOATS};
-pub use squash::{SQUASH_FLOATS, MEMBRANE_OVERPRESSURE_PA};
 pub use ribbons::{pack_rgb, MAX_RIBBON_LENGTH_M, RIBBON_POINT_FLOATS};
+pub use squash::{MEMBRANE_OVERPRESSURE_PA, SQUASH_FLOATS};
 pub use state::{
     State, CAPACITY, MAX_SPEED, MAX_SPIN, MAX_STEPS_PER_CALL, POSE_FLOATS, TREE_FLOATS,
 };

@@ -251,7 +251,11 @@ impl crate::state::State {
         let reach = |id: BodyId, n: Vec3| {
             let mesh = &models.get(group(id))?.mesh;
             let local = world.pose(id)?.rotation.inverse() * n;
-            let support = mesh.positions.iter().map(|p| p.dot(local)).fold(f32::MIN, f32::max);
+            let support = mesh
+                .positions
+                .iter()
+                .map(|p| p.dot(local))
+                .fold(f32::MIN, f32::max);
             Some(support * world.body_scale(id)?)
         };
         let impacts = world.contact_points().map(|c| Impact {

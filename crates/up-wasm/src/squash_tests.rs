@@ -28,9 +28,19 @@ fn a_throw_into_a_wall_dents_by_the_speed_times_the_membrane_time() {
     // v·√(m/k), whatever e is.
     let k = balloon().stiffness;
     for (v, e) in [(5.0_f32, 0.4_f32), (5.0, 0.0), (2.0, 0.8), (10.0, 0.4)] {
-        let depth = contact_depth(MASS * (1.0 + e) * v, MASS * (1.0 + e) * v, e, DT, balloon(), None);
+        let depth = contact_depth(
+            MASS * (1.0 + e) * v,
+            MASS * (1.0 + e) * v,
+            e,
+            DT,
+            balloon(),
+            None,
+        );
         let closed = v * (MASS / k).sqrt();
-        assert!((depth - closed).abs() < 1e-6, "v {v} e {e}: {depth} vs {closed}");
+        assert!(
+            (depth - closed).abs() < 1e-6,
+            "v {v} e {e}: {depth} vs {closed}"
+        );
         let spread = contact_depth(MASS * v, MASS * (1.0 + e) * v, e, DT, balloon(), None);
         assert!((spread - closed).abs() < 1e-6, "{spread} vs {closed}");
     }
@@ -61,7 +71,10 @@ fn two_balloons_meeting_share_the_dent_by_their_stiffness() {
     };
     let soft_side = contact_depth(peak, peak, 0.0, DT, balloon(), Some(stiff));
     let stiff_side = contact_depth(peak, peak, 0.0, DT, stiff, Some(balloon()));
-    assert!((soft_side / stiff_side - 4.0).abs() < 1e-4, "{soft_side} {stiff_side}");
+    assert!(
+        (soft_side / stiff_side - 4.0).abs() < 1e-4,
+        "{soft_side} {stiff_side}"
+    );
 }
 
 #[test]
@@ -73,24 +86,42 @@ fn a_steady_load_dents_by_force_over_stiffness_and_a_pile_stays_round() {
     let omega = (k / MASS).sqrt();
     let force = 3.0;
     let fine = contact_depth(force * DT / 16.0, force * DT, 0.4, DT, balloon(), None);
-    assert!((fine - force / k).abs() < 1e-4 * force / k, "{fine} vs {}", force / k);
+    assert!(
+        (fine - force / k).abs() < 1e-4 * force / k,
+        "{fine} vs {}",
+        force / k
+    );
     let coarse = contact_depth(force * DT / 4.0, force * DT, 0.4, DT, balloon(), None);
     let h_omega = DT / 4.0 * omega;
     assert!((1.4..1.5).contains(&h_omega), "{h_omega}");
-    assert!((coarse - h_omega * force / k).abs() < 1e-4 * force / k, "{coarse}");
+    assert!(
+        (coarse - h_omega * force / k).abs() < 1e-4 * force / k,
+        "{coarse}"
+    );
     // A balloon in a pile bears about its neighbours' lift, 0.1 N: the reference's ≈ 0.1 mm.
-    let pile = contact_depth(0.1 * DT / 4.0, 0.1 * DT, 0.4, DT, balloon(), Some(balloon()));
+    let pile = contact_depth(
+        0.1 * DT / 4.0,
+        0.1 * DT,
+        0.4,
+        DT,
+        balloon(),
+        Some(balloon()),
+    );
     assert!(pile < 0.3 * MIN_SQUASH_M, "{pile}");
     // Pressed into a wall by eight times its lift (0.9 N), still under the drawn threshold.
     let pressed = contact_depth(0.9 * DT / 4.0, 0.9 * DT, 0.4, DT, balloon(), None);
     assert!(pressed < MIN_SQUASH_M, "{pressed}");
     assert_eq!(contact_depth(0.0, 0.0, 0.4, DT, balloon(), None), 0.0);
-    assert_eq!(contact_depth(f32::NAN, f32::NAN, 0.4, DT, balloon(), None), 0.0);
+    assert_eq!(
+        contact_depth(f32::NAN, f32::NAN, 0.4, DT, balloon(), None),
+        0.0
+    );
 }
 
 /// One 11″ balloon 2 m from the +x wall, its buoyancy carrying it there:
 /// gravity along −x at 80 m/s² gives a terminal speed of 5 m/s.
-const WALL_SCENE: &str = "[room]\nwidth = 6.0\ndepth = 3.0\nwall_height = 3.0\nceiling = \"flat\"\n\n\
+const WALL_SCENE: &str =
+    "[room]\nwidth = 6.0\ndepth = 3.0\nwall_height = 3.0\nceiling = \"flat\"\n\n\
      [[balloons]]\ncount = 1\ntilt_deg = 0\nyaw_deg = 0\n\
      spawn = { min = [0.4, 1.0, -0.4], max = [1.0, 1.9, 0.4] }\n\n\
      [sim]\ngravity = [-80.0, 0.0, 0.0]\n";
@@ -166,6 +197,9 @@ fn a_settled_pile_under_the_ceiling_is_not_dented() {
     // Settled, pressed together by their lift: nothing.
     state.step(60).unwrap();
     state.write_body_squash().unwrap();
-    assert!(state.squash_out.iter().all(|&v| v == 0.0), "{:?}", state.squash_out);
+    assert!(
+        state.squash_out.iter().all(|&v| v == 0.0),
+        "{:?}",
+        state.squash_out
+    );
 }
-
