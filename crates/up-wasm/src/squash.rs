@@ -201,7 +201,11 @@ impl SquashTable {
         };
         let i = i as usize;
         let depth = depth.min(MAX_SQUASH_FRACTION * radius(id));
-        if !(depth >= MIN_SQUASH_M) || i >= self.depths.len() || depth <= self.depths[i] {
+        if depth.is_nan()
+            || depth < MIN_SQUASH_M
+            || i >= self.depths.len()
+            || depth <= self.depths[i]
+        {
             return;
         }
         let Some(reach) = reach(id, normal).filter(|r| r.is_finite()) else {
