@@ -181,6 +181,33 @@ pub enum BalloonKind {
     Foil,
 }
 
+/// How a balloon's surface is drawn: looks only, the physics does not read it.
+#[cfg_attr(feature = "tsify", derive(tsify_next::Tsify))]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Finish {
+    /// Glossy latex: clearcoat over a slightly translucent, velvety body.
+    Latex,
+    /// Pearl latex: the same with a mother-of-pearl shimmer (iridescence).
+    Pearl,
+    /// Metal: a foil balloon's film, or a chrome latex balloon.
+    Foil,
+}
+
+impl Finish {
+    /// Every finish, in the order the page lists them.
+    pub const ALL: [Finish; 3] = [Finish::Latex, Finish::Pearl, Finish::Foil];
+
+    /// The name scene files use.
+    pub fn name(self) -> &'static str {
+        match self {
+            Finish::Latex => "latex",
+            Finish::Pearl => "pearl",
+            Finish::Foil => "foil",
+        }
+    }
+}
+
 /// A sealant gel inside a latex balloon that slows its leak.
 #[cfg_attr(feature = "tsify", derive(tsify_next::Tsify))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -205,6 +232,10 @@ pub struct BalloonGroup {
     pub kind: BalloonKind,
     /// `"none"` or `"hi-float"` (latex only); none.
     pub treatment: Treatment,
+    /// `"latex"`, `"pearl"` or `"foil"`: how the surface is drawn; the kind's
+    /// own (`finish()`) when left out. A foil balloon is always `"foil"`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub finish: Option<Finish>,
     /// h: the balloons were filled this long before the run starts (their gas
     /// has been leaking since); 0. Range [0, 2000].
     pub filled_hours_before: f32,
@@ -253,6 +284,7 @@ impl Default for BalloonGroup {
             count: 1,
             kind: BalloonKind::Latex,
             treatment: Treatment::Untreated,
+            finish: None,
             filled_hours_before: 0.0,
             colors: DEFAULT_COLORS.iter().map(|c| c.to_string()).collect(),
             diameter_m: None,
@@ -282,6 +314,15 @@ impl BalloonGroup {
                 BalloonKind::Foil => DEFAULT_FOIL_DIAMETER_M,
             },
         }
+    }
+
+    /// How the group is drawn: `finish` as given, else latex for a latex
+    /// balloon and foil for a foil one.
+    pub fn finish(&self) -> Finish {
+        self.finish.unwrap_or(match self.kind {
+            BalloonKind::Latex => Finish::Latex,
+            BalloonKind::Foil => Finish::Foil,
+        })
     }
 
     /// kg of envelope: as given, or the kind's default (3 g at 11″ latex,

@@ -883,3 +883,75 @@ fn bad_gas_keys_name_their_key_and_range() {
     assert_eq!(e.key(), Some("air.temperature_schedule[0][1]"), "{e}");
     assert!(e.to_string().contains("found inf"), "{e}");
 }
+
+#[test]
+fn finish_defaults_to_the_kind_and_round_trips() {
+    let scene = Scene::from_toml_str(
+        "[[balloons]]\n\n[[balloons]]\nkind = \"foil\"\n\n\
+         [[balloons]]\nfinish = \"pearl\"\n\n[[balloons]]\nfinish = \"foil\"\n\n\
+         [[balloons]]\nkind = \"foil\"\nfinish = \"foil\"\n\n[[balloons]]\nfinish = \"latex\"\n",
+        "f.toml",
+    )
+    .unwrap();
+    let finishes: Vec<Finish> = scene.balloons.iter().map(|g| g.finish()).collect();
+    assert_eq!(
+        finishes,
+        [
+            Finish::Latex,
+            Finish::Foil,
+            Finish::Pearl,
+            Finish::Foil,
+            Finish::Foil,
+            Finish::Latex
+        ]
+    );
+    // Left out, it stays out of the written scene; given, it is written back.
+    assert_eq!(scene.balloons[0].finish, None);
+    let toml = scene.to_toml_string().unwrap();
+    assert_eq!(toml.matches("finish = ").count(), 4, "{toml}");
+    assert_eq!(Scene::from_toml_str(&toml, "rt.toml").unwrap(), scene);
+    let json = scene.to_json_string().unwrap();
+    assert!(json.contains("\"finish\": \"pearl\""), "{json}");
+    assert_eq!(Scene::from_json_str(&json, "rt.json").unwrap(), scene);
+    let json_scene =
+        Scene::from_json_str("{\"balloons\": [{\"finish\": \"pearl\"}]}", "f.json").unwrap();
+    assert_eq!(json_scene.balloons[0].finish(), Finish::Pearl);
+    assert_eq!(
+        Finish::ALL.map(Finish::name),
+        ["latex", "pearl", "foil"],
+        "the names scene files use"
+    );
+}
+
+#[test]
+fn bad_finish_names_its_key_and_the_allowed_values() {
+    let e = toml_err("[[balloons]]\ncount = 2\nfinish = \"glitter\"\n");
+    assert!(matches!(e, SceneError::Parse { .. }), "{e}");
+    assert_eq!(e.key(), Some("balloons[0].finish"), "{e}");
+    assert_eq!(e.line(), Some(3), "{e}");
+    let text = e.to_string();
+    assert!(text.starts_with("test.toml:3: balloons[0].finish: "), "{e}");
+    assert!(text.contains("unknown variant `glitter`"), "{e}");
+    for name in ["latex", "pearl", "foil"] {
+        assert!(text.contains(&format!("`{name}`")), "{name} in {e}");
+    }
+    let e = json_err("{\"balloons\": [{}, {\"finish\": 3}]}");
+    assert_eq!(e.key(), Some("balloons[1].finish"), "{e}");
+
+    // A foil balloon's film is metal: a latex finish on it is refused.
+    for finish in ["latex", "pearl"] {
+        let e = toml_err(&format!(
+            "[[balloons]]\n\n[[balloons]]\nkind = \"foil\"\nfinish = \"{finish}\"\n"
+        ));
+        assert!(matches!(e, SceneError::Invalid { .. }), "{e}");
+        assert_eq!(e.key(), Some("balloons[1].finish"), "{e}");
+        assert_eq!(e.line(), Some(5), "{e}");
+        assert!(
+            e.to_string().starts_with(
+                "test.toml:5: balloons[1].finish: expected \"foil\" for a foil balloon"
+            ),
+            "{e}"
+        );
+        assert!(e.to_string().contains(&format!("\"{finish}\"")), "{e}");
+    }
+}

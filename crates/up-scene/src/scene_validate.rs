@@ -2,7 +2,7 @@
 //! the key path and line of the offending value and the documented range.
 
 use super::{
-    parse_color, AirSpec, BalloonKind, CeilingKind, RibbonSpec, Scene, Treatment,
+    parse_color, AirSpec, BalloonKind, CeilingKind, Finish, RibbonSpec, Scene, Treatment,
     MAX_FILLED_HOURS_BEFORE, MAX_SCHEDULE_HOURS, MAX_SCHEDULE_POINTS,
 };
 use crate::error::SceneError;
@@ -220,6 +220,13 @@ pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
                 &key("treatment"),
                 "\"none\" for a foil balloon (Hi-Float is a gel for latex)",
                 "\"hi-float\"",
+            ));
+        }
+        if group.kind == BalloonKind::Foil && group.finish() != Finish::Foil {
+            return Err(c.fail(
+                &key("finish"),
+                "\"foil\" for a foil balloon (latex and pearl are latex finishes)",
+                format!("\"{}\"", group.finish().name()),
             ));
         }
         c.range(

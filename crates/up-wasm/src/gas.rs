@@ -75,6 +75,7 @@ impl State {
         if done.steps > 0 {
             // The stats average per step; the call's last step stands for its steps.
             self.sum_last_step();
+            self.record_squash();
         }
         Ok(AdvanceReport {
             seconds: done.seconds,

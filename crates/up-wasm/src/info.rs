@@ -172,6 +172,8 @@ pub struct WorldSummary {
     pub diameters: Vec<f32>,
     /// Whether each balloon model is foil (drawn with `write_model_mesh`'s surface).
     pub foil: Vec<bool>,
+    /// How each balloon model is drawn (`"latex"`, `"pearl"`, `"foil"`).
+    pub finishes: Vec<up_scene::scene::Finish>,
     /// s per step.
     pub dt: f32,
 }

@@ -41,6 +41,7 @@ mod gas;
 mod info;
 mod model_mesh;
 mod ribbons;
+mod squash;
 mod state;
 #[cfg(feature = "threads")]
 mod threads;
@@ -55,6 +56,7 @@ pub use gas::{AdvanceReport, FloatCounts, GroupFloat, MAX_ADVANCE_S};
 pub use info::{Constants, EngineStats, NamedColor, SceneLimits, WorldSummary};
 pub use model_mesh::{MeshBuffers, MESH_VERTEX_FLOATS};
 pub use ribbons::{pack_rgb, MAX_RIBBON_LENGTH_M, RIBBON_POINT_FLOATS};
+pub use squash::{MEMBRANE_OVERPRESSURE_PA, SQUASH_FLOATS};
 pub use state::{
     State, CAPACITY, MAX_SPEED, MAX_SPIN, MAX_STEPS_PER_CALL, POSE_FLOATS, TREE_FLOATS,
 };
@@ -81,6 +83,8 @@ export type RibbonPointStride = 3;
 export type MeshVertexStride = 3;
 /** Floats per probed body: index, 6 forces, 3 points, xyz each (`constants().force_floats`). */
 export type ForceStride = 28;
+/** Floats per body of the squash table: nx·d, ny·d, nz·d, reach (`write_body_squash`). */
+export type SquashStride = 4;
 "#;
 
 #[wasm_bindgen(typescript_custom_section)]
@@ -186,6 +190,18 @@ impl Engine {
 
     pub fn body_scales_ptr(&self) -> *const f32 {
         self.state.scales.as_ptr()
+    }
+
+    /// Writes each body's deepest dent since the last call, `SQUASH_FLOATS`
+    /// per body, dense order (`squash.rs`), for `body_squash_ptr`; returns
+    /// how many bodies. Drawing only: the physics stays rigid.
+    pub fn write_body_squash(&mut self) -> Result<u32, CallError> {
+        named("write_body_squash", self.state.write_body_squash())?;
+        Ok((self.state.squash_out.len() / SQUASH_FLOATS) as u32)
+    }
+
+    pub fn body_squash_ptr(&self) -> *const f32 {
+        self.state.squash_out.as_ptr()
     }
 
     /// Where the balloons float now (at the ceiling, hovering, on the floor),
@@ -492,6 +508,7 @@ mod tests {
             ("TreeStride", TREE_FLOATS),
             ("RibbonPointStride", RIBBON_POINT_FLOATS),
             ("MeshVertexStride", MESH_VERTEX_FLOATS),
+            ("SquashStride", SQUASH_FLOATS),
         ] {
             let line = format!("export type {name} = {value};");
             assert!(STRIDE_TYPES.contains(&line), "{line} in {STRIDE_TYPES}");

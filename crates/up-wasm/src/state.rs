@@ -73,6 +73,9 @@ pub struct State {
     pub mesh: MeshBuffers,
     /// The probed forces `write_forces` wrote last (`forces.rs`).
     pub forces: Vec<f32>,
+    /// Each body's deepest dent since the page last read it, and what it read (`squash.rs`).
+    pub squash: crate::squash::SquashTable,
+    pub squash_out: Vec<f32>,
 }
 
 /// `Ok` when a velocity stays within `MAX_SPEED` and `MAX_SPIN`, else why not.
@@ -160,6 +163,7 @@ impl State {
         for _ in 0..n {
             self.world_mut()?.step();
             self.sum_last_step();
+            self.record_squash();
         }
         Ok(())
     }
@@ -429,6 +433,7 @@ impl State {
             color_names: loaded.built.color_names.clone(),
             diameters: loaded.scene.balloons.iter().map(|g| g.diameter()).collect(),
             foil: self.model_foil()?,
+            finishes: loaded.scene.balloons.iter().map(|g| g.finish()).collect(),
             dt: loaded.built.world.def().dt,
         })
     }

@@ -62,7 +62,10 @@ export class App {
     this.plot = new FloatPlot(document.body);
     this.bridge = new SimBridge({
       ready: (info) => this.worldReady(info),
-      frame: () => this.panel?.setPaused(this.bridge.paused),
+      frame: () => {
+        this.panel?.setPaused(this.bridge.paused);
+        this.world.takeFrame(this.bridge);
+      },
       stats: (stats, stepsPerSecond) => {
         this.lastStats = { stats, stepsPerSecond };
         this.hud.setStats(stats, stepsPerSecond);
@@ -189,6 +192,7 @@ export class App {
     step: () => this.bridge.singleStep(),
     timeLapse: (rate) => this.bridge.setRate(rate),
     debugTrees: (on) => this.setDebug(on),
+    finish: (finish) => this.world.balloons?.setFinishOverride(finish),
     screenshot: () => this.screenshot(),
     share: () => this.link.share(JSON.stringify(this.scene), () => this.hud.setMode("Link copied to the clipboard")),
   };

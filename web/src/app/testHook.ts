@@ -86,6 +86,18 @@ export function createTestHook(app: App) {
     },
     /** Each body's size over its shape's in the current frame (its gas's). */
     bodyScales: () => Array.from(bridge.scales),
+    /** The latex meshes by finish (material type and the uniforms that tell them apart, bodies drawn), and the panel's override. */
+    finishes: () => ({ meshes: world.balloons?.finishesDrawn() ?? [], override: world.balloons?.finishOverride ?? null, scene: app.info?.finishes ?? [] }),
+    /**
+     * Body i's dent: as drawn now, and as it would be drawn `agesMs` after
+     * it was made (the normal times the depth, m, world, and the reach, m;
+     * zeros: round), and when it was made (ms since the epoch; null: none).
+     */
+    squash: (i: number, agesMs: number[] = []) => ({
+      drawn: world.balloons?.squashOf(i) ?? [0, 0, 0, 0],
+      at: agesMs.map((ms) => world.balloons?.squashAt(i, ms) ?? [0, 0, 0, 0]),
+      madeAt: world.balloons?.dents.madeAt(i) ?? null,
+    }),
     /**
      * The float plot's samples, and the pixels of its lines' area (the
      * legend and the axis's words left out): those of a line (neither

@@ -1,14 +1,16 @@
 // Foil balloons: the engine's 18″ pillow (up_scene::foil_mesh, read through
 // `write_model_mesh`), one InstancedMesh per foil model, metallic (metalness
 // 1, low roughness: physics-reference "Looks") with a procedural crimp
-// normal map, each instance tinted with its colour. Only scenes with a foil
-// group make one; the latex mesh draws their bodies at size 0.
+// normal map, each instance tinted with its colour and dented like the latex
+// ones (squash.ts). Only scenes with a foil group make one; the latex mesh
+// draws their bodies at size 0.
 
 import * as THREE from "three";
 import type { ModelMesh } from "../sim/engine";
 import { bodiesByFoilModel, gatherPoses } from "./foilRouting";
 import { balloonInstances } from "./balloonInstances";
 import { POSE_STRIDE, writeInstanceMatrices } from "./poseMath";
+import { SQUASH_ATTRIBUTE, addSquash } from "./squash";
 
 /** Texels across the crimp normal map. */
 const CRIMP_TEXELS = 256;
@@ -122,6 +124,7 @@ export class FoilBalloons {
       normalScale: new THREE.Vector2(0.6, 0.6),
       envMapIntensity: 1,
     });
+    addSquash(this.material);
     this.isFoil = meshes.map((m) => m !== null);
     this.models = meshes.map((m) => (m ? this.makeModel(foilGeometry(m), 16) : null));
   }
@@ -131,6 +134,9 @@ export class FoilBalloons {
       this.group.remove(old.mesh);
       old.mesh.dispose();
     }
+    const squash = new THREE.InstancedBufferAttribute(new Float32Array(capacity * 4), 4);
+    squash.setUsage(THREE.DynamicDrawUsage);
+    geometry.setAttribute(SQUASH_ATTRIBUTE, squash);
     const mesh = balloonInstances(geometry, this.material, capacity, "foil-balloons");
     this.group.add(mesh);
     return { mesh, capacity, bodies: new Uint32Array(0) };
@@ -162,8 +168,12 @@ export class FoilBalloons {
     }
   }
 
-  /** Interpolated poses at each body's size now, as the latex balloons (the mesh is already the model's size). */
-  update(prev: Float32Array, curr: Float32Array, alpha: number, bodyScales: Float32Array): void {
+  /**
+   * Interpolated poses at each body's size now, as the latex balloons (the
+   * mesh is already the model's size), and each body's dent from `squash`
+   * (four floats per body, dense order) when given.
+   */
+  update(prev: Float32Array, curr: Float32Array, alpha: number, bodyScales: Float32Array, squash?: Float32Array): void {
     for (const model of this.models) {
       if (!model) continue;
       const n = gatherPoses(prev, bodyScales, model.bodies, this.prev, this.sizes);
@@ -173,6 +183,14 @@ export class FoilBalloons {
       model.mesh.instanceMatrix.clearUpdateRanges();
       model.mesh.instanceMatrix.addUpdateRange(0, n * 16);
       model.mesh.instanceMatrix.needsUpdate = true;
+      const dents = model.mesh.geometry.getAttribute(SQUASH_ATTRIBUTE) as THREE.InstancedBufferAttribute | undefined;
+      if (squash && dents) {
+        const out = dents.array as Float32Array;
+        for (let k = 0; k < n; k++) for (let c = 0; c < 4; c++) out[4 * k + c] = squash[4 * model.bodies[k] + c] ?? 0;
+        dents.clearUpdateRanges();
+        dents.addUpdateRange(0, n * 4);
+        dents.needsUpdate = true;
+      }
     }
   }
 

@@ -37,7 +37,7 @@ export class WorldView {
     this.assets = assets;
     this.balloons = new Balloons(assets);
     this.scene.add(this.balloons.group);
-    if (this.info) this.balloons.setWorld(this.info.palette, this.info.colorNames, this.info.diameters, this.info.foilMeshes);
+    if (this.info) this.balloons.setWorld(this.info.palette, this.info.colorNames, this.info.diameters, this.info.foilMeshes, this.info.finishes);
   }
 
   /** A new world from the engine; returns whether its room differs from the one drawn. */
@@ -57,7 +57,7 @@ export class WorldView {
       this.scene.add(this.ribbons.group);
     }
     this.ribbonVersion = -1;
-    this.balloons?.setWorld(info.palette, info.colorNames, info.diameters, info.foilMeshes);
+    this.balloons?.setWorld(info.palette, info.colorNames, info.diameters, info.foilMeshes, info.finishes);
     this.drawnVersion = -1;
     return roomChanged;
   }
@@ -69,6 +69,12 @@ export class WorldView {
     if (!on) this.debug.setContacts(contacts, 0);
   }
 
+  /** Takes the newest frame's dents as it arrives (frames may come faster than the page draws). */
+  takeFrame(bridge: SimBridge): void {
+    const f = bridge.current;
+    if (f && this.balloons && f.version === this.drawnVersion) this.balloons.takeDents(bridge.squash, f.stepTime);
+  }
+
   /** Poses of the newest frame, interpolated to `nowAbs` (ms since the epoch); false until balloons can be drawn. */
   update(bridge: SimBridge, nowAbs: number): boolean {
     const f = bridge.current;
@@ -78,7 +84,7 @@ export class WorldView {
       balloons.setBodies(bridge.colors, bridge.models);
       this.drawnVersion = f.version;
     }
-    balloons.update(bridge.prev, bridge.curr, f.count, bridge.alpha(nowAbs), bridge.scales);
+    balloons.update(bridge.prev, bridge.curr, f.count, bridge.alpha(nowAbs), bridge.scales, nowAbs);
     const ribbons = this.ribbons;
     const tables = bridge.ribbons;
     if (ribbons && f.version !== this.ribbonVersion && (tables.offsets[tables.bodies.length] ?? 0) * RIBBON_POINT_STRIDE === f.ribbonFloats) {

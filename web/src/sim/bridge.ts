@@ -36,6 +36,8 @@ export class SimBridge {
   ribbonsCurr = new Float32Array(0);
   /** Each body's size over its shape's in the current frame (its gas's). */
   scales = new Float32Array(0);
+  /** Each body's deepest dent since the frame before (`SQUASH_STRIDE` each; zeros: none). */
+  squash = new Float32Array(0);
   /** Each ribbon's first point, balloon and colour,. */
   ribbons: RibbonTables = { offsets: new Uint32Array(1), bodies: new Uint32Array(0), colors: new Uint32Array(0), weights: new Float32Array(0) };
   info: WorldInfo | null = null;
@@ -85,6 +87,7 @@ export class SimBridge {
         this.ribbonsPrev = views.ribbonsPrev;
         this.ribbonsCurr = views.ribbonsCurr;
         this.scales = views.scales;
+        this.squash = views.squash;
         if (msg.colors) this.colors = msg.colors;
         if (msg.models) this.models = msg.models;
         if (msg.ribbons) this.ribbons = msg.ribbons;

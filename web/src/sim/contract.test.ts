@@ -9,7 +9,7 @@ import { applyParams, paramsFromScene } from "../scene/sceneParams";
 import { engineConstants, setEngineConstants } from "../scene/sceneSchema";
 import { loadBuiltEngine } from "./builtEngine";
 import { Engine, EngineError } from "./engine";
-import { CONTACT_STRIDE, RIBBON_POINT_STRIDE, checkLayout, frameFloats } from "./frameLayout";
+import { CONTACT_STRIDE, RIBBON_POINT_STRIDE, SQUASH_STRIDE, checkLayout, frameFloats } from "./frameLayout";
 
 let engine: Engine;
 
@@ -49,7 +49,7 @@ describe("strides", () => {
     }
     const contacts = engine.contacts(1_000_000);
     expect(contacts.view.length).toBe(contacts.count * CONTACT_STRIDE);
-    expect(frameFloats(n, contacts.count)).toBe(2 * poses.length + contacts.view.length + n);
+    expect(frameFloats(n, contacts.count)).toBe(2 * poses.length + contacts.view.length + n + n * SQUASH_STRIDE);
   });
 });
 
@@ -75,7 +75,7 @@ describe("ribbons", () => {
     expect(tables.offsets[n]).toBe(engine.ribbonPointCount());
     const points = engine.ribbonPoints();
     expect(points.length).toBe(engine.ribbonPointCount() * RIBBON_POINT_STRIDE);
-    expect(frameFloats(n, 0, points.length)).toBe(2 * n * POSE_STRIDE + 2 * points.length + n);
+    expect(frameFloats(n, 0, points.length)).toBe(2 * n * POSE_STRIDE + 2 * points.length + n + n * SQUASH_STRIDE);
     expect([...tables.bodies].sort((a, b) => a - b)).toEqual([...Array(n).keys()]);
     for (const c of tables.colors) expect(c).toBeLessThanOrEqual(0xffffff);
     expect(Array.from(tables.weights), "the default ribbons carry no weight").toEqual(Array(n).fill(0));
@@ -164,7 +164,9 @@ describe("gas and time-lapse", () => {
     const n = engine.bodyCount();
     let scales = engine.bodyScales();
     expect(scales.length).toBe(n);
-    expect(frameFloats(n, 0, 0)).toBe(2 * n * POSE_STRIDE + scales.length);
+    const squash = engine.bodySquash();
+    expect(squash.length).toBe(n * SQUASH_STRIDE);
+    expect(frameFloats(n, 0, 0)).toBe(2 * n * POSE_STRIDE + scales.length + squash.length);
     for (const s of scales) expect(s).toBeCloseTo(1, 1);
     expect(engine.simTime()).toBe(0);
     expect(engine.airTemperatureC()).toBeCloseTo(20, 3);

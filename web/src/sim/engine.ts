@@ -7,8 +7,9 @@
 // engine's own error kind and message.
 
 import type * as Glue from "../../public/wasm/up_wasm";
+import { SQUASH_STRIDE } from "./frameLayout";
 
-export type { AdvanceReport, BodyCard, Constants, EngineStats, FloatCounts, NamedColor, Scene, SceneLimits, WorldSummary } from "../../public/wasm/up_wasm";
+export type { AdvanceReport, BodyCard, Constants, EngineStats, Finish, FloatCounts, NamedColor, Scene, SceneLimits, WorldSummary } from "../../public/wasm/up_wasm";
 
 /** The glue module as `import()` returns it. */
 export type GlueModule = typeof Glue;
@@ -198,6 +199,12 @@ export class Engine {
   bodyScales(): Float32Array {
     const n = this.call(() => this.e.write_body_scales());
     return new Float32Array(this.memory.buffer, this.e.body_scales_ptr(), n);
+  }
+
+  /** Each body's deepest dent since the last call (`SQUASH_STRIDE` floats each; drawing only), then forgotten. */
+  bodySquash(): Float32Array {
+    const n = this.call(() => this.e.write_body_squash());
+    return new Float32Array(this.memory.buffer, this.e.body_squash_ptr(), n * SQUASH_STRIDE);
   }
 
   /** Where the balloons float now, in all and per group (a look the engine's census remembers). */

@@ -7,7 +7,7 @@
 //     count × 7        count × 7       contactCount × 8    ribbonFloats       ribbonFloats      count     floats
 
 import { POSE_STRIDE } from "../render/poseMath";
-import type { ContactStride, PoseStride, RibbonPointStride } from "../../public/wasm/up_wasm";
+import type { ContactStride, PoseStride, RibbonPointStride, SquashStride } from "../../public/wasm/up_wasm";
 import type { Constants } from "./engine";
 
 /**
@@ -21,6 +21,9 @@ export const CONTACT_STRIDE: ContactStride = 8;
 
 /** Floats per ribbon point, x, y, z, as up-wasm writes them (`constants().ribbon_point_stride`). */
 export const RIBBON_POINT_STRIDE: RibbonPointStride = 3;
+
+/** Floats per body of the squash table: the dent's normal times its depth (x, y, z, m, world), and the reach (m) from the body's origin to the contact along it. */
+export const SQUASH_STRIDE: SquashStride = 4;
 
 /** The strides the page reads with, typed by the module's .d.ts: a page built against other strides does not compile. */
 const PAGE_STRIDES: { pose: PoseStride; contact: ContactStride; ribbon: RibbonPointStride } = {
@@ -55,11 +58,13 @@ export interface FrameViews {
   ribbonsCurr: Float32Array<ArrayBuffer>;
   /** Each body's size now over its shape's, one per body (a balloon shrinks as its gas leaves). */
   scales: Float32Array<ArrayBuffer>;
+  /** Each body's deepest dent since the previous frame, `SQUASH_STRIDE` each (zeros: none). */
+  squash: Float32Array<ArrayBuffer>;
 }
 
 /** Floats a frame of `count` bodies, `contactCount` contacts and `ribbonFloats` floats of ribbon points needs. */
 export function frameFloats(count: number, contactCount: number, ribbonFloats = 0): number {
-  return 2 * count * POSE_STRIDE + contactCount * CONTACT_STRIDE + 2 * ribbonFloats + count;
+  return 2 * count * POSE_STRIDE + contactCount * CONTACT_STRIDE + 2 * ribbonFloats + count * (1 + SQUASH_STRIDE);
 }
 
 /** Views of the parts of a frame buffer (no copy). */
@@ -79,5 +84,6 @@ export function frameViews(buffer: ArrayBuffer, count: number, contactCount: num
     ribbonsPrev: new Float32Array(buffer, ribbons * 4, ribbonFloats),
     ribbonsCurr: new Float32Array(buffer, (ribbons + ribbonFloats) * 4, ribbonFloats),
     scales: new Float32Array(buffer, (ribbons + 2 * ribbonFloats) * 4, count),
+    squash: new Float32Array(buffer, (ribbons + 2 * ribbonFloats + count) * 4, count * SQUASH_STRIDE),
   };
 }

@@ -4,7 +4,7 @@
 // transfers it; the main thread keeps the newest frame and hands the previous
 // buffer back. No typed array is allocated per frame on either side.
 
-import type { Constants, EngineStats, ModelMesh, RibbonTables, RoomMesh, TreeNode } from "./engine";
+import type { Constants, EngineStats, Finish, ModelMesh, RibbonTables, RoomMesh, TreeNode } from "./engine";
 import type { FloatSample } from "../ui/floatPlot";
 import type { ForcesPayload } from "./forcesFrame";
 
@@ -57,6 +57,8 @@ export interface WorldInfo {
   diameters: number[];
   /** Each foil model's surface (drawn instead of the latex OBJ); null for a latex model. */
   foilMeshes: (ModelMesh | null)[];
+  /** How each balloon model is drawn: the scene's `finish`, or its kind's. */
+  finishes: Finish[];
   /** s per step. */
   dt: number;
   capacity: number;

@@ -99,6 +99,7 @@ function worldInfo(e: Engine): WorldInfo {
     colorNames: info.color_names,
     diameters: info.diameters,
     foilMeshes,
+    finishes: info.finishes,
     dt: info.dt,
     capacity: e.capacity(),
     constants: e.constants,
@@ -160,6 +161,7 @@ function sendFrame(previous: Previous | null): void {
   out.ribbonsPrev.set(previous && previous.ribbons.length === ribbons.length ? previous.ribbons : ribbons);
   out.ribbonsCurr.set(ribbons);
   out.scales.set(state.engine.bodyScales());
+  out.squash.set(state.engine.bodySquash());
   const frame: FromWorker = {
     type: "frame",
     buffer,

@@ -7,6 +7,10 @@ import GUI from "lil-gui";
 import type { PanelParams } from "../scene/sceneParams";
 import { TIME_LAPSE_RATES } from "../sim/timeLapse";
 import { formatRate } from "./clock";
+import type { Finish } from "../sim/engine";
+
+/** The finish menu: every latex balloon drawn in one finish, or each group in its scene's. */
+export const FINISH_OPTIONS: Record<string, Finish | "scene"> = { "as the scene says": "scene", latex: "latex", pearl: "pearl", "foil (chrome)": "foil" };
 
 /** The time-lapse menu: each rate's name ("real time", "×60", …) to its value. */
 export const TIME_LAPSE_OPTIONS: Record<string, number> = Object.fromEntries(TIME_LAPSE_RATES.map((r) => [formatRate(r), r]));
@@ -25,6 +29,8 @@ export interface PanelActions {
   /** Time-lapse: simulated seconds per real second (1: real time). */
   timeLapse(rate: number): void;
   debugTrees(on: boolean): void;
+  /** Draws every latex balloon in `finish`; null: as the scene says (looks only). */
+  finish(finish: Finish | null): void;
   screenshot(): void;
   share(): void;
 }
@@ -32,7 +38,7 @@ export interface PanelActions {
 export class Panel {
   readonly gui: GUI;
   private readonly params: PanelParams;
-  private readonly view = { trees: false, timeLapse: 1 };
+  private readonly view = { trees: false, timeLapse: 1, finish: "scene" as Finish | "scene" };
   private readonly pauseButton: ReturnType<GUI["add"]>;
   private readonly sim: GUI;
   private readonly buttons = {
@@ -65,6 +71,7 @@ export class Panel {
     tag(balloons.add(p, "ribbonLength", 0, PANEL_MAX_RIBBON_M, 0.05), "ribbonLength")
       .name("ribbon length (m, 0: none)")
       .onFinishChange(() => actions.ribbonLength({ ...p }));
+    tag(balloons.add(this.view, "finish", FINISH_OPTIONS), "finish").onChange((f: Finish | "scene") => actions.finish(f === "scene" ? null : f));
 
     const physics = this.gui.addFolder("Physics");
     physics.add(p, "drag", 0, 3, 0.01).name("drag coefficient").onFinishChange(changed);
