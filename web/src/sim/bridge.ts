@@ -6,6 +6,7 @@ import type { EngineStats, RibbonTables } from "./engine";
 import type { CensusSample, Frame, FromWorker, ToWorker, Vec3Tuple, WorldInfo } from "./protocol";
 import { frameViews } from "./frameLayout";
 import { setEngineConstants } from "../scene/sceneSchema";
+import type { StepsMeasured } from "./stepMeter";
 
 export interface BridgeEvents {
   ready(info: WorldInfo): void;
@@ -38,6 +39,8 @@ export class SimBridge {
   /** Validation requests waiting for the worker's answer, by id. */
   private readonly validations = new Map<number, (error: string | null) => void>();
   private nextValidation = 1;
+  /** Step measurements waiting for the worker's answer, in order. */
+  private readonly measurements: ((r: StepsMeasured) => void)[] = [];
 
   constructor(private readonly events: BridgeEvents) {
     this.worker = new Worker(new URL("./worker.ts", import.meta.url), { type: "module" });
@@ -88,6 +91,9 @@ export class SimBridge {
         this.validations.get(msg.id)?.(msg.error);
         this.validations.delete(msg.id);
         break;
+      case "stepsMeasured":
+        this.measurements.shift()?.(msg);
+        break;
     }
   }
 
@@ -112,6 +118,14 @@ export class SimBridge {
     return new Promise((resolve) => {
       this.validations.set(id, resolve);
       this.send({ type: "validate", id, sceneJson });
+    });
+  }
+
+  /** Measurements: restarts the scene and times `steps` steps in the worker (sim/stepMeter.ts); the page draws on meanwhile. */
+  measureSteps(steps: number): Promise<StepsMeasured> {
+    return new Promise((resolve) => {
+      this.measurements.push(resolve);
+      this.send({ type: "measureSteps", steps });
     });
   }
 

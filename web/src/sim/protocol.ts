@@ -6,6 +6,7 @@
 
 import type { Constants, EngineStats, ModelMesh, RibbonTables, RoomMesh, TreeNode } from "./engine";
 import type { FloatSample } from "../ui/floatPlot";
+import type { StepsMeasured } from "./stepMeter";
 
 export type Vec3Tuple = [number, number, number];
 
@@ -29,7 +30,9 @@ export type ToWorker =
   | { type: "release" }
   | { type: "return"; buffer: ArrayBuffer }
   /** Asks the engine whether it would load `sceneJson`; answered by `validated` with the same `id`. */
-  | { type: "validate"; id: number; sceneJson: string };
+  | { type: "validate"; id: number; sceneJson: string }
+  /** Measurements: the scene from its start, `steps` steps timed one by one (sim/stepMeter.ts). */
+  | { type: "measureSteps"; steps: number };
 
 /** What the main thread needs to draw a freshly built world. */
 export interface WorldInfo {
@@ -98,4 +101,5 @@ export type FromWorker =
   | { type: "census"; sample: CensusSample }
   | { type: "error"; message: string; fatal: boolean }
   /** The engine's message when it refuses the scene of `validate` request `id`, else null. */
-  | { type: "validated"; id: number; error: string | null };
+  | { type: "validated"; id: number; error: string | null }
+  | ({ type: "stepsMeasured" } & StepsMeasured);
