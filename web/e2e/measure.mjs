@@ -56,6 +56,9 @@ function parseArgs(argv) {
 }
 
 const viewport = { width: 960, height: 600 };
+const t0 = Date.now();
+/** Progress on standard error (standard output ends with the one JSON line). */
+const log = (text) => console.error(`measure.mjs [${Math.round((Date.now() - t0) / 1000)} s]: ${text}`);
 const round = (x, digits = 1) => (x === null || x === undefined ? null : Math.round(x * 10 ** digits) / 10 ** digits);
 
 /** Nearest-rank quantile, as the benchmarks take it. */
@@ -162,10 +165,13 @@ async function measureThreads(browser, url, opts, threads) {
     }));
     await page.evaluate(instrument);
     const running = await phase(page, opts.seconds * 1000);
+    log(`${threads} thread(s): loaded in ${round(loadSeconds)} s; ran ${opts.seconds} s (${running.frames} frames)`);
     await page.keyboard.press(" ");
-    await page.waitForFunction(() => window.__up.paused());
+    // Seconds at 10,000 balloons: SwiftShader's frames hold the main thread's key handling back.
+    await page.waitForFunction(() => window.__up.paused(), null, { timeout: 300_000, polling: 200 });
     await page.waitForTimeout(500);
     const paused = await phase(page, Math.min(5, opts.seconds) * 1000);
+    log(`${threads} thread(s): drawing alone measured (${paused.frames} frames); timing ${opts.steps} steps`);
     // The worker restarts the scene and steps the window; the page draws on meanwhile.
     const window_ = await page.evaluate((steps) => window.__up.measureSteps(steps), opts.steps);
     const physics = summary(window_.engineMs, 2);
@@ -211,7 +217,7 @@ try {
   const runs = [];
   for (const threads of opts.threads) {
     runs.push(await measureThreads(browser, url, opts, threads));
-    console.error(`measure.mjs: ${threads} thread(s): physics mean ${runs.at(-1).physics_ms.mean} ms per step, frame work median ${runs.at(-1).frame_ms?.median} ms`);
+    log(`${threads} thread(s): physics mean ${runs.at(-1).physics_ms.mean} ms per step, frame work median ${runs.at(-1).frame_ms?.median} ms`);
   }
   const base = runs.find((r) => r.threads === 1);
   const ratio = (key) =>
