@@ -27,6 +27,8 @@ export function createTestHook(app: App) {
     resetFrameMeter: () => app.frameMeter.reset(),
     /** Measurements: the scene restarted and `steps` steps timed in the worker; resolves with the times and the state hash. */
     measureSteps: (steps: number) => app.bridge.measureSteps(steps),
+    /** Measurements: balloons drawn or not (the frame's work goes on; SwiftShader's drawing of thousands takes the CPU). */
+    drawBalloons: (on: boolean) => world.balloons?.setVisible(on),
     debugView: () => world.debug.visible,
     /** Contacts the debug view draws now, and how many the current frame carried. */
     contacts: () => ({
