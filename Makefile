@@ -118,7 +118,8 @@ bench-ribbons: setup-rust
 	target/release/up-bench report --ribbons --sizes 1000,10000 --multibody-sizes 100 --steps 600,300,120
 
 # The page in headless Chromium, once per thread count on the same scene: physics per step over
-# MEASURE_STEPS steps (300: the rise, the arrival under the ceiling, the pile going to sleep), the main thread's frame work, input delay, the state hash (equal on all).
+# MEASURE_STEPS steps (300: the rise, the arrival under the ceiling, the pile going to sleep),
+# the main thread's frame work, input delay, the state hash (equal on all).
 BALLOONS ?= 10000
 THREADS ?= 1,2
 MEASURE_STEPS ?= 300
