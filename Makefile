@@ -17,6 +17,14 @@ PORT ?= 8080
 CARGO ?= cargo
 WASM_TARGET := wasm32-unknown-unknown
 WASM_OUT := web/public/wasm/up_wasm.wasm
+# The threaded module (Web Workers sharing one memory) for cross-origin isolated
+# pages; up_wasm.wasm stays the module of the others. Its glue and the worker
+# script of wasm-bindgen-rayon go to their own directory.
+WASM_THREADS_DIR := web/public/wasm/threads
+WASM_THREADS_OUT := $(WASM_THREADS_DIR)/up_wasm.wasm
+# Threads in wasm need a std built with atomics (-Z build-std), which only a
+# nightly does: one pinned nightly, for this build only.
+WASM_THREADS_TOOLCHAIN := nightly-2026-05-19
 # The JS glue must come from the wasm-bindgen-cli of the version Cargo.lock holds.
 WASM_BINDGEN_VERSION := $(shell sed -n '/^name = "wasm-bindgen"$$/{n;s/^version = "\(.*\)"$$/\1/p;}' Cargo.lock)
 RUST_SOURCES := $(shell find crates -name '*.rs' -o -name Cargo.toml) Cargo.toml Cargo.lock .cargo/config.toml
@@ -24,16 +32,16 @@ RUST_SOURCES := $(shell find crates -name '*.rs' -o -name Cargo.toml) Cargo.toml
 export PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD := 1
 WEB_SOURCES := $(shell find web/src web/index.html web/vite.config.* web/tsconfig*.json web/scripts -type f 2>/dev/null) $(shell find assets -type f 2>/dev/null)
 
-.PHONY: run build test lint test-rust test-web test-e2e test-determinism bench bench-ribbons measure fuzz soak setup setup-rust setup-web setup-browser setup-bench serve clean
+.PHONY: run build test lint test-rust test-web test-e2e test-determinism bench bench-ribbons measure fuzz soak setup setup-rust setup-wasm-threads setup-web setup-browser setup-bench serve clean
 
 run: build
 	@echo "UP is being served on http://localhost:$(PORT)  (Ctrl-C stops it)"
 	cd web && npm run --silent serve -- --port $(PORT)
 
-build: setup $(WASM_OUT) web/dist/index.html
+build: setup $(WASM_OUT) $(WASM_THREADS_OUT) web/dist/index.html
 	$(CARGO) build --release -p up-cli
 
-setup: setup-rust setup-web
+setup: setup-rust setup-wasm-threads setup-web
 
 setup-rust:
 	@rustup target list --installed 2>/dev/null | grep -qx $(WASM_TARGET) || rustup target add $(WASM_TARGET)
@@ -41,6 +49,12 @@ setup-rust:
 	@rustup component list --installed 2>/dev/null | grep -q '^rustfmt' || rustup component add rustfmt
 	@wasm-bindgen --version 2>/dev/null | grep -qx 'wasm-bindgen $(WASM_BINDGEN_VERSION)' || \
 	  $(CARGO) install wasm-bindgen-cli --version $(WASM_BINDGEN_VERSION) --locked --no-default-features
+
+# The pinned nightly with the standard library's sources (build-std), installed once.
+setup-wasm-threads:
+	@rustup toolchain list | grep -q '^$(WASM_THREADS_TOOLCHAIN)-' && \
+	  rustup component list --installed --toolchain $(WASM_THREADS_TOOLCHAIN) | grep -q '^rust-src' || \
+	  rustup toolchain install $(WASM_THREADS_TOOLCHAIN) --profile minimal --component rust-src
 
 # npm ci only when the lock file changed since the last install.
 setup-web: web/node_modules/.installed
@@ -68,7 +82,31 @@ $(WASM_OUT): $(RUST_SOURCES) | setup-rust
 	mv $(dir $@)up_wasm_bg.wasm $@
 	mv $(dir $@)up_wasm_bg.wasm.d.ts $(dir $@)up_wasm.wasm.d.ts
 
-web/dist/index.html: $(WASM_OUT) $(WEB_SOURCES) web/node_modules/.installed
+# The threaded module: the same engine with up-physics' `parallel` passes on
+# rayon's pool. Atomics, bulk memory and mutable globals make the memory
+# shareable (simd128 as the other build: RUSTFLAGS replaces .cargo/config.toml's
+# flags); std is rebuilt with them, with panic=abort (build-std cannot unwind on
+# wasm). Its own target directory keeps the stable build's artifacts as they are.
+# The module's link (this rustc leaves it to us): a shared memory that the
+# glue creates and hands to every worker, and the thread-local storage's
+# exports, with which wasm-bindgen gives each worker its own. The memory may
+# grow to 2 GiB: 10,000 balloons take a few hundred MB, and a shared memory
+# cannot move, so browsers reserve its maximum up front.
+WASM_THREADS_LINK := --shared-memory --import-memory --max-memory=2147483648 \
+  --export=__wasm_init_tls --export=__tls_size --export=__tls_align --export=__tls_base
+$(WASM_THREADS_OUT): $(RUST_SOURCES) | setup-rust setup-wasm-threads
+	RUSTFLAGS='-C target-feature=+atomics,+bulk-memory,+mutable-globals,+simd128' \
+	CARGO_PROFILE_RELEASE_PANIC=abort CARGO_PROFILE_RELEASE_DEBUG=0 \
+	  rustup run $(WASM_THREADS_TOOLCHAIN) cargo rustc --release -p up-wasm --lib --features threads \
+	  --target $(WASM_TARGET) --target-dir target/wasm-threads -Z build-std=panic_abort,std -- \
+	  $(addprefix -C link-arg=,$(WASM_THREADS_LINK))
+	rm -rf $(WASM_THREADS_DIR)
+	wasm-bindgen --target web --out-dir $(WASM_THREADS_DIR) target/wasm-threads/$(WASM_TARGET)/release/up_wasm.wasm
+	! grep -n 'from "env"' $(WASM_THREADS_DIR)/up_wasm.js
+	mv $(WASM_THREADS_DIR)/up_wasm_bg.wasm $@
+	mv $(WASM_THREADS_DIR)/up_wasm_bg.wasm.d.ts $(WASM_THREADS_DIR)/up_wasm.wasm.d.ts
+
+web/dist/index.html: $(WASM_OUT) $(WASM_THREADS_OUT) $(WEB_SOURCES) web/node_modules/.installed
 	cd web && npm run --silent build
 
 serve:

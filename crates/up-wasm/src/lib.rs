@@ -41,6 +41,8 @@ mod info;
 mod model_mesh;
 mod ribbons;
 mod state;
+#[cfg(feature = "threads")]
+mod threads;
 
 use glam::Vec3;
 use wasm_bindgen::prelude::*;
@@ -54,6 +56,9 @@ pub use ribbons::{pack_rgb, MAX_RIBBON_LENGTH_M, RIBBON_POINT_FLOATS};
 pub use state::{
     State, CAPACITY, MAX_SPEED, MAX_SPIN, MAX_STEPS_PER_CALL, POSE_FLOATS, TREE_FLOATS,
 };
+
+#[cfg(feature = "threads")]
+pub use threads::{init_thread_pool, thread_count};
 
 use error::named;
 
