@@ -11,17 +11,18 @@
 // --threads T: UP and Jolt on T threads (Jolt's multithreaded flavour above 1);
 // Rapier's npm builds run on one. Needs target/release/up-bench (the scene,
 // the peers' matched parameters, and the overlap measure — one measurement for
-// every engine, natively) and web/public/wasm/up_wasm.wasm with its glue
-// up_wasm.js (`make web/public/wasm/up_wasm.wasm`).
+// every engine, natively) and UP's modules with their glue: web/public/wasm/up_wasm.wasm
+// on one thread, web/public/wasm/threads/up_wasm.wasm on more (make builds both).
 // Peak memory: each engine alone in a child process (`--rss-probe ENGINE`).
 
 import { execFileSync, spawnSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join, resolve } from 'node:path';
-import { fileURLToPath, pathToFileURL } from 'node:url';
+import { fileURLToPath } from 'node:url';
 import { performance } from 'node:perf_hooks';
 import { JoltEngine, loadJolt } from './jolt.mjs';
+import { loadUpWasm } from '../sim-node/loadEngine.mjs';
 
 const HERE = dirname(fileURLToPath(import.meta.url));
 const ROOT = resolve(HERE, '..', '..');
@@ -59,7 +60,6 @@ function parseArgs(argv) {
     rss: true,
     rssProbe: null,
     upBench: join(ROOT, 'target', 'release', 'up-bench'),
-    wasm: join(ROOT, 'web', 'public', 'wasm', 'up_wasm.wasm'),
   };
   const int = (name, value, min, max) => {
     const n = Number(value);
@@ -89,9 +89,8 @@ function parseArgs(argv) {
         break;
       case '--rss-probe': opts.rssProbe = next(); break;
       case '--up-bench': opts.upBench = resolve(next()); break;
-      case '--wasm': opts.wasm = resolve(next()); break;
       case '--help':
-        console.log(`node bench.mjs [--balloons N] [--steps K] [--seed S] [--threads T] [--json] [--engines ${ENGINES.join(',')}] [--no-rss] [--up-bench PATH] [--wasm PATH]`);
+        console.log(`node bench.mjs [--balloons N] [--steps K] [--seed S] [--threads T] [--json] [--engines ${ENGINES.join(',')}] [--no-rss] [--up-bench PATH]`);
         process.exit(0);
         break;
       default: throw new Error(`unknown argument ${JSON.stringify(arg)} (try --help)`);
@@ -113,10 +112,9 @@ function loadScene(opts) {
 
 class UpWasm {
   /** Loads the module at `path` with its glue (the same name ending in .js) next to it. */
-  static async load(path, threads) {
-    if (threads !== 1) throw new Error(`UP at ${threads} threads needs the threaded module; this build runs on one`);
-    const glue = await import(pathToFileURL(path.replace(/\.wasm$/, '.js')).href);
-    const { memory } = glue.initSync({ module: readFileSync(path) });
+  /** One thread: today's module; T threads: the threaded one on a pool of T workers (sim-node/loadEngine.mjs). */
+  static async load(threads) {
+    const { glue, memory } = await loadUpWasm({ threads });
     return new UpWasm(glue, memory);
   }
 
@@ -296,7 +294,7 @@ class RapierEngine {
 
 async function buildEngines(opts, exported, names) {
   // UP builds the scene for every engine; it runs on opts.threads only where it is timed.
-  const up = await UpWasm.load(opts.wasm, names.includes('up') ? opts.threads : 1);
+  const up = await UpWasm.load(names.includes('up') ? opts.threads : 1);
   up.loadSceneJson(JSON.stringify(exported.scene));
   if (up.bodyCount() !== exported.balloons) {
     throw new Error(`UP's wasm built ${up.bodyCount()} balloons, expected ${exported.balloons}`);
@@ -367,7 +365,7 @@ function measure(opts, frames) {
 }
 
 function probeInChild(opts, engine, steps) {
-  const args = [fileURLToPath(import.meta.url), '--rss-probe', engine, '--balloons', String(opts.balloons), '--seed', String(opts.seed), '--steps', String(steps), '--threads', String(opts.threads), '--up-bench', opts.upBench, '--wasm', opts.wasm];
+  const args = [fileURLToPath(import.meta.url), '--rss-probe', engine, '--balloons', String(opts.balloons), '--seed', String(opts.seed), '--steps', String(steps), '--threads', String(opts.threads), '--up-bench', opts.upBench];
   const r = spawnSync(process.execPath, args, { encoding: 'utf8', maxBuffer: 1 << 24 });
   if (r.status !== 0) throw new Error(`memory probe for ${engine} failed: ${r.stderr.trim()}`);
   return JSON.parse(r.stdout.trim().split('\n').pop());
