@@ -1,5 +1,13 @@
 import { defineConfig } from "vitest/config";
 
+// Cross-origin isolation: without it a page has no SharedArrayBuffer, and the
+// engine's threads (Web Workers sharing the module's memory) cannot start.
+// require-corp would block any cross-origin asset: the page loads none.
+const ISOLATION_HEADERS = {
+  "Cross-Origin-Opener-Policy": "same-origin",
+  "Cross-Origin-Embedder-Policy": "require-corp",
+};
+
 // Vite's own bundles go to dist/static so they never mix with public/assets
 // (the balloon OBJ/MTL and the scenes copied from ../assets).
 export default defineConfig({
@@ -10,7 +18,8 @@ export default defineConfig({
     chunkSizeWarningLimit: 1500,
   },
   worker: { format: "es" },
-  preview: { port: 8080, strictPort: true, host: "0.0.0.0" },
+  server: { headers: ISOLATION_HEADERS },
+  preview: { port: 8080, strictPort: true, host: "0.0.0.0", headers: ISOLATION_HEADERS },
   test: {
     include: ["src/**/*.test.ts"],
     environment: "node",

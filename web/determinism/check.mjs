@@ -11,12 +11,17 @@
 // takes exactly the native run's number of steps and compares `state_hash`.
 // Its scene has ribbons, which the hash covers; the ribbon counts are
 // compared too where the CLI reports them (`ribbons` in its JSON).
+// Then the same with the threaded module (web/public/wasm/threads) on 1, 2
+// and 4 threads (UP_CHECK_THREADS=1,2,4), each in a process of its own (a
+// process holds one pool; web/sim-node/loadEngine.mjs loads it).
 // Exit 0: equal; 1: they differ; 2: something needed is missing or failed.
 // UP_WASM=path.wasm checks that module instead of the web app's copy (its
-// glue, the same name ending in .js, lies next to it).
-// Build first: `cargo build --release -p up-cli` and `make web/public/wasm/up_wasm.wasm`.
+// glue, the same name ending in .js, lies next to it); UP_CHECK_THREADS=""
+// leaves the threaded module out.
+// Build first: `cargo build --release -p up-cli`, `make web/public/wasm/up_wasm.wasm`
+// and `make web/public/wasm/threads/up_wasm.wasm`.
 
-import { execFileSync } from "node:child_process";
+import { execFileSync, spawnSync } from "node:child_process";
 import { existsSync, readFileSync, statSync } from "node:fs";
 import { dirname, extname, join, resolve } from "node:path";
 import { fileURLToPath, pathToFileURL } from "node:url";
@@ -27,6 +32,21 @@ const scenePath = resolve(process.argv[2] ?? join(here, "scene.toml"));
 const upBinary = join(root, "target", "release", "up");
 const wasmPath = resolve(process.env.UP_WASM ?? join(root, "web", "public", "wasm", "up_wasm.wasm"));
 const gluePath = wasmPath.replace(/\.wasm$/, ".js");
+const threadedPath = join(root, "web", "public", "wasm", "threads", "up_wasm.wasm");
+/** Thread counts the threaded module is checked on. */
+const threadCounts = (process.env.UP_CHECK_THREADS ?? "1,2,4")
+  .split(",")
+  .filter((t) => t.trim() !== "")
+  .map((t) => {
+    const n = Number(t);
+    if (!Number.isInteger(n) || n < 1 || n > 256) {
+      console.error(`determinism: UP_CHECK_THREADS: expected integers from 1 to 256, found ${JSON.stringify(t)}`);
+      process.exit(2);
+    }
+    return n;
+  });
+/** Set in the child that runs the threaded module: its thread count and steps. */
+const child = process.env.UP_CHECK_CHILD ? JSON.parse(process.env.UP_CHECK_CHILD) : null;
 
 function fail(code, message) {
   console.error(`determinism: ${message}`);
@@ -38,11 +58,52 @@ for (const [path, how] of [
   [upBinary, "build it: cargo build --release -p up-cli"],
   [wasmPath, "build it: make web/public/wasm/up_wasm.wasm"],
   [gluePath, "build it: make web/public/wasm/up_wasm.wasm"],
+  ...(threadCounts.length > 0 ? [[threadedPath, "build it: make web/public/wasm/threads/up_wasm.wasm"]] : []),
 ]) {
   if (!existsSync(path)) fail(2, `${path} is missing (${how})`);
 }
 const format = extname(scenePath).toLowerCase();
 if (format !== ".toml" && format !== ".json") fail(2, `${scenePath}: expected a .toml or .json scene`);
+
+const text = readFileSync(scenePath, "utf8");
+const call = (what, f) => {
+  try {
+    return f();
+  } catch (e) {
+    fail(2, `${what}: ${e.name}: ${e.message}`);
+  }
+};
+
+/** The world of the scene in `glue`'s module after `steps` steps: its counts and state hash. */
+function runWasm(glue, steps) {
+  const engine = new glue.Engine();
+  call(`loading ${scenePath} in wasm`, () =>
+    format === ".toml" ? engine.load_scene_toml(text) : engine.load_scene_json(text),
+  );
+  // The module says how many steps one call takes.
+  const { max_steps_per_call } = glue.constants();
+  for (let done = 0; done < steps; ) {
+    const n = Math.min(max_steps_per_call, steps - done);
+    call(`step(${n})`, () => engine.step(n));
+    done += n;
+  }
+  // u64 comes back as a BigInt: print it as the CLI does (16 hex digits).
+  const hash = BigInt.asUintN(64, engine.state_hash()).toString(16).padStart(16, "0");
+  return { bodies: engine.body_count(), ribbons: engine.ribbon_count(), hash };
+}
+
+// ---- the threaded module, in a child process of its own ----
+if (child) {
+  const { loadUpWasm } = await import(pathToFileURL(join(root, "web", "sim-node", "loadEngine.mjs")).href);
+  let loaded;
+  try {
+    loaded = await loadUpWasm({ threads: child.threads, threaded: true });
+  } catch (e) {
+    fail(2, `the threaded module on ${child.threads} thread(s): ${e.message}`);
+  }
+  console.log(JSON.stringify({ threads: loaded.threads, ...runWasm(loaded.glue, child.steps) }));
+  process.exit(0);
+}
 
 // ---- native ----
 let native;
@@ -55,45 +116,40 @@ try {
 const steps = native.steps;
 if (!Number.isInteger(steps) || steps < 1) fail(2, `up run gave no step count: ${JSON.stringify(native)}`);
 
-// ---- WebAssembly ----
+/** Fails unless `wasm` (runWasm's result, from `what`) ended as the native run did. */
+function compare(what, wasm, built) {
+  if (wasm.bodies !== native.balloons) {
+    fail(1, `${what}: body counts differ: native ${native.balloons}, wasm ${wasm.bodies}`);
+  }
+  if (typeof native.ribbons === "number" && native.ribbons !== wasm.ribbons) {
+    fail(1, `${what}: ribbon counts differ: native ${native.ribbons}, wasm ${wasm.ribbons}`);
+  }
+  const summary = `${scenePath}: ${native.balloons} balloons, ${wasm.ribbons} ribbons, ${steps} steps`;
+  if (wasm.hash !== native.state_hash) {
+    const age = (p) => statSync(p).mtime.toISOString();
+    fail(
+      1,
+      `${summary}: ${what}: state_hash differs: native ${native.state_hash}, wasm ${wasm.hash}\n` +
+        `  (built: up ${age(upBinary)}, ${built} ${age(built)}; a stale build differs too: rebuild both)`,
+    );
+  }
+  console.log(`determinism: ${summary}: native and ${what} agree, state_hash ${wasm.hash}`);
+}
+
+// ---- WebAssembly, one thread ----
 const glue = await import(pathToFileURL(gluePath).href);
 glue.initSync({ module: readFileSync(wasmPath) });
-const engine = new glue.Engine();
-const call = (what, f) => {
-  try {
-    return f();
-  } catch (e) {
-    fail(2, `${what}: ${e.name}: ${e.message}`);
-  }
-};
-const text = readFileSync(scenePath, "utf8");
-call(`loading ${scenePath} in wasm`, () =>
-  format === ".toml" ? engine.load_scene_toml(text) : engine.load_scene_json(text),
-);
-if (engine.body_count() !== native.balloons) {
-  fail(1, `body counts differ: native ${native.balloons}, wasm ${engine.body_count()}`);
-}
-const ribbons = engine.ribbon_count();
-if (typeof native.ribbons === "number" && native.ribbons !== ribbons) {
-  fail(1, `ribbon counts differ: native ${native.ribbons}, wasm ${ribbons}`);
-}
-// The module says how many steps one call takes.
-const { max_steps_per_call } = glue.constants();
-for (let done = 0; done < steps; ) {
-  const n = Math.min(max_steps_per_call, steps - done);
-  call(`step(${n})`, () => engine.step(n));
-  done += n;
-}
-// u64 comes back as a BigInt: print it as the CLI does (16 hex digits).
-const wasmHash = BigInt.asUintN(64, engine.state_hash()).toString(16).padStart(16, "0");
+compare("wasm", runWasm(glue, steps), wasmPath);
 
-const summary = `${scenePath}: ${native.balloons} balloons, ${ribbons} ribbons, ${steps} steps`;
-if (wasmHash !== native.state_hash) {
-  const age = (p) => statSync(p).mtime.toISOString();
-  fail(
-    1,
-    `${summary}: state_hash differs: native ${native.state_hash}, wasm ${wasmHash}\n` +
-      `  (built: up ${age(upBinary)}, up_wasm.wasm ${age(wasmPath)}; a stale build differs too: rebuild both)`,
-  );
+// ---- WebAssembly, threaded ----
+for (const threads of threadCounts) {
+  const run = spawnSync(process.execPath, [fileURLToPath(import.meta.url), scenePath], {
+    encoding: "utf8",
+    env: { ...process.env, UP_CHECK_CHILD: JSON.stringify({ threads, steps }) },
+    timeout: 600_000,
+  });
+  if (run.status !== 0) fail(2, `the threaded module on ${threads} thread(s) failed (exit ${run.status ?? run.signal}): ${run.stderr.trim()}`);
+  const wasm = JSON.parse(run.stdout.trim().split("\n").pop());
+  if (wasm.threads !== threads) fail(2, `the threaded module ran on ${wasm.threads} thread(s), ${threads} asked for`);
+  compare(`wasm on ${threads} thread(s)`, wasm, threadedPath);
 }
-console.log(`determinism: ${summary}: native and wasm agree, state_hash ${wasmHash}`);

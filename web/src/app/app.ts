@@ -7,6 +7,7 @@ import { createStage, type Stage } from "../render/stage";
 import { WorldView } from "../render/worldView";
 import { saveScreenshot } from "../render/screenshot";
 import { SimBridge } from "../sim/bridge";
+import { MAX_THREADS, requestedThreads } from "../sim/threadPool";
 import type { EngineStats } from "../sim/engine";
 import type { WorldInfo } from "../sim/protocol";
 import { Controls } from "../ui/controls";
@@ -81,7 +82,9 @@ export class App {
     this.world
       .loadAssets(new URL("assets/", document.baseURI).href)
       .catch((e: Error) => this.messages.fatal("The balloon model failed to load", e.message));
-    this.bridge.init(new URL("wasm/up_wasm.wasm", document.baseURI).href, initialJson);
+    const { threads, error } = requestedThreads(location.search, navigator.hardwareConcurrency);
+    if (error) this.messages.error(error);
+    this.bridge.init(new URL("wasm/up_wasm.wasm", document.baseURI).href, initialJson, threads);
     window.addEventListener("resize", () => this.stage.resize());
     requestAnimationFrame((now) => this.frame(now));
   }
@@ -102,8 +105,12 @@ export class App {
     if (roomChanged) this.stage.fitToRoom(box.halfWidth, box.halfDepth, box.top);
     this.controls.setWorld(box, info.trees, this.firstWorld || roomChanged);
     this.firstWorld = false;
-    if (!this.panel) this.panel = new Panel(params, this.panelActions, Math.min(PANEL_MAX_BALLOONS, info.capacity));
-    else this.panel.set(params);
+    if (!this.panel) {
+      this.panel = new Panel(params, this.panelActions, Math.min(PANEL_MAX_BALLOONS, info.capacity));
+      // Threads only where memory can be shared; a new count restarts the engine on the scene shown.
+      if (info.isolated) this.panel.addThreads(info.threads, Math.max(info.threads, Math.min(MAX_THREADS, navigator.hardwareConcurrency || 1)), (n) => this.bridge.restart(JSON.stringify(this.scene), n));
+    } else this.panel.set(params);
+    this.hud.setThreads(info.threads, info.isolated);
     this.page.loading.hidden = true;
   }
 

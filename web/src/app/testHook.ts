@@ -52,6 +52,13 @@ export function createTestHook(app: App) {
       return { end: [p[e], p[e + 1], p[e + 2]], body: bodies[r] };
     },
     steps: () => bridge.current?.steps ?? 0,
+    /** Threads stepping the engine (0 before it is ready), and whether the page is cross-origin isolated. */
+    threads: () => app.info?.threads ?? 0,
+    isolated: () => app.info?.isolated ?? null,
+    /** What the HUD's threads line reads. */
+    threadsText: () => document.getElementById("hud-threads")?.textContent ?? "",
+    /** The world's state hash (16 hex digits, as `up run --json` prints it) and the steps it was taken after. */
+    stateHash: () => bridge.stateHash(),
     /** The simulated clock of the current frame and what the HUD's clock line reads. */
     clock: () => {
       const f = bridge.current;

@@ -18,7 +18,11 @@ export interface BridgeEvents {
 }
 
 export class SimBridge {
-  private readonly worker: Worker;
+  private worker: Worker;
+  private wasmUrl = "";
+  private rate = 1;
+  /** What a restarted engine is given once it is ready (it drops commands before). */
+  private restore: { paused: boolean; rate: number } | null = null;
   /** The newest frame, drawn every animation frame until the next one arrives. */
   current: Frame | null = null;
   prev = new Float32Array(0);
@@ -41,11 +45,18 @@ export class SimBridge {
   private nextValidation = 1;
   /** Step measurements waiting for the worker's answer, in order. */
   private readonly measurements: ((r: StepsMeasured) => void)[] = [];
+  /** State hash requests waiting for the worker's answer, by id. */
+  private readonly hashes = new Map<number, (answer: { hash: string; steps: number }) => void>();
 
   constructor(private readonly events: BridgeEvents) {
-    this.worker = new Worker(new URL("./worker.ts", import.meta.url), { type: "module" });
-    this.worker.onmessage = (e: MessageEvent<FromWorker>) => this.receive(e.data);
-    this.worker.onerror = (e) => events.error(`the physics worker failed: ${e.message || "unknown error"}`, true);
+    this.worker = this.startWorker();
+  }
+
+  private startWorker(): Worker {
+    const worker = new Worker(new URL("./worker.ts", import.meta.url), { type: "module" });
+    worker.onmessage = (e: MessageEvent<FromWorker>) => this.receive(e.data);
+    worker.onerror = (e) => this.events.error(`the physics worker failed: ${e.message || "unknown error"}`, true);
+    return worker;
   }
 
   private send(msg: ToWorker, transfer: Transferable[] = []): void {
@@ -57,6 +68,11 @@ export class SimBridge {
       case "ready":
         setEngineConstants(msg.info.constants);
         this.info = msg.info;
+        if (this.restore) {
+          if (this.restore.paused) this.setPaused(true);
+          if (this.restore.rate !== 1) this.setRate(this.restore.rate);
+          this.restore = null;
+        }
         this.events.ready(msg.info);
         break;
       case "frame": {
@@ -94,6 +110,10 @@ export class SimBridge {
       case "stepsMeasured":
         this.measurements.shift()?.(msg);
         break;
+      case "hash":
+        this.hashes.get(msg.id)?.(msg);
+        this.hashes.delete(msg.id);
+        break;
     }
   }
 
@@ -104,8 +124,35 @@ export class SimBridge {
     return Math.min(1, Math.max(0, (nowAbs - f.stepTime) / (this.info.dt * 1000)));
   }
 
-  init(wasmUrl: string, sceneJson: string | null): void {
-    this.send({ type: "init", wasmUrl, sceneJson });
+  /** Starts the engine of module `wasmUrl` (the single-threaded one) on `threads` threads, with `sceneJson` (null: the default scene). */
+  init(wasmUrl: string, sceneJson: string | null, threads: number): void {
+    this.wasmUrl = wasmUrl;
+    this.send({ type: "init", wasmUrl, sceneJson, threads });
+  }
+
+  /**
+   * A fresh worker and engine on `threads` threads, with `sceneJson` from its
+   * start (rayon's pool has its size for the life of the module), paused and
+   * at the time-lapse rate as before. Requests still waiting are answered as refused.
+   */
+  restart(sceneJson: string | null, threads: number): void {
+    this.worker.terminate();
+    for (const answer of this.validations.values()) answer("the physics engine was restarted");
+    this.validations.clear();
+    this.hashes.clear();
+    this.current = null;
+    this.worker = this.startWorker();
+    this.restore = { paused: this.paused, rate: this.rate };
+    this.init(this.wasmUrl, sceneJson, threads);
+  }
+
+  /** The world's state hash (16 hex digits) and the steps taken since it was built. */
+  stateHash(): Promise<{ hash: string; steps: number }> {
+    const id = this.nextValidation++;
+    return new Promise((resolve) => {
+      this.hashes.set(id, resolve);
+      this.send({ type: "hash", id });
+    });
   }
 
   /**
@@ -145,6 +192,7 @@ export class SimBridge {
 
   /** Time-lapse: simulated seconds per real second (1: real time). */
   setRate(rate: number): void {
+    this.rate = rate;
     this.send({ type: "rate", rate });
   }
 

@@ -11,7 +11,8 @@ import type { StepsMeasured } from "./stepMeter";
 export type Vec3Tuple = [number, number, number];
 
 export type ToWorker =
-  | { type: "init"; wasmUrl: string; sceneJson: string | null }
+  /** `wasmUrl`: the single-threaded module; the worker runs the threaded one next to it when it can and `threads` > 1. */
+  | { type: "init"; wasmUrl: string; sceneJson: string | null; threads: number }
   | { type: "load"; sceneJson: string | null }
   | { type: "pause"; paused: boolean }
   | { type: "step" }
@@ -32,7 +33,9 @@ export type ToWorker =
   /** Asks the engine whether it would load `sceneJson`; answered by `validated` with the same `id`. */
   | { type: "validate"; id: number; sceneJson: string }
   /** Measurements: the scene from its start, `steps` steps timed one by one (sim/stepMeter.ts). */
-  | { type: "measureSteps"; steps: number };
+  | { type: "measureSteps"; steps: number }
+  /** Asks for the world's state hash and the steps taken since it was built; answered by `hash` with the same `id`. */
+  | { type: "hash"; id: number };
 
 /** What the main thread needs to draw a freshly built world. */
 export interface WorldInfo {
@@ -55,6 +58,10 @@ export interface WorldInfo {
   capacity: number;
   /** The engine's constants (strides, limits, colours, error kinds). */
   constants: Constants;
+  /** Threads that step the engine. */
+  threads: number;
+  /** Whether the page is cross-origin isolated (else the engine runs on one thread). */
+  isolated: boolean;
 }
 
 export interface Frame {
@@ -102,4 +109,6 @@ export type FromWorker =
   | { type: "error"; message: string; fatal: boolean }
   /** The engine's message when it refuses the scene of `validate` request `id`, else null. */
   | { type: "validated"; id: number; error: string | null }
-  | ({ type: "stepsMeasured" } & StepsMeasured);
+  | ({ type: "stepsMeasured" } & StepsMeasured)
+  /** The world's state hash (16 hex digits, as the `up` CLI prints it) after `steps` steps. */
+  | { type: "hash"; id: number; hash: string; steps: number };

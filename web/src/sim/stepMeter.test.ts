@@ -1,7 +1,7 @@
 import { beforeAll, describe, expect, it } from "vitest";
 import { loadBuiltEngine } from "./builtEngine";
 import type { Engine } from "./engine";
-import { MAX_MEASURED_STEPS, measureSteps } from "./stepMeter";
+import { MAX_MEASURED_STEPS, hashHex, measureSteps } from "./stepMeter";
 
 const SCENE = JSON.stringify({ room: { width: 4, depth: 4 }, balloons: [{ count: 40 }], sim: { seed: 3 } });
 
@@ -31,11 +31,12 @@ describe("measureSteps", () => {
     const measured = measureSteps(engine, 30);
     engine.loadSceneJson(SCENE);
     engine.step(30);
-    expect(measured.stateHash).toBe(engine.stateHash().toString());
+    expect(measured.stateHash).toBe(hashHex(engine.stateHash()));
+    expect(measured.stateHash).toMatch(/^[0-9a-f]{16}$/);
     // And not where 29 steps end: the hash says which step it is.
     engine.loadSceneJson(SCENE);
     engine.step(29);
-    expect(measured.stateHash).not.toBe(engine.stateHash().toString());
+    expect(measured.stateHash).not.toBe(hashHex(engine.stateHash()));
   });
 
   it("refuses a window that is not a whole number of steps in range", () => {

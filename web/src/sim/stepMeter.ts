@@ -16,7 +16,7 @@ export interface StepsMeasured {
   engineMs: number[];
   /** The worker's ms around each step call (the engine's time and the call's). */
   wallMs: number[];
-  /** The engine's state hash after the window, as a decimal string (a u64). */
+  /** The engine's state hash after the window: 16 hex digits, as the `up` CLI prints it. */
   stateHash: string;
   /** Bodies, awake bodies and contacts after the window. */
   bodies: number;
@@ -29,6 +29,11 @@ export interface SteppedEngine {
   step(n?: number): void;
   stats(): EngineStats;
   stateHash(): bigint;
+}
+
+/** A u64 state hash as the `up` CLI prints it. */
+export function hashHex(hash: bigint): string {
+  return BigInt.asUintN(64, hash).toString(16).padStart(16, "0");
 }
 
 function total(stats: EngineStats): number {
@@ -57,7 +62,7 @@ export function measureSteps(engine: SteppedEngine, steps: number, clock: () => 
     steps,
     engineMs,
     wallMs,
-    stateHash: engine.stateHash().toString(),
+    stateHash: hashHex(engine.stateHash()),
     bodies: last.bodies,
     awake: last.awake,
     contacts: last.contacts,

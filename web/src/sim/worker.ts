@@ -7,6 +7,7 @@
 // the balloons float and sends that for the plot.
 
 import { Engine, glueUrl, type GlueModule } from "./engine";
+import { moduleUrl, startEngine } from "./threadPool";
 import { RIBBON_POINT_STRIDE, checkLayout, frameFloats, frameViews } from "./frameLayout";
 import type { FromWorker, ToWorker, WorldInfo } from "./protocol";
 import { TimeLapse, censusInterval } from "./timeLapse";
@@ -31,6 +32,9 @@ class WorkerState {
   /** The module's bytes and its glue's URL, to instantiate it afresh if it ever traps. */
   wasmBytes: ArrayBuffer | null = null;
   glueHref = "";
+  /** Threads that step the engine, and whether the page may share memory with workers (else one thread). */
+  threads = 1;
+  isolated = false;
   /** The engine once the module is instantiated (validation requests wait for it). */
   started: Promise<Engine> | null = null;
   /** The scene of the current world, to rebuild it after a trap. */
@@ -96,6 +100,8 @@ function worldInfo(e: Engine): WorldInfo {
     dt: info.dt,
     capacity: e.capacity(),
     constants: e.constants,
+    threads: state.threads,
+    isolated: state.isolated,
   };
 }
 
@@ -191,8 +197,11 @@ function restartAfterTrap(error: unknown): boolean {
   fail(new Error(`the physics engine stopped (${error.message}) and was restarted: the scene starts again`), false);
   const scene = state.currentSceneJson;
   const bytes = state.wasmBytes;
-  // A glue module holds one instance: a fresh import gives a fresh one.
-  state.started = Engine.importGlue(state.glueHref, state.restarts).then((glue) => Engine.load(glue, bytes));
+  // A glue module holds one instance: a fresh import gives a fresh one (and a
+  // threaded one a fresh pool; the old pool's workers stay asleep).
+  state.started = Engine.importGlue(state.glueHref, state.restarts)
+    .then((glue) => startEngine(glue, bytes, state.threads, state.isolated))
+    .then((started) => started.engine);
   state.started
     .then((e) => {
       state.engine = e;
@@ -323,13 +332,18 @@ function schedule(): void {
 
 function handle(msg: ToWorker): void {
   switch (msg.type) {
-    case "init":
-      state.glueHref = glueUrl(msg.wasmUrl);
-      state.started = Promise.all([Engine.fetchBytes(msg.wasmUrl), Engine.importGlue(state.glueHref)]).then(([bytes, glue]: [ArrayBuffer, GlueModule]) => {
+    case "init": {
+      // Threads need memory shared between workers, which only an isolated page has.
+      const isolated = self.crossOriginIsolated === true;
+      const wasmUrl = moduleUrl(msg.wasmUrl, msg.threads, isolated);
+      state.glueHref = glueUrl(wasmUrl);
+      state.started = Promise.all([Engine.fetchBytes(wasmUrl), Engine.importGlue(state.glueHref)]).then(async ([bytes, glue]: [ArrayBuffer, GlueModule]) => {
         state.wasmBytes = bytes;
-        const e = Engine.load(glue, bytes);
-        checkLayout(e.constants);
-        return e;
+        const started = await startEngine(glue, bytes, msg.threads, isolated);
+        state.threads = started.threads;
+        state.isolated = started.isolated;
+        checkLayout(started.engine.constants);
+        return started.engine;
       });
       state.started
         .then((e) => {
@@ -347,12 +361,18 @@ function handle(msg: ToWorker): void {
         })
         .catch((err) => fail(err, true));
       return;
+    }
     case "validate": {
       // The engine is the page's only scene validator; asked before it has started, the answer waits.
       const { id, sceneJson } = msg;
       const answer = (error: string | null) => post({ type: "validated", id, error });
       if (!state.started) answer("the physics engine has not been started");
       else state.started.then((e) => answer(e.validateScene(sceneJson))).catch((err) => answer(err instanceof Error ? err.message : String(err)));
+      return;
+    }
+    case "hash": {
+      const e = state.engine;
+      if (e) post({ type: "hash", id: msg.id, hash: BigInt.asUintN(64, e.stateHash()).toString(16).padStart(16, "0"), steps: state.steps });
       return;
     }
     case "debug":

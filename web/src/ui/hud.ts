@@ -3,6 +3,7 @@
 // frames per second, and milliseconds per physics step by stage.
 
 import type { EngineStats } from "../sim/engine";
+import { NOT_ISOLATED_TEXT } from "../sim/threadPool";
 import { formatAchievedRate, formatCelsius, formatClock, formatRate } from "./clock";
 
 /** What the clock line shows. */
@@ -20,6 +21,11 @@ export function clockText(c: ClockReading): string {
   return `Clock ${formatClock(c.simTime)} · ${formatCelsius(c.airTemperatureC)} · ${pace}`;
 }
 
+/** The HUD's threads line. */
+export function threadsText(threads: number, isolated: boolean): string {
+  return isolated ? `Threads: ${threads}` : NOT_ISOLATED_TEXT;
+}
+
 export class Hud {
   private readonly count: HTMLElement;
   private readonly clock: HTMLElement;
@@ -27,6 +33,7 @@ export class Hud {
   private readonly physics: HTMLElement;
   private readonly stages: HTMLElement;
   private readonly mode: HTMLElement;
+  private readonly threads: HTMLElement;
   private frames = 0;
   private since = performance.now();
   private lastCount = -1;
@@ -37,6 +44,7 @@ export class Hud {
       <div id="hud-clock">Clock 0:00:00</div>
       <div id="hud-fps">FPS: –</div>
       <div id="hud-physics">Physics: – ms/step</div>
+      <div id="hud-threads"></div>
       <table id="hud-stages"></table>
       <div id="hud-mode"></div>`;
     this.count = root.querySelector("#hud-count")!;
@@ -45,6 +53,7 @@ export class Hud {
     this.physics = root.querySelector("#hud-physics")!;
     this.stages = root.querySelector("#hud-stages")!;
     this.mode = root.querySelector("#hud-mode")!;
+    this.threads = root.querySelector("#hud-threads")!;
   }
 
   /** Call once per drawn frame. */
@@ -77,6 +86,11 @@ export class Hud {
       .map(([name, ms]) => `<tr><td>${name}</td><td>${ms.toFixed(2)}</td></tr>`)
       .join("");
     this.stages.innerHTML = rows;
+  }
+
+  /** The threads stepping the engine, or, on a page that is not isolated, that it runs on one. */
+  setThreads(threads: number, isolated: boolean): void {
+    this.threads.textContent = threadsText(threads, isolated);
   }
 
   setMode(text: string): void {

@@ -34,6 +34,7 @@ export class Panel {
   private readonly params: PanelParams;
   private readonly view = { trees: false, timeLapse: 1 };
   private readonly pauseButton: ReturnType<GUI["add"]>;
+  private readonly sim: GUI;
   private readonly buttons = {
     pause: () => this.actions.togglePause(),
     step: () => this.actions.step(),
@@ -78,7 +79,7 @@ export class Panel {
     room.add(p, "ceiling", ["pyramid", "flat"]).onFinishChange(changed);
     room.add(p, "apexHeight", 0.1, 10, 0.1).name("apex height (m)").onFinishChange(changed);
 
-    const sim = this.gui.addFolder("Simulation");
+    const sim = (this.sim = this.gui.addFolder("Simulation"));
     this.pauseButton = sim.add(this.buttons, "pause").name("pause (space)");
     sim.add(this.buttons, "step").name("single step (N)");
     tag(sim.add(this.view, "timeLapse", TIME_LAPSE_OPTIONS), "timeLapse")
@@ -98,6 +99,13 @@ export class Panel {
 
   setPaused(paused: boolean): void {
     this.pauseButton.name(paused ? "resume (space)" : "pause (space)");
+  }
+
+  /** The thread count (1 to `max`): `change` when one is picked. */
+  addThreads(threads: number, max: number, change: (threads: number) => void): void {
+    const view = { threads };
+    const c = this.sim.add(view, "threads", 1, max, 1).name("threads (restarts)").onFinishChange((n: number) => change(Math.round(n)));
+    c.domElement.dataset.key = "threads";
   }
 
   setDebugTrees(on: boolean): void {

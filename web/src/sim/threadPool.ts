@@ -1,0 +1,71 @@
+// How many threads step the engine, and which module runs it. A cross-origin
+// isolated page (SharedArrayBuffer available) runs the threaded module
+// (wasm/threads/up_wasm.wasm): the engine's passes on rayon's pool, whose
+// threads are Web Workers sharing the module's memory. Any other page, or one
+// thread asked for, runs the single-threaded module (wasm/up_wasm.wasm). The
+// results are the same, bit for bit, on any number of threads.
+
+import { Engine, type GlueModule } from "./engine";
+
+/** Most threads the page asks for (the `threads` address parameter's and the panel's upper bound). */
+export const MAX_THREADS = 64;
+
+/** The address parameter that sets the thread count: `?threads=4`. */
+export const THREADS_PARAM = "threads";
+
+/** What the page says, in one line, when it cannot share memory between workers. */
+export const NOT_ISOLATED_TEXT = "Not cross-origin isolated: the engine runs on one thread.";
+
+/** The threads a visitor's machine gets by default: its cores less one (the page's own thread), at least one. */
+export function defaultThreads(hardwareConcurrency: number | undefined): number {
+  const cores = Number.isInteger(hardwareConcurrency) && hardwareConcurrency! > 0 ? hardwareConcurrency! : 1;
+  return Math.min(MAX_THREADS, Math.max(1, cores - 1));
+}
+
+/** The thread count asked for: the address's `threads` when valid, else the default; `error` says why one was refused. */
+export function requestedThreads(search: string, hardwareConcurrency: number | undefined): { threads: number; error: string | null } {
+  const fallback = defaultThreads(hardwareConcurrency);
+  const raw = new URLSearchParams(search).get(THREADS_PARAM);
+  if (raw === null) return { threads: fallback, error: null };
+  const n = Number(raw);
+  if (raw.trim() === "" || !Number.isInteger(n) || n < 1 || n > MAX_THREADS) {
+    return {
+      threads: fallback,
+      error: `The address's ${THREADS_PARAM}=${raw} is not a thread count: expected an integer from 1 to ${MAX_THREADS}. Using ${fallback}.`,
+    };
+  }
+  return { threads: n, error: null };
+}
+
+/** The module's URL for `threads` threads: the threaded build next to `singleUrl`, in `threads/`, when more than one. */
+export function moduleUrl(singleUrl: string, threads: number, isolated: boolean): string {
+  if (!isolated || threads <= 1) return singleUrl;
+  return new URL("threads/up_wasm.wasm", singleUrl).href;
+}
+
+/** The threaded module's glue: the single-threaded one's exports and its pool's. */
+export interface ThreadedGlue {
+  /** wasm-bindgen-rayon: fills rayon's pool with `threads` Web Workers sharing the module's memory. */
+  initThreadPool(threads: number): Promise<void>;
+  /** Threads in the pool, once `initThreadPool` has resolved. */
+  thread_count(): number;
+}
+
+/** An engine and the threads that step it. */
+export interface StartedEngine {
+  engine: Engine;
+  threads: number;
+  isolated: boolean;
+}
+
+/**
+ * Instantiates the module for `threads` threads from its `bytes` and `glue`
+ * (`moduleUrl`'s), and, when threaded, starts its pool before any step.
+ */
+export async function startEngine(glue: GlueModule, bytes: BufferSource, threads: number, isolated: boolean): Promise<StartedEngine> {
+  const engine = Engine.load(glue, bytes);
+  if (!isolated || threads <= 1) return { engine, threads: 1, isolated };
+  const pool = glue as unknown as ThreadedGlue;
+  await pool.initThreadPool(threads);
+  return { engine, threads: pool.thread_count(), isolated };
+}
