@@ -25,10 +25,11 @@ const PTHREAD_FIXED = '(await import("node:worker_threads")).workerData';
 /**
  * JoltInterface steps with a fixed 10 MB temporary allocator (not settable from
  * JS), from which each step takes room for mMaxContactConstraints constraints
- * (≈ 472 bytes each): more than this aborts the module. Past it, Jolt ignores
+ * (≈ 472 bytes each) and per-body lists (≈ 144 bytes a body): past it the module
+ * aborts. 8,192 constraints leave room for 10,000 bodies; past them Jolt ignores
  * the contacts that do not fit (a pile of 10,000 balloons has more).
  */
-export const JOLT_MAX_CONTACT_CONSTRAINTS = 20000;
+export const JOLT_MAX_CONTACT_CONSTRAINTS = 8192;
 
 const LAYER_ROOM = 0;
 const LAYER_BALLOON = 1;
