@@ -5,7 +5,8 @@
 #               writes docs/benchmarks.md and docs/benchmarks.svg (tens of minutes)
 #   make bench-ribbons  the same with a ribbon on every balloon (Rapier: chains of balls);
 #               writes the ribbons' table at the end of docs/benchmarks.md (half an hour or more)
-#   make measure  the web app with 5,000 balloons in headless Chromium (frames, input, physics)
+#   make measure  the web app in headless Chromium at BALLOONS (10000) on each of THREADS (1,2):
+#               physics per step, the main thread's frame work, input, state hash (one JSON line)
 #   make fuzz   run every cargo-fuzz target for FUZZ_SECONDS each (nightly + cargo-fuzz)
 #   make soak   the long run of issue 7: 10,000 balloons for an hour of simulated time
 # Every target installs what it needs, idempotently.
@@ -154,9 +155,14 @@ bench-ribbons: setup-rust
 	$(CARGO) build --release -p up-bench
 	target/release/up-bench report --ribbons --sizes 1000,10000 --multibody-sizes 100 --steps 600,300,120
 
-# The page with 5,000 balloons in headless Chromium: frame intervals, input delay, physics per step.
+# The page in headless Chromium, once per thread count on the same scene: physics per step over
+# MEASURE_STEPS steps (300: the rise, the arrival under the ceiling, the pile going to sleep),
+# the main thread's frame work, input delay, the state hash (equal on all).
+BALLOONS ?= 10000
+THREADS ?= 1,2
+MEASURE_STEPS ?= 300
 measure: setup-browser build
-	cd web && node e2e/measure.mjs 5000 10
+	cd web && node e2e/measure.mjs --balloons $(BALLOONS) --threads $(THREADS) --steps $(MEASURE_STEPS) --seconds 10
 
 fuzz:
 	@rustup toolchain list | grep -q nightly || rustup toolchain install nightly --profile minimal

@@ -1,36 +1,52 @@
 #!/usr/bin/env node
-// UP's WebAssembly build against @dimforge/rapier3d-compat, in Node, on the
-// benchmark scene of up-bench (docs/benchmarks.md): the same scene, the same
-// interleaved timing and the same JSON lines as `up-bench --json`, with
-// "runtime": "wasm-node".
+// UP's WebAssembly build against the engines a web developer would pick
+// instead, in Node, on the benchmark scene of up-bench (docs/benchmarks.md):
+// @dimforge/rapier3d-compat, its SIMD build @dimforge/rapier3d-simd-compat, and
+// jolt-physics (jolt.mjs). The same scene, the same interleaved timing and the
+// same JSON lines as `up-bench --json`, with "runtime": "wasm-node".
 //
-//   node web/bench/bench.mjs --balloons 1000 [--steps K] [--json] [--engines up,rapier]
+//   node web/bench/bench.mjs --balloons 1000 [--steps K] [--threads T] [--json]
+//                            [--engines up,rapier,rapier-simd,jolt]
 //
-// Needs target/release/up-bench (the scene, Rapier's matched parameters, and
-// the overlap measure — one measurement for both engines, natively) and
-// web/public/wasm/up_wasm.wasm with its glue up_wasm.js (`make web/public/wasm/up_wasm.wasm`).
+// --threads T: UP and Jolt on T threads (Jolt's multithreaded flavour above 1);
+// Rapier's npm builds run on one. Needs target/release/up-bench (the scene,
+// the peers' matched parameters, and the overlap measure — one measurement for
+// every engine, natively) and UP's modules with their glue: web/public/wasm/up_wasm.wasm
+// on one thread, web/public/wasm/threads/up_wasm.wasm on more (make builds both).
 // Peak memory: each engine alone in a child process (`--rss-probe ENGINE`).
 
 import { execFileSync, spawnSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join, resolve } from 'node:path';
-import { fileURLToPath, pathToFileURL } from 'node:url';
+import { fileURLToPath } from 'node:url';
 import { performance } from 'node:perf_hooks';
+import { JoltEngine, loadJolt } from './jolt.mjs';
+import { loadUpWasm } from '../sim-node/loadEngine.mjs';
 
 const HERE = dirname(fileURLToPath(import.meta.url));
 const ROOT = resolve(HERE, '..', '..');
 /** Rapier's poses are written in UP's layout; UpWasm.load holds this to the module's stride. */
 const POSE_FLOATS = 7;
+/** Removes what loading an engine left behind (Jolt's patched copy), at exit. */
+const cleanups = [];
 
-/** Rapier, imported only where it runs (UP's memory probe never loads it). */
-let RAPIER = null;
-async function loadRapier() {
-  if (!RAPIER) {
-    RAPIER = (await import('@dimforge/rapier3d-compat')).default;
-    await RAPIER.init();
-  }
+/** The engines this bench runs, by name: UP and the peers a web developer would pick instead. */
+const ENGINES = ['up', 'rapier', 'rapier-simd', 'jolt'];
+/** Rapier's npm builds: the plain one and the SIMD one (wasm simd128, as UP's module). */
+const RAPIER_PACKAGES = { rapier: '@dimforge/rapier3d-compat', 'rapier-simd': '@dimforge/rapier3d-simd-compat' };
+const PACKAGES = { ...RAPIER_PACKAGES, jolt: 'jolt-physics' };
+
+/** A Rapier build, imported only where it runs (UP's memory probe never loads it). */
+async function loadRapier(name) {
+  const RAPIER = (await import(RAPIER_PACKAGES[name])).default;
+  await RAPIER.init();
   return RAPIER;
+}
+
+/** The version of an installed package, as its package.json says. */
+function packageVersion(name) {
+  return JSON.parse(readFileSync(join(HERE, 'node_modules', ...name.split('/'), 'package.json'), 'utf8')).version;
 }
 
 function parseArgs(argv) {
@@ -39,11 +55,11 @@ function parseArgs(argv) {
     steps: null,
     seed: 1,
     json: false,
-    engines: ['up', 'rapier'],
+    engines: [...ENGINES],
+    threads: 1,
     rss: true,
     rssProbe: null,
     upBench: join(ROOT, 'target', 'release', 'up-bench'),
-    wasm: join(ROOT, 'web', 'public', 'wasm', 'up_wasm.wasm'),
   };
   const int = (name, value, min, max) => {
     const n = Number(value);
@@ -61,20 +77,20 @@ function parseArgs(argv) {
     switch (arg) {
       case '--balloons': opts.balloons = int(arg, next(), 1, 50000); break;
       case '--steps': opts.steps = int(arg, next(), 1, 1000000); break;
+      case '--threads': opts.threads = int(arg, next(), 1, 256); break;
       case '--seed': opts.seed = int(arg, next(), 0, Number.MAX_SAFE_INTEGER); break;
       case '--json': opts.json = true; break;
       case '--no-rss': opts.rss = false; break;
       case '--engines':
         opts.engines = next().split(',').map((e) => e.trim());
         for (const e of opts.engines) {
-          if (e !== 'up' && e !== 'rapier') throw new Error(`--engines: expected up or rapier, found ${JSON.stringify(e)}`);
+          if (!ENGINES.includes(e)) throw new Error(`--engines: expected some of ${ENGINES.join(', ')}, found ${JSON.stringify(e)}`);
         }
         break;
       case '--rss-probe': opts.rssProbe = next(); break;
       case '--up-bench': opts.upBench = resolve(next()); break;
-      case '--wasm': opts.wasm = resolve(next()); break;
       case '--help':
-        console.log('node bench.mjs [--balloons N] [--steps K] [--seed S] [--json] [--engines up,rapier] [--no-rss] [--up-bench PATH] [--wasm PATH]');
+        console.log(`node bench.mjs [--balloons N] [--steps K] [--seed S] [--threads T] [--json] [--engines ${ENGINES.join(',')}] [--no-rss] [--up-bench PATH]`);
         process.exit(0);
         break;
       default: throw new Error(`unknown argument ${JSON.stringify(arg)} (try --help)`);
@@ -96,9 +112,9 @@ function loadScene(opts) {
 
 class UpWasm {
   /** Loads the module at `path` with its glue (the same name ending in .js) next to it. */
-  static async load(path) {
-    const glue = await import(pathToFileURL(path.replace(/\.wasm$/, '.js')).href);
-    const { memory } = glue.initSync({ module: readFileSync(path) });
+  /** One thread: today's module; T threads: the threaded one on a pool of T workers (sim-node/loadEngine.mjs). */
+  static async load(threads) {
+    const { glue, memory } = await loadUpWasm({ threads });
     return new UpWasm(glue, memory);
   }
 
@@ -157,9 +173,10 @@ class UpWasm {
 }
 
 class UpEngine {
-  constructor(up) {
+  constructor(up, threads) {
     this.up = up;
     this.name = 'up';
+    this.threads = threads;
   }
   step() { this.up.step(); }
   poses() { return this.up.poses(); }
@@ -181,8 +198,10 @@ function rotate(q, v) {
 }
 
 class RapierEngine {
-  constructor(setup, room, startPoses, leaves) {
-    this.name = 'rapier';
+  /** `RAPIER`: the build `name` names (plain or SIMD). */
+  constructor(RAPIER, name, setup, room, startPoses, leaves) {
+    this.name = name;
+    this.threads = 1;
     this.setup = setup;
     const world = new RAPIER.World({ x: 0, y: 0, z: 0 }); // weight is applied as a force
     world.timestep = setup.dt;
@@ -274,7 +293,8 @@ class RapierEngine {
 }
 
 async function buildEngines(opts, exported, names) {
-  const up = await UpWasm.load(opts.wasm);
+  // UP builds the scene for every engine; it runs on opts.threads only where it is timed.
+  const up = await UpWasm.load(names.includes('up') ? opts.threads : 1);
   up.loadSceneJson(JSON.stringify(exported.scene));
   if (up.bodyCount() !== exported.balloons) {
     throw new Error(`UP's wasm built ${up.bodyCount()} balloons, expected ${exported.balloons}`);
@@ -285,10 +305,13 @@ async function buildEngines(opts, exported, names) {
   if (!same) throw new Error("the wasm build's balloon tree differs from up-bench's: rebuild both");
   const engines = [];
   for (const name of names) {
-    if (name === 'up') engines.push(new UpEngine(up));
-    else {
-      await loadRapier();
-      engines.push(new RapierEngine(exported.rapier, up.room(), up.poses(), leaves));
+    if (name === 'up') engines.push(new UpEngine(up, opts.threads));
+    else if (name === 'jolt') {
+      const { Jolt, dispose } = await loadJolt(opts.threads);
+      cleanups.push(dispose);
+      engines.push(new JoltEngine(Jolt, opts.threads, exported.rapier, up.room(), up.poses(), leaves, POSE_FLOATS));
+    } else {
+      engines.push(new RapierEngine(await loadRapier(name), name, exported.rapier, up.room(), up.poses(), leaves));
     }
   }
   return engines;
@@ -342,7 +365,7 @@ function measure(opts, frames) {
 }
 
 function probeInChild(opts, engine, steps) {
-  const args = [fileURLToPath(import.meta.url), '--rss-probe', engine, '--balloons', String(opts.balloons), '--seed', String(opts.seed), '--steps', String(steps), '--up-bench', opts.upBench, '--wasm', opts.wasm];
+  const args = [fileURLToPath(import.meta.url), '--rss-probe', engine, '--balloons', String(opts.balloons), '--seed', String(opts.seed), '--steps', String(steps), '--threads', String(opts.threads), '--up-bench', opts.upBench];
   const r = spawnSync(process.execPath, args, { encoding: 'utf8', maxBuffer: 1 << 24 });
   if (r.status !== 0) throw new Error(`memory probe for ${engine} failed: ${r.stderr.trim()}`);
   return JSON.parse(r.stdout.trim().split('\n').pop());
@@ -389,7 +412,7 @@ async function main() {
       runtime: 'wasm-node',
       balloons: opts.balloons,
       steps,
-      threads: 1,
+      threads: e.threads,
       ms_per_step_median: median(t),
       ms_per_step_p95: quantile(t, 0.95),
       ms_per_step_mean: mean(t),
@@ -401,17 +424,24 @@ async function main() {
       peak_rss_mb: rss ? rss.peak_rss_mb : null,
       rss_bytes_per_balloon: rss ? ((rss.peak_rss_mb - rss.baseline_rss_mb) * 1e6) / opts.balloons : null,
       room_width_m: exported.room_width_m,
-      ...(e.name === 'rapier' ? { rapier_shape: 'compound' } : {}),
+      ...(e.name.startsWith('rapier') ? { rapier_shape: 'compound' } : {}),
+      ...(e.name === 'up' ? {} : { package: PACKAGES[e.name], version: packageVersion(PACKAGES[e.name]) }),
     };
   });
   const up = results.find((r) => r.engine === 'up');
-  const rapier = results.find((r) => r.engine === 'rapier');
-  // Rapier over UP by the median, and by the mean (total time), when both ran.
-  const ratios = up && rapier
-    ? {
-        ratio_rapier_over_up: rapier.ms_per_step_median / up.ms_per_step_median,
-        ratio_rapier_over_up_mean: rapier.ms_per_step_mean / up.ms_per_step_mean,
-      }
+  // Each peer over UP by the median, and by the mean (total time), when both
+  // ran: ratio_rapier_over_up, ratio_rapier_simd_over_up, ratio_jolt_over_up.
+  const peers = results.filter((r) => r.engine !== 'up');
+  const ratios = up && peers.length
+    ? Object.fromEntries(
+        peers.flatMap((r) => {
+          const key = `ratio_${r.engine.replace('-', '_')}_over_up`;
+          return [
+            [key, r.ms_per_step_median / up.ms_per_step_median],
+            [`${key}_mean`, r.ms_per_step_mean / up.ms_per_step_mean],
+          ];
+        }),
+      )
     : null;
   if (opts.json) {
     for (const r of results) console.log(JSON.stringify(r));
@@ -425,16 +455,24 @@ async function main() {
           `peak RSS ${r.peak_rss_mb === null ? '-' : r.peak_rss_mb.toFixed(1)} MB`,
       );
     }
-    if (ratios) {
+    for (const r of up ? peers : []) {
+      const key = `ratio_${r.engine.replace('-', '_')}_over_up`;
       console.log(
-        `Rapier / UP (median ms per step): ${ratios.ratio_rapier_over_up.toFixed(2)}; ` +
-          `mean (total time): ${ratios.ratio_rapier_over_up_mean.toFixed(2)}`,
+        `${r.engine} (${r.threads} thread${r.threads === 1 ? '' : 's'}) / UP (${up.threads}): median ms per step ${ratios[key].toFixed(2)}; ` +
+          `mean (total time) ${ratios[`${key}_mean`].toFixed(2)}; max penetration ${(r.max_penetration_m * 1e3).toFixed(3)} mm against UP's ${(up.max_penetration_m * 1e3).toFixed(3)} mm`,
       );
     }
   }
 }
 
-main().catch((e) => {
-  console.error(`bench.mjs: ${e.message}`);
-  process.exit(1);
-});
+main()
+  .then(() => {
+    for (const dispose of cleanups) dispose();
+    // Jolt's worker threads would keep Node alive.
+    process.exit(0);
+  })
+  .catch((e) => {
+    for (const dispose of cleanups) dispose();
+    console.error(`bench.mjs: ${e.message}`);
+    process.exit(1);
+  });

@@ -1,37 +1,86 @@
-// Measures the claim "with 5,000 balloons the page keeps drawing and answering
-// input while the simulation runs", in headless Chromium (WebGL through
-// SwiftShader: the CPU draws, slowly), against the built app:
+// Measures the page with many balloons in headless Chromium (WebGL through
+// SwiftShader: the CPU draws, slowly), against the built app, once per thread
+// count, on the same scene:
 //
-//   node e2e/measure.mjs [balloons=5000] [seconds=10]     (after `npm run build`)
+//   node e2e/measure.mjs [--balloons 10000] [--threads 1,2] [--steps 300] [--seconds 10]
+//                                                        (after `npm run build`)
 //
-// Loads a scene link with that many balloons, then for `seconds` presses an
-// arrow key and clicks the canvas every 400 ms while the worker simulates,
-// then pauses the simulation and measures again (drawing alone, same input). Prints one
-// JSON line:
-// - frame_ms: main-thread requestAnimationFrame intervals (median, p95, max);
-// - input_delay_ms: from an input event's timestamp to its handler running
-//   (how long the main thread kept it waiting);
-// - input_to_frame_ms: from the event to the start of the next frame;
-// - render_call_ms: main-thread time inside renderer.render per frame (the
-//   rest of the frame is SwiftShader rasterising in the GPU process);
-// - physics: the worker's engine ms per step by stage, steps per second, and
-//   the real-time factor (simulated seconds per second; 1 is real time).
+// For each thread count T the page opens with `?threads=T`, then:
+// 1. runs for `seconds` while an arrow key is pressed and the canvas clicked
+//    every 400 ms: frame intervals, input delay, the main thread's frame work
+//    (app/frameMeter.ts: controls, poses to instance matrices, HUD, plot; and
+//    apart, the renderer.render call), and the steps per second the page
+//    reaches (the real-time factor: simulated seconds per second);
+// 2. the same with the balloons not drawn (`drawing_balloons` holds step 1):
+//    SwiftShader takes seconds a frame at thousands of balloons and the CPU
+//    from the worker, while the main thread's frame work is the same — every
+//    pose still becomes an instance matrix each frame;
+// 3. pauses and measures the frames alone for a few seconds (same input);
+// 4. restarts the scene in the worker and times `steps` steps one by one
+//    (sim/stepMeter.ts), the balloons still not drawn: the physics ms per step
+//    by the engine's own timer over the same window on every thread count,
+//    and the state hash after it, which must be the same on every thread count.
+// Ends with one JSON line: {"balloons", "steps", "runs": [{"threads",
+// "physics_ms": {median, mean, p95}, "realtime_factor", "frame_ms": {median,
+// p95}, "state_hash", "steps", ...}], "speedup_mean": {"T": mean at 1 thread
+// over mean at T}, "speedup_median", "hashes_equal", ...}; exits 1 when the
+// hashes differ.
 
 import { base64url, launchChromium, TEST_PATH } from "./browser.mjs";
 import { serveDist } from "./serve.mjs";
 
-const balloons = Number(process.argv[2] ?? 5000);
-const seconds = Number(process.argv[3] ?? 10);
-const viewport = { width: 960, height: 600 };
-/** A room large enough to place the balloons without overlap (about 40 per m² of floor, stacked). */
-const side = Math.max(6, Math.ceil(Math.sqrt(balloons / 30)));
-const scene = { room: { width: side, depth: side }, balloons: [{ count: balloons }] };
+function parseArgs(argv) {
+  const opts = { balloons: 10000, threads: [1, 2], steps: 300, seconds: 10 };
+  const int = (name, value, min, max) => {
+    const n = Number(value);
+    if (!Number.isInteger(n) || n < min || n > max) {
+      throw new Error(`${name}: expected an integer from ${min} to ${max}, found ${JSON.stringify(value)}`);
+    }
+    return n;
+  };
+  for (let i = 2; i < argv.length; i++) {
+    const arg = argv[i];
+    const value = () => {
+      if (i + 1 >= argv.length) throw new Error(`${arg}: expected a value`);
+      return argv[++i];
+    };
+    switch (arg) {
+      case "--balloons": opts.balloons = int(arg, value(), 1, 50000); break;
+      case "--threads": {
+        const list = value();
+        opts.threads = list.split(",").map((t) => int("--threads (a comma list)", t.trim(), 1, 256));
+        break;
+      }
+      case "--steps": opts.steps = int(arg, value(), 1, 20000); break;
+      case "--seconds": opts.seconds = int(arg, value(), 1, 600); break;
+      default: throw new Error(`unknown argument ${JSON.stringify(arg)} (node e2e/measure.mjs [--balloons N] [--threads 1,2] [--steps S] [--seconds S])`);
+    }
+  }
+  return opts;
+}
 
-const summary = (xs) => {
+const viewport = { width: 960, height: 600 };
+const t0 = Date.now();
+/** Progress on standard error (standard output ends with the one JSON line). */
+const log = (text) => console.error(`measure.mjs [${Math.round((Date.now() - t0) / 1000)} s]: ${text}`);
+const round = (x, digits = 1) => (x === null || x === undefined ? null : Math.round(x * 10 ** digits) / 10 ** digits);
+
+/** Nearest-rank quantile, as the benchmarks take it. */
+function quantile(sorted, q) {
+  const rank = Math.ceil(Math.min(Math.max(q, 0), 1) * sorted.length);
+  return sorted[Math.min(Math.max(rank, 1), sorted.length) - 1];
+}
+
+const summary = (xs, digits = 1) => {
   const s = [...xs].sort((a, b) => a - b);
-  const at = (q) => (s.length ? s[Math.min(s.length - 1, Math.floor(q * s.length))] : null);
-  const round = (x) => (x === null ? null : Math.round(x * 10) / 10);
-  return { n: s.length, median: round(at(0.5)), p95: round(at(0.95)), max: round(s.length ? s[s.length - 1] : null) };
+  if (!s.length) return { n: 0, median: null, mean: null, p95: null, max: null };
+  return {
+    n: s.length,
+    median: round(quantile(s, 0.5), digits),
+    mean: round(s.reduce((a, b) => a + b, 0) / s.length, digits),
+    p95: round(quantile(s, 0.95), digits),
+    max: round(s[s.length - 1], digits),
+  };
 };
 
 /** Installed in the page: a frame-interval recorder and input-event listeners (capture phase, first to run). */
@@ -54,98 +103,177 @@ function instrument() {
 }
 
 /** Runs for `ms`, pressing ArrowLeft and clicking the floor in turn every 400 ms; samples the worker's stats. */
-async function phase(page, ms, withInput) {
+async function phase(page, ms) {
   await page.evaluate(() => {
     const m = window.__measure;
     m.raf.length = 0;
     m.input.length = 0;
     m.toFrame.length = 0;
-    m.framesBefore = window.__up.frames();
-    m.stepsBefore = window.__up.steps();
     m.start = performance.now();
+    window.__up.resetFrameMeter();
   });
   const stats = [];
   const end = Date.now() + ms;
   let turn = 0;
   while (Date.now() < end) {
-    if (withInput) {
-      if (turn++ % 2 === 0) await page.keyboard.press("ArrowLeft", { delay: 30 });
-      else await page.mouse.click(viewport.width * 0.3, viewport.height * 0.9);
-    }
+    if (turn++ % 2 === 0) await page.keyboard.press("ArrowLeft", { delay: 30 });
+    else await page.mouse.click(viewport.width * 0.3, viewport.height * 0.9);
     await page.waitForTimeout(400);
     const s = await page.evaluate(() => window.__up.stats());
     if (s) stats.push(s);
   }
-  const page_ = await page.evaluate(() => {
+  const got = await page.evaluate(() => {
     const m = window.__measure;
-    const frames = window.__up.frames();
-    const raf = m.raf.slice(1).map((t, i) => t - m.raf[i]);
-    const drawn = frames.drawn - m.framesBefore.drawn;
     return {
-      raf,
+      raf: m.raf.slice(1).map((t, i) => t - m.raf[i]),
       input: m.input.slice(),
       toFrame: m.toFrame.slice(),
-      drawn,
-      renderMsPerFrame: drawn > 0 ? (frames.renderMs - m.framesBefore.renderMs) / drawn : null,
-      steps: window.__up.steps() - m.stepsBefore,
+      meter: window.__up.frameMeter(),
       elapsed: (performance.now() - m.start) / 1000,
     };
   });
   const totals = stats.map((s) => s.stats.stages.find(([name]) => name === "total")?.[1] ?? 0).filter((t) => t > 0);
-  const stageNames = stats.length ? stats[stats.length - 1].stats.stages.map(([name]) => name) : [];
-  const stages = Object.fromEntries(
-    stageNames.map((name) => {
-      const xs = stats.map((s) => s.stats.stages.find(([n]) => n === name)?.[1] ?? 0);
-      return [name, Math.round((xs.reduce((a, b) => a + b, 0) / Math.max(1, xs.length)) * 100) / 100];
-    }),
-  );
-  const stepsPerSecond = page_.steps / page_.elapsed;
+  // The worker's own count (the frames' step counts arrive late while frames are slow).
+  const rates = stats.map((s) => s.stepsPerSecond).filter((r) => r > 0);
+  const stepsPerSecond = rates.length ? rates.reduce((a, b) => a + b, 0) / rates.length : 0;
+  const part = (p) => (p ? { median: round(p.median, 2), p95: round(p.p95, 2), mean: round(p.mean, 2), max: round(p.max, 2) } : null);
   return {
-    frame_ms: summary(page_.raf),
-    fps: Math.round((page_.drawn / page_.elapsed) * 10) / 10,
-    render_call_ms: page_.renderMsPerFrame === null ? null : Math.round(page_.renderMsPerFrame * 10) / 10,
-    ...(withInput ? { input_delay_ms: summary(page_.input), input_to_frame_ms: summary(page_.toFrame) } : {}),
-    physics: {
-      ms_per_step: summary(totals),
-      stages_ms_mean: stages,
-      steps_per_s: Math.round(stepsPerSecond * 10) / 10,
-      realtime_factor: Math.round(stepsPerSecond * (1 / 60) * 100) / 100,
-      contacts: stats.length ? stats[stats.length - 1].stats.contacts : null,
-      awake: stats.length ? stats[stats.length - 1].stats.awake : null,
-    },
+    frame_ms: part(got.meter.work),
+    render_call_ms: part(got.meter.render),
+    frames: got.meter.n,
+    fps: round(got.meter.n / got.elapsed),
+    raf_interval_ms: summary(got.raf),
+    input_delay_ms: summary(got.input),
+    input_to_frame_ms: summary(got.toFrame),
+    steps_per_s: round(stepsPerSecond),
+    realtime_factor: round(stepsPerSecond / 60, 2),
+    // The worker's stats, each the mean over the steps since the last (≈ 250 ms).
+    stats_ms_per_step: summary(totals),
   };
 }
 
-const server = await serveDist();
-const browser = await launchChromium();
-try {
+async function measureThreads(browser, url, opts, threads) {
   const page = await browser.newPage({ viewport });
   const errors = [];
   page.on("pageerror", (e) => errors.push(e.message));
-  const started = Date.now();
-  await page.goto(`${server.url}${TEST_PATH}#scene=${base64url(JSON.stringify(scene))}`);
-  await page.waitForFunction(() => window.__up?.ready(), null, { timeout: 180_000, polling: 500 });
-  const loadSeconds = (Date.now() - started) / 1000;
-  const count = await page.evaluate(() => window.__up.balloonCount());
-  await page.evaluate(instrument);
-  const running = await phase(page, seconds * 1000, true);
-  await page.keyboard.press(" ");
-  await page.waitForFunction(() => window.__up.paused());
-  await page.waitForTimeout(500);
-  const paused = await phase(page, Math.min(5, seconds) * 1000, true);
-  const result = {
-    balloons: count,
-    room_m: [side, side],
-    viewport,
-    chromium: browser.version(),
-    renderer: "SwiftShader (CPU)",
-    load_to_first_frames_s: Math.round(loadSeconds * 10) / 10,
-    running,
-    paused_drawing_only: { frame_ms: paused.frame_ms, fps: paused.fps, render_call_ms: paused.render_call_ms, input_delay_ms: paused.input_delay_ms, input_to_frame_ms: paused.input_to_frame_ms },
-    page_errors: errors,
-  };
-  console.log(JSON.stringify(result));
+  try {
+    const started = Date.now();
+    await page.goto(url(threads));
+    await page.waitForFunction(() => window.__up?.ready(), null, { timeout: 900_000, polling: 500 });
+    const loadSeconds = (Date.now() - started) / 1000;
+    const inPage = await page.evaluate(() => ({
+      count: window.__up.balloonCount(),
+      // Present where the page runs a thread pool.
+      threads: typeof window.__up.threads === "function" ? window.__up.threads() : null,
+      isolated: typeof window.__up.isolated === "function" ? window.__up.isolated() : window.crossOriginIsolated,
+    }));
+    await page.evaluate(instrument);
+    const drawn = await phase(page, opts.seconds * 1000);
+    log(`${threads} thread(s): loaded in ${round(loadSeconds)} s; ran ${opts.seconds} s drawing the balloons (${drawn.frames} frames)`);
+    // SwiftShader draws thousands of balloons in seconds a frame on the CPU, which
+    // leaves few frames to measure and takes the cores from the worker: from here
+    // the balloons are not drawn, while the frame's work (their poses to instance
+    // matrices included) goes on every frame.
+    await page.evaluate(() => window.__up.drawBalloons(false));
+    const running = await phase(page, opts.seconds * 1000);
+    log(`${threads} thread(s): ran ${opts.seconds} s not drawing them (${running.frames} frames)`);
+    await page.keyboard.press(" ");
+    // Seconds at 10,000 balloons: SwiftShader's frames hold the main thread's key handling back.
+    await page.waitForFunction(() => window.__up.paused(), null, { timeout: 300_000, polling: 200 });
+    await page.waitForTimeout(500);
+    const paused = await phase(page, Math.min(5, opts.seconds) * 1000);
+    log(`${threads} thread(s): drawing alone measured (${paused.frames} frames); timing ${opts.steps} steps`);
+    // The worker restarts the scene and steps the window; the page draws on meanwhile.
+    const window_ = await page.evaluate((steps) => window.__up.measureSteps(steps), opts.steps);
+    const physics = summary(window_.engineMs, 2);
+    const dtMs = 1000 / 60;
+    return {
+      threads,
+      threads_in_page: inPage.threads,
+      isolated: inPage.isolated,
+      balloons: inPage.count,
+      physics_ms: { median: physics.median, mean: physics.mean, p95: physics.p95, max: physics.max },
+      physics_wall_ms: summary(window_.wallMs, 2),
+      // Simulated seconds per second at the window's mean (1: real time), and what the page
+      // reached while running (at most 1: the worker steps in real time or slower).
+      realtime_factor: round(dtMs / physics.mean, 3),
+      page_realtime_factor: running.realtime_factor,
+      // The main thread's frame work (the render call apart) while the worker steps, balloons not drawn.
+      frame_ms: running.frame_ms,
+      render_call_ms: running.render_call_ms,
+      raf_interval_ms: running.raf_interval_ms,
+      input_delay_ms: running.input_delay_ms,
+      input_to_frame_ms: running.input_to_frame_ms,
+      fps: running.fps,
+      // The same while SwiftShader draws the balloons (few frames at thousands).
+      drawing_balloons: {
+        frame_ms: drawn.frame_ms,
+        render_call_ms: drawn.render_call_ms,
+        raf_interval_ms: drawn.raf_interval_ms,
+        input_delay_ms: drawn.input_delay_ms,
+        fps: drawn.fps,
+        realtime_factor: drawn.realtime_factor,
+      },
+      paused_not_drawing_balloons: { frame_ms: paused.frame_ms, render_call_ms: paused.render_call_ms, raf_interval_ms: paused.raf_interval_ms, fps: paused.fps },
+      state_hash: window_.stateHash,
+      steps: window_.steps,
+      awake_at_end: window_.awake,
+      contacts_at_end: window_.contacts,
+      load_to_first_frames_s: round(loadSeconds),
+      page_errors: errors,
+    };
+  } finally {
+    await page.close();
+  }
+}
+
+const opts = parseArgs(process.argv);
+/** A room large enough to place the balloons without overlap (about 40 per m² of floor, stacked). */
+const side = Math.max(6, Math.ceil(Math.sqrt(opts.balloons / 30)));
+const scene = { room: { width: side, depth: side }, balloons: [{ count: opts.balloons }] };
+const server = await serveDist();
+const browser = await launchChromium();
+let failed = false;
+try {
+  const url = (threads) => `${server.url}${TEST_PATH}&threads=${threads}#scene=${base64url(JSON.stringify(scene))}`;
+  const runs = [];
+  for (const threads of opts.threads) {
+    try {
+      runs.push(await measureThreads(browser, url, opts, threads));
+    } catch (e) {
+      // The other thread counts are still measured; the run fails at the end.
+      log(`${threads} thread(s) failed: ${e.message}`);
+      runs.push({ threads, error: e.message });
+      continue;
+    }
+    log(`${threads} thread(s): ${JSON.stringify(runs.at(-1))}`);
+    log(`${threads} thread(s): physics mean ${runs.at(-1).physics_ms.mean} ms per step, frame work median ${runs.at(-1).frame_ms?.median} ms`);
+  }
+  const measured = runs.filter((r) => !r.error);
+  const base = measured.find((r) => r.threads === 1);
+  const ratio = (key, field = "physics_ms") =>
+    base ? Object.fromEntries(measured.filter((r) => r !== base).map((r) => [String(r.threads), round(base[field][key] / r[field][key], 2)])) : {};
+  const hashesEqual = measured.every((r) => r.state_hash === measured[0].state_hash);
+  failed = !hashesEqual || measured.length < runs.length;
+  console.log(
+    JSON.stringify({
+      balloons: measured[0]?.balloons ?? opts.balloons,
+      room_m: [side, side],
+      steps: opts.steps,
+      runs,
+      speedup_mean: ratio("mean"),
+      speedup_median: ratio("median"),
+      // The same by the worker's clock around each step call (the engine's time, and any wait for the pool's workers).
+      speedup_wall_mean: ratio("mean", "physics_wall_ms"),
+      hashes_equal: hashesEqual,
+      viewport,
+      chromium: browser.version(),
+      renderer: "SwiftShader (CPU)",
+    }),
+  );
+  if (!hashesEqual) console.error(`measure.mjs: the state hashes differ across thread counts: ${measured.map((r) => `${r.threads}: ${r.state_hash}`).join(", ")}`);
 } finally {
   await browser.close();
   await server.close();
 }
+if (failed) process.exit(1);

@@ -2,8 +2,8 @@
 // the page runs (web/public/wasm), for the benchmark and the determinism check.
 //
 //   import { loadUpWasm } from "../sim-node/loadEngine.mjs";
-//   const { glue, threads, close } = await loadUpWasm({ threads: 2 });
-//   const engine = new glue.Engine();   // the glue's exports, initialised
+//   const { glue, memory, threads, close } = await loadUpWasm({ threads: 2 });
+//   const engine = new glue.Engine();   // the glue's exports, initialised; memory: the module's
 //
 // threads = 1: the single-threaded module (up_wasm.wasm) unless `threaded`.
 // threads > 1: the threaded one (threads/up_wasm.wasm) with rayon's pool
@@ -85,8 +85,8 @@ async function start(threads, threaded) {
   }
   if (threaded) installShims();
   const glue = await import(gluePath.href);
-  glue.initSync({ module: await readFile(wasm) });
-  if (!threaded) return { glue, threads: 1, close: () => {} };
+  const { memory } = glue.initSync({ module: await readFile(wasm) });
+  if (!threaded) return { glue, memory, threads: 1, close: () => {} };
   await glue.initThreadPool(threads);
   // Started: the workers wait in the pool without holding the process open.
   for (const w of poolWorkers) w[Symbol.for("worker")].unref();
@@ -95,12 +95,12 @@ async function start(threads, threaded) {
   const close = () => {
     for (const w of poolWorkers.splice(0)) w.terminate();
   };
-  return { glue, threads: count, close };
+  return { glue, memory, threads: count, close };
 }
 
 /**
  * The engine's glue, initialised, on `threads` threads (an integer from 1 to
- * 256): `{ glue, threads, close }`. `threaded: true` runs the threaded module
+ * 256): `{ glue, memory, threads, close }` (memory: the module's, for the views of its arrays). `threaded: true` runs the threaded module
  * even on one thread (a pool of one), as the determinism check does.
  */
 export async function loadUpWasm({ threads = 1, threaded = threads > 1 } = {}) {

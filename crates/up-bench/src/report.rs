@@ -130,6 +130,9 @@ fn node_step(script: &Path, n: u64, steps: Option<u64>) -> Step {
         "--balloons".to_string(),
         n.to_string(),
         "--json".into(),
+        // The report compares UP with Rapier; the other peers are in their own section.
+        "--engines".into(),
+        "up,rapier".into(),
     ];
     if let Some(steps) = steps {
         args.extend(["--steps".to_string(), steps.to_string()]);

@@ -19,6 +19,7 @@ import type { KeyAction } from "../ui/input";
 import { applyParams, paramsFromScene, withRibbonLength, type PanelParams } from "../scene/sceneParams";
 import { ShareLink } from "./shareLink";
 import { PhysicsView } from "./physicsView";
+import { FrameMeter } from "./frameMeter";
 import type { PageElements } from "./page";
 
 /** Most balloons the panel's slider offers (the engine's capacity may be higher). */
@@ -50,6 +51,8 @@ export class App {
   lastStats: { stats: EngineStats; stepsPerSecond: number } | null = null;
   /** Frames drawn with balloons, and main-thread ms spent in renderer.render over them (measurements). */
   readonly frames = { drawn: 0, renderMs: 0 };
+  /** The main thread's work and render call per frame (measurements). */
+  readonly frameMeter = new FrameMeter();
   private firstWorld = true;
   private lastFrameTime = performance.now();
 
@@ -199,6 +202,7 @@ export class App {
 
   /** One animation frame: controls, the world from the newest physics frame, the HUD, the render. */
   private frame(now: number): void {
+    const workStart = performance.now();
     const dt = Math.min(0.1, (now - this.lastFrameTime) / 1000);
     this.lastFrameTime = now;
     this.controls.update(dt);
@@ -212,7 +216,9 @@ export class App {
     const { renderer, scene, camera } = this.stage;
     const renderStart = performance.now();
     renderer.render(scene, camera);
-    this.frames.renderMs += performance.now() - renderStart;
+    const renderEnd = performance.now();
+    this.frames.renderMs += renderEnd - renderStart;
+    this.frameMeter.record(renderStart - workStart, renderEnd - renderStart);
     if (withBalloons) this.frames.drawn++;
     requestAnimationFrame((t) => this.frame(t));
   }

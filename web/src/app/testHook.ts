@@ -1,6 +1,7 @@
 // The end-to-end tests' view into the app, `window.__up`: it reads state and
 // the rendered pixels, and never drives the app (the tests use the same keys
-// and clicks as a user). main.ts loads this module only when the page's
+// and clicks as a user), but for `measureSteps`, the timed step window of
+// `make measure`. main.ts loads this module only when the page's
 // address has the `test` parameter (`/?test#scene=…`), so a visitor's page
 // neither downloads it nor exposes the hook.
 
@@ -21,6 +22,13 @@ export function createTestHook(app: App) {
     frames: () => ({ ...app.frames }),
     /** The worker's last stats (stage ms per step, counts) and its steps per second. */
     stats: () => app.lastStats,
+    /** Measurements (make measure): the main thread's frame work and render call, and a reset to start a window. */
+    frameMeter: () => app.frameMeter.summary(),
+    resetFrameMeter: () => app.frameMeter.reset(),
+    /** Measurements: the scene restarted and `steps` steps timed in the worker; resolves with the times and the state hash. */
+    measureSteps: (steps: number) => app.bridge.measureSteps(steps),
+    /** Measurements: balloons drawn or not (the frame's work goes on; SwiftShader's drawing of thousands takes the CPU). */
+    drawBalloons: (on: boolean) => world.balloons?.setVisible(on),
     debugView: () => world.debug.visible,
     /** Contacts the debug view draws now, and how many the current frame carried. */
     contacts: () => ({

@@ -7,6 +7,7 @@ import type { CensusSample, Frame, FromWorker, ToWorker, Vec3Tuple, WorldInfo } 
 import { frameViews } from "./frameLayout";
 import type { ForcesPayload } from "./forcesFrame";
 import { setEngineConstants } from "../scene/sceneSchema";
+import type { StepsMeasured } from "./stepMeter";
 
 export interface BridgeEvents {
   ready(info: WorldInfo): void;
@@ -47,6 +48,8 @@ export class SimBridge {
   /** Validation requests waiting for the worker's answer, by id. */
   private readonly validations = new Map<number, (error: string | null) => void>();
   private nextValidation = 1;
+  /** Step measurements waiting for the worker's answer, in order. */
+  private readonly measurements: ((r: StepsMeasured) => void)[] = [];
   /** State hash requests waiting for the worker's answer, by id. */
   private readonly hashes = new Map<number, (answer: { hash: string; steps: number }) => void>();
 
@@ -111,6 +114,9 @@ export class SimBridge {
         this.validations.get(msg.id)?.(msg.error);
         this.validations.delete(msg.id);
         break;
+      case "stepsMeasured":
+        this.measurements.shift()?.(msg);
+        break;
       case "hash":
         this.hashes.get(msg.id)?.(msg);
         this.hashes.delete(msg.id);
@@ -166,6 +172,14 @@ export class SimBridge {
     return new Promise((resolve) => {
       this.validations.set(id, resolve);
       this.send({ type: "validate", id, sceneJson });
+    });
+  }
+
+  /** Measurements: restarts the scene and times `steps` steps in the worker (sim/stepMeter.ts); the page draws on meanwhile. */
+  measureSteps(steps: number): Promise<StepsMeasured> {
+    return new Promise((resolve) => {
+      this.measurements.push(resolve);
+      this.send({ type: "measureSteps", steps });
     });
   }
 

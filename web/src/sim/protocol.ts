@@ -7,6 +7,7 @@
 import type { Constants, EngineStats, Finish, ModelMesh, RibbonTables, RoomMesh, TreeNode } from "./engine";
 import type { FloatSample } from "../ui/floatPlot";
 import type { ForcesPayload } from "./forcesFrame";
+import type { StepsMeasured } from "./stepMeter";
 
 export type Vec3Tuple = [number, number, number];
 
@@ -38,6 +39,8 @@ export type ToWorker =
   | { type: "return"; buffer: ArrayBuffer }
   /** Asks the engine whether it would load `sceneJson`; answered by `validated` with the same `id`. */
   | { type: "validate"; id: number; sceneJson: string }
+  /** Measurements: the scene from its start, `steps` steps timed one by one (sim/stepMeter.ts). */
+  | { type: "measureSteps"; steps: number }
   /** Asks for the world's state hash and the steps taken since it was built; answered by `hash` with the same `id`. */
   | { type: "hash"; id: number };
 
@@ -117,5 +120,6 @@ export type FromWorker =
   | { type: "error"; message: string; fatal: boolean }
   /** The engine's message when it refuses the scene of `validate` request `id`, else null. */
   | { type: "validated"; id: number; error: string | null }
+  | ({ type: "stepsMeasured" } & StepsMeasured)
   /** The world's state hash (16 hex digits, as the `up` CLI prints it) after `steps` steps. */
   | { type: "hash"; id: number; hash: string; steps: number };

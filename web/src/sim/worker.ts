@@ -12,6 +12,7 @@ import { RIBBON_POINT_STRIDE, checkLayout, frameFloats, frameViews } from "./fra
 import type { FromWorker, ToWorker, WorldInfo } from "./protocol";
 import { TimeLapse, censusInterval } from "./timeLapse";
 import { ForceProbe, checkForceLayout } from "./forcesFrame";
+import { measureSteps } from "./stepMeter";
 
 /** Most steps taken in one tick; beyond that the simulation runs slow rather than spiral. */
 const MAX_STEPS_PER_TICK = 4;
@@ -472,6 +473,11 @@ function handle(msg: ToWorker): void {
         break;
       case "release":
         state.engine.release();
+        break;
+      case "measureSteps":
+        load(state.currentSceneJson);
+        post({ type: "stepsMeasured", ...measureSteps(state.engine, msg.steps) });
+        state.steps = msg.steps;
         break;
     }
   } catch (err) {

@@ -1,0 +1,48 @@
+import { beforeAll, describe, expect, it } from "vitest";
+import { loadBuiltEngine } from "./builtEngine";
+import type { Engine } from "./engine";
+import { MAX_MEASURED_STEPS, hashHex, measureSteps } from "./stepMeter";
+
+const SCENE = JSON.stringify({ room: { width: 4, depth: 4 }, balloons: [{ count: 40 }], sim: { seed: 3 } });
+
+let engine: Engine;
+
+beforeAll(async () => {
+  engine = await loadBuiltEngine();
+});
+
+describe("measureSteps", () => {
+  it("times every step of the window with the engine's timer and the worker's clock", () => {
+    engine.loadSceneJson(SCENE);
+    const r = measureSteps(engine, 12);
+    expect(r.steps).toBe(12);
+    expect(r.engineMs).toHaveLength(12);
+    expect(r.wallMs).toHaveLength(12);
+    // The engine's time is inside the call's.
+    for (let i = 0; i < 12; i++) {
+      expect(r.engineMs[i]).toBeGreaterThan(0);
+      expect(r.wallMs[i]).toBeGreaterThanOrEqual(r.engineMs[i] * 0.5);
+    }
+    expect(r.bodies).toBe(40);
+  }, 30_000);
+
+  it("ends where stepping the same scene as many steps in one call ends (the same state hash)", () => {
+    engine.loadSceneJson(SCENE);
+    const measured = measureSteps(engine, 20);
+    engine.loadSceneJson(SCENE);
+    engine.step(20);
+    expect(measured.stateHash).toBe(hashHex(engine.stateHash()));
+    expect(measured.stateHash).toMatch(/^[0-9a-f]{16}$/);
+    // And not where 19 steps end: the hash says which step it is.
+    engine.loadSceneJson(SCENE);
+    engine.step(19);
+    expect(measured.stateHash).not.toBe(hashHex(engine.stateHash()));
+  }, 60_000);
+
+  it("refuses a window that is not a whole number of steps in range", () => {
+    engine.loadSceneJson(SCENE);
+    for (const bad of [0, -1, 2.5, MAX_MEASURED_STEPS + 1, Number.NaN]) {
+      expect(() => measureSteps(engine, bad)).toThrow(/steps to measure: expected an integer from 1 to/);
+    }
+  });
+});
