@@ -17,6 +17,9 @@ import { Panel, type PanelActions } from "../ui/panel";
 import type { KeyAction } from "../ui/input";
 import { applyParams, paramsFromScene, withRibbonLength, type PanelParams } from "../scene/sceneParams";
 import { ShareLink } from "./shareLink";
+import { PhotoMode } from "../render/photo/photoMode";
+import { photoHost } from "../render/photo/appPhoto";
+import { ClipRecorder } from "../ui/recorder";
 import type { PageElements } from "./page";
 
 /** Most balloons the panel's slider offers (the engine's capacity may be higher). */
@@ -38,6 +41,8 @@ export class App {
   /** Where the balloons float against simulated time. */
   readonly plot: FloatPlot;
   panel: Panel | null = null;
+  readonly photo: PhotoMode;
+  readonly recorder: ClipRecorder;
   /** The engine's description of the world shown (null until the first is ready). */
   info: WorldInfo | null = null;
   /** The scene shown, as the engine read it (every default written out). */
@@ -70,6 +75,8 @@ export class App {
       action: (a) => this.keyAction(a),
       placement: (on) => this.hud.setMode(on ? "Placement mode: click the floor to add a balloon · CTRL to go back" : ""),
     });
+    this.photo = new PhotoMode(photoHost(this));
+    this.recorder = new ClipRecorder(this.stage.renderer.domElement, (on) => this.panel?.setRecording(on), (m) => this.messages.error(m));
   }
 
   /** Loads the balloon model and the engine (with the linked scene, if any) and starts drawing. */
@@ -130,7 +137,8 @@ export class App {
   }
 
   private screenshot(): void {
-    saveScreenshot(this.stage.renderer, this.stage.scene, this.stage.camera);
+    if (this.photo.active) this.photo.save();
+    else saveScreenshot(this.stage.renderer, this.stage.scene, this.stage.camera);
   }
 
   private keyAction(a: KeyAction): void {
@@ -140,6 +148,8 @@ export class App {
       this.setDebug(!this.world.debug.visible);
       this.panel?.setDebugTrees(this.world.debug.visible);
     } else if (a.kind === "screenshot") this.screenshot();
+    else if (a.kind === "photo") this.photo.toggle();
+    else if (a.kind === "record") this.recorder.toggle();
   }
 
   private readonly panelActions: PanelActions = {
@@ -174,13 +184,17 @@ export class App {
     debugTrees: (on) => this.setDebug(on),
     screenshot: () => this.screenshot(),
     share: () => this.link.share(JSON.stringify(this.scene), () => this.hud.setMode("Link copied to the clipboard")),
+    photo: () => this.photo.toggle(),
+    savePhoto: () => this.photo.save(),
+    record: () => this.recorder.toggle(),
   };
 
   /** One animation frame: controls, the world from the newest physics frame, the HUD, the render. */
   private frame(now: number): void {
     const dt = Math.min(0.1, (now - this.lastFrameTime) / 1000);
     this.lastFrameTime = now;
-    this.controls.update(dt);
+    // In photo mode the camera stays where the photo was taken.
+    if (!this.photo.active) this.controls.update(dt);
     const withBalloons = this.world.update(this.bridge, performance.timeOrigin + now);
     const current = this.bridge.current;
     if (withBalloons && current) this.hud.setCount(current.count);
@@ -189,7 +203,8 @@ export class App {
     this.plot.draw();
     const { renderer, scene, camera } = this.stage;
     const renderStart = performance.now();
-    renderer.render(scene, camera);
+    if (this.photo.active) this.photo.render();
+    else renderer.render(scene, camera);
     this.frames.renderMs += performance.now() - renderStart;
     if (withBalloons) this.frames.drawn++;
     requestAnimationFrame((t) => this.frame(t));

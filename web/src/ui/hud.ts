@@ -27,6 +27,7 @@ export class Hud {
   private readonly physics: HTMLElement;
   private readonly stages: HTMLElement;
   private readonly mode: HTMLElement;
+  private readonly photo: HTMLElement;
   private frames = 0;
   private since = performance.now();
   private lastCount = -1;
@@ -38,13 +39,15 @@ export class Hud {
       <div id="hud-fps">FPS: –</div>
       <div id="hud-physics">Physics: – ms/step</div>
       <table id="hud-stages"></table>
-      <div id="hud-mode"></div>`;
+      <div id="hud-mode"></div>
+      <div id="hud-photo" hidden></div>`;
     this.count = root.querySelector("#hud-count")!;
     this.clock = root.querySelector("#hud-clock")!;
     this.fps = root.querySelector("#hud-fps")!;
     this.physics = root.querySelector("#hud-physics")!;
     this.stages = root.querySelector("#hud-stages")!;
     this.mode = root.querySelector("#hud-mode")!;
+    this.photo = root.querySelector("#hud-photo")!;
   }
 
   /** Call once per drawn frame. */
@@ -77,6 +80,12 @@ export class Hud {
       .map(([name, ms]) => `<tr><td>${name}</td><td>${ms.toFixed(2)}</td></tr>`)
       .join("");
     this.stages.innerHTML = rows;
+  }
+
+  /** Photo mode's line: its samples so far, or null out of photo mode. */
+  setPhoto(samples: number | null): void {
+    this.photo.hidden = samples === null;
+    if (samples !== null) this.photo.textContent = `Photo: ${samples} samples · any key: back to the live view`;
   }
 
   setMode(text: string): void {

@@ -8,6 +8,8 @@ export type KeyAction =
   | { kind: "singleStep" }
   | { kind: "toggleDebug" }
   | { kind: "screenshot" }
+  | { kind: "photo" }
+  | { kind: "record" }
   | { kind: "none" };
 
 /** The fields of a KeyboardEvent the mapping reads. */
@@ -34,9 +36,13 @@ export function mapKeyDown(e: KeyFields): KeyAction {
   if (e.inTextField || e.repeat) return { kind: "none" };
   switch (e.key) {
     case " ":
+      return { kind: "togglePause" };
     case "p":
     case "P":
-      return { kind: "togglePause" };
+      return { kind: "photo" };
+    case "r":
+    case "R":
+      return { kind: "record" };
     case "n":
     case "N":
     case ".":
