@@ -29,22 +29,24 @@ try {
   // Balloons rise and gather first.
   await page.waitForTimeout(seconds * 1000);
   log("ready");
+  // The 3D view only: the HUD, panel, help line and plot are page elements above it.
+  await page.addStyleTag({ content: "#hud, #help, #float-plot, .lil-gui { visibility: hidden !important; }" });
   await page.screenshot({ path: `${prefix}-live.png` });
   log("live screenshot");
   const pressed = Date.now();
   await page.keyboard.press("p");
-  await page.waitForFunction(() => window.__up.photo().active, null, { timeout: 60_000 });
+  await page.waitForFunction(() => window.__up.photo().samples >= 1, null, { timeout: 3_600_000, polling: 1000 });
   const bake = await page.evaluate(() => window.__up.photo().bake);
   log(`photo mode: ${JSON.stringify(bake)}`);
   const marks = {};
   for (const n of [1, 16, samples]) {
-    await page.waitForFunction((k) => window.__up.photo().samples >= k, n, { timeout: 3_600_000, polling: 250 });
+    await page.waitForFunction((k) => window.__up.photo().samples >= k, n, { timeout: 3_600_000, polling: 1000 });
     marks[n] = (Date.now() - pressed) / 1000;
     log(`${n} samples`);
     if (n === 16) await page.screenshot({ path: `${prefix}-16.png` });
   }
   await page.screenshot({ path: `${prefix}-traced.png` });
-  console.log(JSON.stringify({ width, height, bakeMs: Math.round(bake.ms), instances: bake.instances, triangles: bake.triangles, secondsToSamples: marks }));
+  console.log(JSON.stringify({ width, height, bakeMs: Math.round(bake.ms), mergeMs: Math.round(bake.mergeMs), instances: bake.instances, triangles: bake.triangles, secondsToSamples: marks }));
 } finally {
   await browser.close();
   await server.close();

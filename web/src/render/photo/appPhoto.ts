@@ -44,6 +44,7 @@ export function photoHost(app: App): PhotoHost {
       app.bridge.setPaused(paused);
       app.panel?.setPaused(paused);
     },
+    error: (message) => app.messages.error(message),
     changed(state) {
       app.hud.setPhoto(state.active ? state.samples : null);
       app.panel?.setPhoto(state.active);

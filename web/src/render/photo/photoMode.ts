@@ -1,16 +1,14 @@
 // Photo mode (key P, the panel's photo button): the simulation pauses, the
-// scene drawn now is baked (bake.ts) and handed to three-gpu-pathtracer, and
-// the picture refines in the page, one tile of a sample per animation frame
-// so the page keeps answering; a light edge-aware denoiser (the tracer's
-// DenoiseMaterial) smooths the first samples' grain. Save downloads the
-// canvas as a PNG. Any key but a modifier, or the button again, goes back to
-// the live view as it was, running again if it ran before.
+// scene drawn now is baked (bake.ts) and handed to three-gpu-pathtracer
+// (tracer.ts), and the picture refines in the page, one tile of a sample per
+// animation frame so the page keeps answering. Save downloads the canvas as
+// a PNG. Any key but a modifier, or the button again, goes back to the live
+// view as it was, running again if it ran before.
 
 import * as THREE from "three";
-import { FullScreenQuad } from "three/examples/jsm/postprocessing/Pass.js";
-import { DenoiseMaterial, WebGLPathTracer } from "three-gpu-pathtracer";
+import type { WebGLPathTracer } from "three-gpu-pathtracer";
 import { bakeScene, type Bake, type RibbonSource } from "./bake";
-import { addPhotoLights, type RoomBox } from "./photoLights";
+import type { RoomBox } from "./photoLights";
 import { downloadBlob, timestampName } from "./download";
 
 /** What photo mode needs of the app. */
@@ -27,6 +25,8 @@ export interface PhotoHost {
   setPaused(paused: boolean): void;
   /** Photo mode was entered or left, or its sample count changed. */
   changed(state: PhotoState): void;
+  /** The tracer failed to load. */
+  error(message: string): void;
 }
 
 export interface PhotoState {
@@ -35,29 +35,28 @@ export interface PhotoState {
   samples: number;
 }
 
-/** Light bounces (and more through transmissive surfaces): the room's walls, ceiling and balloons light each other. */
-const BOUNCES = 5;
-const TRANSMISSIVE_BOUNCES = 4;
-/** Tiles a sample is split into (one per animation frame): a SwiftShader frame stays near a second at 960×600. */
-const TILES = 3;
-/** Latex's transmission in the photo when the live material has none: physics-reference "Looks" infers 0.2–0.4 (a guess), thin film. */
+/** Latex's transmission in the photo when the live material has none: physics-reference "Looks" infers 0.2–0.4 (a guess), as a thin film. */
 const LATEX_TRANSMISSION = 0.2;
-/** Samples after which the denoiser is off: by then the samples themselves are smooth, and the filter only blurs. */
-const DENOISE_UNTIL = 256;
 
-/** Keys that never leave photo mode (modifiers held for something else). */
+/** Keys that never leave photo mode (modifiers, held for something else). */
 const MODIFIER_KEYS = new Set(["Control", "Shift", "Alt", "Meta", "AltGraph", "CapsLock", "Fn", "NumLock", "ScrollLock", "OS"]);
 
 export class PhotoMode {
   active = false;
-  /** The last bake's duration, ms, its instances and triangles (measurements). */
-  lastBake = { ms: 0, instances: 0, triangles: 0 };
+  /**
+   * The last bake (measurements): ms in all, ms of it merging the meshes (the
+   * rest is the tracer's BVH and material tables), instances and triangles.
+   */
+  lastBake = { ms: 0, mergeMs: 0, instances: 0, triangles: 0 };
+  private module: Promise<typeof import("./tracer")> | null = null;
   private tracer: WebGLPathTracer | null = null;
   private bake: Bake | null = null;
   private lights: { dispose(): void } | null = null;
   private camera: THREE.PerspectiveCamera | null = null;
   private wasPaused = false;
   private shownSamples = -1;
+  /** Bumped by every enter and exit: a load that finishes after the photo was left does nothing. */
+  private generation = 0;
 
   constructor(private readonly host: PhotoHost) {
     // Capture phase on the window: photo mode sees keys and canvas presses before the controls do.
@@ -84,7 +83,7 @@ export class PhotoMode {
     else this.enter();
   }
 
-  /** Pauses, bakes the scene drawn now and starts tracing it. */
+  /** Pauses, bakes the scene drawn now and starts tracing it (the tracer loads with the first photo). */
   enter(): void {
     if (this.active) return;
     const host = this.host;
@@ -96,14 +95,29 @@ export class PhotoMode {
       const material = (o as THREE.Mesh).material as THREE.MeshPhysicalMaterial | undefined;
       if (o.name === "balloons" && material?.isMeshPhysicalMaterial && material.transmission === 0) material.transmission = LATEX_TRANSMISSION;
     }
-    this.lights = addPhotoLights(bake.scene, host.room(), host.scene.background instanceof THREE.Color ? host.scene.background : null);
-    this.camera = host.camera.clone();
-    const tracer = this.makeTracer();
-    tracer.setScene(bake.scene, this.camera);
+    const bakeMs = performance.now() - start;
     this.bake = bake;
-    this.lastBake = { ms: performance.now() - start, instances: bake.instances, triangles: bake.triangles };
+    this.camera = host.camera.clone();
     this.active = true;
     this.shownSamples = -1;
+    const generation = ++this.generation;
+    this.module ??= import("./tracer");
+    this.module.then(
+      (lib) => {
+        if (generation !== this.generation) return;
+        const t0 = performance.now();
+        this.lights = lib.addPhotoLights(bake.scene, host.room(), host.scene.background instanceof THREE.Color ? host.scene.background : null);
+        this.tracer ??= lib.makeTracer(host.renderer, () => host.renderer.render(host.scene, host.camera));
+        this.tracer.setScene(bake.scene, this.camera!);
+        // The bake: instances merged, and the tracer's BVH and material textures built from them.
+        this.lastBake = { ms: bakeMs + performance.now() - t0, mergeMs: bakeMs, instances: bake.instances, triangles: bake.triangles };
+        this.report();
+      },
+      (e: Error) => {
+        this.host.error(`Photo mode could not load its path tracer: ${e.message}`);
+        this.exit();
+      },
+    );
     this.report();
   }
 
@@ -111,6 +125,7 @@ export class PhotoMode {
   exit(): void {
     if (!this.active) return;
     this.active = false;
+    this.generation++;
     this.bake?.dispose();
     this.lights?.dispose();
     this.bake = null;
@@ -125,7 +140,12 @@ export class PhotoMode {
   render(): void {
     const tracer = this.tracer;
     const camera = this.camera;
-    if (!this.active || !tracer || !camera) return;
+    if (!this.active) return;
+    if (!tracer || !camera || !this.lights) {
+      // The tracer is still loading: the live view stays.
+      this.host.renderer.render(this.host.scene, this.host.camera);
+      return;
+    }
     // A resized page changes the live camera's aspect: follow it (the picture starts over).
     if (camera.aspect !== this.host.camera.aspect) {
       camera.aspect = this.host.camera.aspect;
@@ -139,7 +159,11 @@ export class PhotoMode {
   /** Draws the picture so far on the canvas again, without tracing more: for reading the canvas in the same task. */
   redraw(): void {
     const tracer = this.tracer;
-    if (!this.active || !tracer) return;
+    if (!this.active) return;
+    if (!tracer || !this.lights) {
+      this.host.renderer.render(this.host.scene, this.host.camera);
+      return;
+    }
     tracer.pausePathTracing = true;
     tracer.renderSample();
     tracer.pausePathTracing = false;
@@ -155,37 +179,6 @@ export class PhotoMode {
     }, "image/png");
   }
 
-  private makeTracer(): WebGLPathTracer {
-    if (this.tracer) return this.tracer;
-    const renderer = this.host.renderer;
-    const tracer = new WebGLPathTracer(renderer);
-    tracer.bounces = BOUNCES;
-    tracer.transmissiveBounces = TRANSMISSIVE_BOUNCES;
-    tracer.multipleImportanceSampling = true;
-    // Caps a glossy bounce's roughness from the second bounce on: fewer fireflies in the clearcoat.
-    tracer.filterGlossyFactor = 0.5;
-    tracer.tiles.set(TILES, TILES);
-    tracer.renderDelay = 0;
-    tracer.minSamples = 1;
-    tracer.fadeDuration = 0;
-    // Until the first sample is whole, the live view stays on the canvas.
-    tracer.rasterizeSceneCallback = () => renderer.render(this.host.scene, this.host.camera);
-    const denoise = new FullScreenQuad(new DenoiseMaterial({ sigma: 2.5, kSigma: 1.5, threshold: 0.12 }));
-    tracer.renderToCanvasCallback = (target, r, quad) => {
-      const autoClear = r.autoClear;
-      r.autoClear = false;
-      if (tracer.samples < DENOISE_UNTIL) {
-        (denoise.material as DenoiseMaterial).map = target.texture;
-        denoise.render(r);
-      } else {
-        quad.render(r);
-      }
-      r.autoClear = autoClear;
-    };
-    this.tracer = tracer;
-    return tracer;
-  }
-
   private keyDown(e: KeyboardEvent): void {
     if (!this.active) return;
     // Nothing else sees the key (a held CTRL would toggle placement mode behind the photo).
@@ -198,7 +191,7 @@ export class PhotoMode {
   private report(): void {
     const samples = this.samples;
     if (this.active && samples === this.shownSamples) return;
-    this.shownSamples = samples;
+    this.shownSamples = this.active ? samples : -1;
     this.host.changed({ active: this.active, samples });
   }
 }
