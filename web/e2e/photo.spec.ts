@@ -78,8 +78,9 @@ test("P path-traces the scene, save downloads a PNG of the canvas's size, P agai
   await testInfo.attach(`photo, ${samples}+ samples`, { body: await page.screenshot(), contentType: "image/png" });
 
   // Save: a PNG of the canvas's size.
-  const downloading = page.waitForEvent("download");
-  await page.locator('[data-key="savePhoto"] button').click();
+  // Each frame traces a tile: the click alone has taken 30 s here.
+  const downloading = page.waitForEvent("download", { timeout: 180_000 });
+  await page.locator('[data-key="savePhoto"] button').click({ timeout: 180_000 });
   const download = await downloading;
   expect(download.suggestedFilename()).toMatch(/^up-photo-.*\.png$/);
   const png = readFileSync((await download.path())!);
