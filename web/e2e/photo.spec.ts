@@ -83,7 +83,9 @@ test("P path-traces the scene, save downloads a PNG of the canvas's size, P agai
   await page.locator('[data-key="savePhoto"] button').click({ timeout: 180_000 });
   const download = await downloading;
   expect(download.suggestedFilename()).toMatch(/^up-photo-.*\.png$/);
-  const png = readFileSync((await download.path())!);
+  const pngPath = (await download.path())!;
+  await testInfo.attach("saved photo", { path: pngPath, contentType: "image/png" });
+  const png = readFileSync(pngPath);
   expect(Array.from(png.subarray(0, 8))).toEqual(PNG_SIGNATURE);
   // IHDR: width and height, big-endian, right after the signature and the chunk's length and type.
   expect(png.readUInt32BE(16)).toBe(photo.width);

@@ -1,6 +1,6 @@
 import { describe, expect, it } from "vitest";
 import * as THREE from "three";
-import { bakeInstances, bakeRibbons } from "./bake";
+import { bakeInstances, bakeRibbons, bakeScene, rgba } from "./bake";
 import { STRIP_VERTICES } from "./ribbonStrip";
 import { CURL_LENGTH, CURL_RADIUS } from "../ribbons";
 
@@ -113,5 +113,33 @@ describe("bakeRibbons", () => {
     const out = bakeRibbons({ mesh: new THREE.Mesh(geometry), texels: new Float32Array(8 * 4), halfWidth: 0.002 });
     expect(out.ribbons).toBe(0);
     expect(out.indices.length).toBe(0);
+  });
+});
+
+describe("bakeScene", () => {
+  it("gives every coloured mesh RGBA colours, as the tracer fills meshes without them (RGB would shift the merged array)", () => {
+    const live = new THREE.Scene();
+    const balloons = new THREE.InstancedMesh(new THREE.BoxGeometry(), new THREE.MeshPhysicalMaterial(), 2);
+    balloons.setMatrixAt(0, new THREE.Matrix4().makeTranslation(1, 0, 0));
+    balloons.setMatrixAt(1, new THREE.Matrix4().makeTranslation(-1, 0, 0));
+    balloons.setColorAt(0, new THREE.Color(1, 0, 0));
+    balloons.setColorAt(1, new THREE.Color(0, 0, 1));
+    const floor = new THREE.Mesh(new THREE.PlaneGeometry(), new THREE.MeshStandardMaterial());
+    const hidden = new THREE.Mesh(new THREE.PlaneGeometry(), new THREE.MeshStandardMaterial());
+    hidden.visible = false;
+    const debug = new THREE.Group();
+    debug.add(new THREE.Mesh(new THREE.PlaneGeometry(), new THREE.MeshBasicMaterial()));
+    live.add(balloons, floor, hidden, debug);
+    const bake = bakeScene(live, [debug], null);
+    expect(bake.scene.children.length, "the balloons and the floor; not the hidden mesh or the debug view").toBe(2);
+    expect(bake.instances).toBe(2);
+    const merged = bake.scene.children[0] as THREE.Mesh;
+    const color = merged.geometry.getAttribute("color");
+    expect(color.itemSize).toBe(4);
+    expect([color.getX(0), color.getY(0), color.getZ(0), color.getW(0)]).toEqual([1, 0, 0, 1]);
+    expect([color.getX(24), color.getY(24), color.getZ(24), color.getW(24)]).toEqual([0, 0, 1, 1]);
+    expect((merged.material as THREE.Material).vertexColors).toBe(true);
+    expect(Array.from(rgba([0.5, 0.25, 0], 3))).toEqual([0.5, 0.25, 0, 1]);
+    bake.dispose();
   });
 });

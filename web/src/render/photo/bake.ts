@@ -102,11 +102,24 @@ function det3(e: ArrayLike<number>, m: number): number {
   );
 }
 
+/**
+ * RGB colours as RGBA (alpha 1): the tracer fills a mesh without colours
+ * with RGBA white and merges every mesh's colours into one array, so
+ * colours of three components would shift every mesh's after them.
+ */
+export function rgba(rgb: ArrayLike<number>, itemSize: number): Float32Array {
+  if (itemSize === 4) return Float32Array.from(rgb);
+  const n = Math.floor(rgb.length / itemSize);
+  const out = new Float32Array(n * 4).fill(1);
+  for (let i = 0; i < n; i++) for (let c = 0; c < Math.min(3, itemSize); c++) out[i * 4 + c] = rgb[i * itemSize + c];
+  return out;
+}
+
 function geometryOf(arrays: MeshArrays): THREE.BufferGeometry {
   const g = new THREE.BufferGeometry();
   g.setAttribute("position", new THREE.BufferAttribute(arrays.positions, 3));
   g.setAttribute("normal", new THREE.BufferAttribute(arrays.normals, 3));
-  if (arrays.colors) g.setAttribute("color", new THREE.BufferAttribute(arrays.colors, 3));
+  if (arrays.colors) g.setAttribute("color", new THREE.BufferAttribute(rgba(arrays.colors, 3), 4));
   g.setIndex(new THREE.BufferAttribute(arrays.indices, 1));
   g.computeBoundingSphere();
   return g;
@@ -211,10 +224,10 @@ export function bakeScene(live: THREE.Scene, exclude: THREE.Object3D[], ribbons:
       const arrays = bakeInstances(position.array, normal.array, index, mesh.matrixWorld.elements, 1, null);
       const copy = geometryOf(arrays);
       // Keep the uv (the floor's planks) and the vertex colours a plain mesh has.
-      for (const name of ["uv", "color"]) {
-        const attribute = geometry.getAttribute(name);
-        if (attribute) copy.setAttribute(name, attribute.clone());
-      }
+      const uv = geometry.getAttribute("uv");
+      if (uv) copy.setAttribute("uv", uv.clone());
+      const color = geometry.getAttribute("color");
+      if (color) copy.setAttribute("color", new THREE.BufferAttribute(rgba(color.array, color.itemSize), 4));
       const baked = new THREE.Mesh(copy, photoMaterial(material, false));
       baked.name = mesh.name;
       scene.add(baked);

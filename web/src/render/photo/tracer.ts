@@ -35,7 +35,7 @@ export function makeTracer(renderer: THREE.WebGLRenderer, fallback: () => void):
   tracer.minSamples = 1;
   tracer.fadeDuration = 0;
   tracer.rasterizeSceneCallback = fallback;
-  const denoise = new FullScreenQuad(new DenoiseMaterial({ sigma: 2.5, kSigma: 1.5, threshold: 0.12 }));
+  const denoise = new FullScreenQuad(new DenoiseMaterial({ sigma: 3, kSigma: 1.5, threshold: 0.25 }));
   tracer.renderToCanvasCallback = (target, r, quad) => {
     const autoClear = r.autoClear;
     r.autoClear = false;
