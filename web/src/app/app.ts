@@ -20,6 +20,9 @@ import { applyParams, paramsFromScene, withRibbonLength, type PanelParams } from
 import { ShareLink } from "./shareLink";
 import { PhysicsView } from "./physicsView";
 import { FrameMeter } from "./frameMeter";
+import { PhotoMode } from "../render/photo/photoMode";
+import { photoHost } from "../render/photo/appPhoto";
+import { ClipRecorder } from "../ui/recorder";
 import type { PageElements } from "./page";
 
 /** Most balloons the panel's slider offers (the engine's capacity may be higher). */
@@ -43,6 +46,8 @@ export class App {
   /** The selected balloon, force arrows, motion plots, teaching scenes. */
   readonly physics: PhysicsView;
   panel: Panel | null = null;
+  readonly photo: PhotoMode;
+  readonly recorder: ClipRecorder;
   /** The engine's description of the world shown (null until the first is ready). */
   info: WorldInfo | null = null;
   /** The scene shown, as the engine read it (every default written out). */
@@ -82,6 +87,8 @@ export class App {
       action: (a) => this.keyAction(a),
       placement: (on) => this.hud.setMode(on ? "Placement mode: click the floor to add a balloon · CTRL to go back" : ""),
     });
+    this.photo = new PhotoMode(photoHost(this));
+    this.recorder = new ClipRecorder(this.stage.renderer.domElement, (on) => this.panel?.setRecording(on), (m) => this.messages.error(m));
   }
 
   /** Loads the balloon model and the engine (with the linked scene, if any) and starts drawing. */
@@ -152,7 +159,8 @@ export class App {
   }
 
   private screenshot(): void {
-    saveScreenshot(this.stage.renderer, this.stage.scene, this.stage.camera);
+    if (this.photo.active) this.photo.save();
+    else saveScreenshot(this.stage.renderer, this.stage.scene, this.stage.camera);
   }
 
   private keyAction(a: KeyAction): void {
@@ -163,6 +171,8 @@ export class App {
       this.panel?.setDebugTrees(this.world.debug.visible);
     } else if (a.kind === "screenshot") this.screenshot();
     else if (a.kind === "deselect") this.physics.select(-1);
+    else if (a.kind === "photo") this.photo.toggle();
+    else if (a.kind === "record") this.recorder.toggle();
   }
 
   private readonly panelActions: PanelActions = {
@@ -198,6 +208,9 @@ export class App {
     finish: (finish) => this.world.balloons?.setFinishOverride(finish),
     screenshot: () => this.screenshot(),
     share: () => this.link.share(JSON.stringify(this.scene), () => this.hud.setMode("Link copied to the clipboard")),
+    photo: () => this.photo.toggle(),
+    savePhoto: () => this.photo.save(),
+    record: () => this.recorder.toggle(),
   };
 
   /** One animation frame: controls, the world from the newest physics frame, the HUD, the render. */
@@ -205,7 +218,8 @@ export class App {
     const workStart = performance.now();
     const dt = Math.min(0.1, (now - this.lastFrameTime) / 1000);
     this.lastFrameTime = now;
-    this.controls.update(dt);
+    // In photo mode the camera stays where the photo was taken.
+    if (!this.photo.active) this.controls.update(dt);
     const withBalloons = this.world.update(this.bridge, performance.timeOrigin + now);
     const current = this.bridge.current;
     if (withBalloons && current) this.hud.setCount(current.count);
@@ -215,7 +229,8 @@ export class App {
     this.physics.update(this.world.assets, this.bridge.alpha(performance.timeOrigin + now));
     const { renderer, scene, camera } = this.stage;
     const renderStart = performance.now();
-    renderer.render(scene, camera);
+    if (this.photo.active) this.photo.render();
+    else renderer.render(scene, camera);
     const renderEnd = performance.now();
     this.frames.renderMs += renderEnd - renderStart;
     this.frameMeter.record(renderStart - workStart, renderEnd - renderStart);

@@ -9,11 +9,13 @@ import * as THREE from "three";
 import { POSE_STRIDE } from "../render/poseMath";
 import { PLOT_COLORS } from "../ui/floatPlot";
 import type { App } from "./app";
+import { photoTestHook } from "../render/photo/photoTestHook";
 
 export function createTestHook(app: App) {
   const { bridge, controls, messages, world } = app;
   const { renderer, scene, camera } = app.stage;
   return {
+    ...photoTestHook(app),
     ready: () => app.ready,
     balloonCount: () => bridge.current?.count ?? 0,
     poses: () => Array.from(bridge.curr),

@@ -19,12 +19,12 @@ export const TEXTURE_WIDTH = 1024;
 export const STRIP_SAMPLES = 32;
 export const CURL_SAMPLES = 48;
 /** Length of ribbon wound into the curl at the free end, m (at most half the ribbon). */
-const CURL_LENGTH = 0.18;
+export const CURL_LENGTH = 0.18;
 /** Radius of the curl's helix, m, and its turns. */
-const CURL_RADIUS = 0.011;
-const CURL_TURNS = 6;
+export const CURL_RADIUS = 0.011;
+export const CURL_TURNS = 6;
 /** Turns of twist per metre along the straight part. */
-const TWIST_TURNS_PER_M = 1.2;
+export const TWIST_TURNS_PER_M = 1.2;
 
 /** The strip every ribbon is drawn from: per vertex (sample index, side ±1, 0); two triangles per sample step. */
 export function stripTemplate(): THREE.InstancedBufferGeometry {

@@ -34,6 +34,7 @@ export class Hud {
   private readonly stages: HTMLElement;
   private readonly mode: HTMLElement;
   private readonly threads: HTMLElement;
+  private readonly photo: HTMLElement;
   private frames = 0;
   private since = performance.now();
   private lastCount = -1;
@@ -46,7 +47,8 @@ export class Hud {
       <div id="hud-physics">Physics: – ms/step</div>
       <div id="hud-threads"></div>
       <table id="hud-stages"></table>
-      <div id="hud-mode"></div>`;
+      <div id="hud-mode"></div>
+      <div id="hud-photo" hidden></div>`;
     this.count = root.querySelector("#hud-count")!;
     this.clock = root.querySelector("#hud-clock")!;
     this.fps = root.querySelector("#hud-fps")!;
@@ -54,6 +56,7 @@ export class Hud {
     this.stages = root.querySelector("#hud-stages")!;
     this.mode = root.querySelector("#hud-mode")!;
     this.threads = root.querySelector("#hud-threads")!;
+    this.photo = root.querySelector("#hud-photo")!;
   }
 
   /** Call once per drawn frame. */
@@ -91,6 +94,12 @@ export class Hud {
   /** The threads stepping the engine, or, on a page that is not isolated, that it runs on one. */
   setThreads(threads: number, isolated: boolean): void {
     this.threads.textContent = threadsText(threads, isolated);
+  }
+
+  /** Photo mode's line: its samples so far, or null out of photo mode. */
+  setPhoto(samples: number | null): void {
+    this.photo.hidden = samples === null;
+    if (samples !== null) this.photo.textContent = `Photo: ${samples} samples · any key: back to the live view`;
   }
 
   setMode(text: string): void {

@@ -22,7 +22,8 @@ describe("key mapping", () => {
 
   it("maps pause, single step, debug view and screenshot", () => {
     expect(mapKeyDown({ key: " " }).kind).toBe("togglePause");
-    expect(mapKeyDown({ key: "p" }).kind).toBe("togglePause");
+    expect(mapKeyDown({ key: "p" }).kind).toBe("photo");
+    expect(mapKeyDown({ key: "R" }).kind).toBe("record");
     expect(mapKeyDown({ key: "n" }).kind).toBe("singleStep");
     expect(mapKeyDown({ key: "d" }).kind).toBe("toggleDebug");
     expect(mapKeyDown({ key: "s" }).kind).toBe("screenshot");

@@ -9,6 +9,8 @@ export type KeyAction =
   | { kind: "toggleDebug" }
   | { kind: "screenshot" }
   | { kind: "deselect" }
+  | { kind: "photo" }
+  | { kind: "record" }
   | { kind: "none" };
 
 /** The fields of a KeyboardEvent the mapping reads. */
@@ -37,9 +39,13 @@ export function mapKeyDown(e: KeyFields): KeyAction {
     case "Escape":
       return { kind: "deselect" };
     case " ":
+      return { kind: "togglePause" };
     case "p":
     case "P":
-      return { kind: "togglePause" };
+      return { kind: "photo" };
+    case "r":
+    case "R":
+      return { kind: "record" };
     case "n":
     case "N":
     case ".":

@@ -33,6 +33,12 @@ export interface PanelActions {
   finish(finish: Finish | null): void;
   screenshot(): void;
   share(): void;
+  /** Photo mode on or off (P). */
+  photo(): void;
+  /** Saves the photo as a PNG. */
+  savePhoto(): void;
+  /** Starts or stops recording a clip (R). */
+  record(): void;
 }
 
 export class Panel {
@@ -47,7 +53,13 @@ export class Panel {
     reset: () => this.actions.reset(),
     screenshot: () => this.actions.screenshot(),
     share: () => this.actions.share(),
+    photo: () => this.actions.photo(),
+    savePhoto: () => this.actions.savePhoto(),
+    record: () => this.actions.record(),
   };
+  private readonly photoButton: ReturnType<GUI["add"]>;
+  private readonly saveButton: ReturnType<GUI["add"]>;
+  private readonly recordButton: ReturnType<GUI["add"]>;
 
   constructor(
     initial: PanelParams,
@@ -96,6 +108,20 @@ export class Panel {
     sim.add(this.view, "trees").name("sphere trees (D)").onChange((on: boolean) => actions.debugTrees(on));
     sim.add(this.buttons, "screenshot").name("screenshot (S)");
     sim.add(this.buttons, "share").name("copy share link");
+
+    const media = this.gui.addFolder("Photo and clip");
+    this.photoButton = tag(media.add(this.buttons, "photo"), "photo").name("photo (P)");
+    this.saveButton = tag(media.add(this.buttons, "savePhoto"), "savePhoto").name("save photo (PNG)").disable();
+    this.recordButton = tag(media.add(this.buttons, "record"), "record").name("record (R)");
+  }
+
+  setPhoto(on: boolean): void {
+    this.photoButton.name(on ? "back to the live view (P)" : "photo (P)");
+    this.saveButton.enable(on);
+  }
+
+  setRecording(on: boolean): void {
+    this.recordButton.name(on ? "stop recording (R)" : "record (R)");
   }
 
   /** Shows `params` (after a reset or a loaded link) without firing changes. */
