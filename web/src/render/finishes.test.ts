@@ -1,6 +1,7 @@
 import { describe, expect, it } from "vitest";
 import * as THREE from "three";
-import { FINISHES, FinishMaterials, SHEEN_AGED, SHEEN_FRESH, addLatexUv, latexHeight, normalMapFromHeight } from "./finishes";
+import { FINISHES, FinishMaterials, SHEEN_AGED, SHEEN_FRESH, addLatexUv, latexHeight } from "./finishes";
+import { normalMapFromHeight } from "./normalMap";
 import { modelFinishes } from "./balloons";
 
 describe("finishes", () => {

@@ -16,6 +16,7 @@
 
 import * as THREE from "three";
 import type { Finish } from "../sim/engine";
+import { normalMapFromHeight, seededRandom } from "./normalMap";
 
 /** Every finish, in the panel's order. */
 export const FINISHES: readonly Finish[] = ["latex", "pearl", "foil"];
@@ -29,49 +30,6 @@ const NECK_PLEATS_FROM = 0.72;
 /** Sheen of fresh and of fully aged latex: the velvet grows as the gas goes. */
 export const SHEEN_FRESH = 0.08;
 export const SHEEN_AGED = 0.7;
-
-/** A deterministic pseudo-random sequence in [0, 1) (mulberry32): the same map every load. */
-function random(seed: number): () => number {
-  let a = seed >>> 0;
-  return () => {
-    a = (a + 0x6d2b79f5) >>> 0;
-    let t = a;
-    t = Math.imul(t ^ (t >>> 15), t | 1);
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
-
-/**
- * A tangent-space normal map from a height field `height(u, v)` over the
- * unit square, periodic in u (the seam around the balloon), by central differences.
- */
-export function normalMapFromHeight(height: (u: number, v: number) => number, strength: number, n = NORMAL_TEXELS): THREE.DataTexture {
-  const h = new Float32Array(n * n);
-  for (let j = 0; j < n; j++) for (let i = 0; i < n; i++) h[j * n + i] = height((i + 0.5) / n, (j + 0.5) / n);
-  const at = (i: number, j: number) => h[Math.min(n - 1, Math.max(0, j)) * n + (((i % n) + n) % n)];
-  const data = new Uint8Array(n * n * 4);
-  for (let j = 0; j < n; j++) {
-    for (let i = 0; i < n; i++) {
-      const dx = (at(i + 1, j) - at(i - 1, j)) * strength;
-      const dy = (at(i, j + 1) - at(i, j - 1)) * strength;
-      const len = Math.hypot(dx, dy, 1);
-      const o = (j * n + i) * 4;
-      data[o] = Math.round(((-dx / len) * 0.5 + 0.5) * 255);
-      data[o + 1] = Math.round(((-dy / len) * 0.5 + 0.5) * 255);
-      data[o + 2] = Math.round(((1 / len) * 0.5 + 0.5) * 255);
-      data[o + 3] = 255;
-    }
-  }
-  const texture = new THREE.DataTexture(data, n, n, THREE.RGBAFormat);
-  texture.wrapS = THREE.RepeatWrapping;
-  texture.wrapT = THREE.ClampToEdgeWrapping;
-  texture.magFilter = THREE.LinearFilter;
-  texture.minFilter = THREE.LinearMipmapLinearFilter;
-  texture.generateMipmaps = true;
-  texture.needsUpdate = true;
-  return texture;
-}
 
 /**
  * Height of the latex surface at (u around, v down from the top): smooth over
@@ -168,7 +126,7 @@ export class FinishMaterials {
 
   private make(finish: Finish): THREE.MeshPhysicalMaterial {
     if (finish === "foil") {
-      this.creaseNormals ??= normalMapFromHeight(creaseHeight(random(11)), 3);
+      this.creaseNormals ??= normalMapFromHeight(creaseHeight(seededRandom(11)), 3, NORMAL_TEXELS);
       return new THREE.MeshPhysicalMaterial({
         color: 0xffffff,
         metalness: 1,
@@ -178,7 +136,7 @@ export class FinishMaterials {
         envMapIntensity: 1,
       });
     }
-    this.latexNormals ??= normalMapFromHeight(latexHeight, 6);
+    this.latexNormals ??= normalMapFromHeight(latexHeight, 6, NORMAL_TEXELS);
     const m = new THREE.MeshPhysicalMaterial({ ...latexParameters(), normalMap: this.latexNormals, normalScale: new THREE.Vector2(0.8, 0.8) });
     if (finish === "pearl") {
       m.iridescence = 1;

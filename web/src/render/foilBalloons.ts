@@ -11,23 +11,12 @@ import { bodiesByFoilModel, gatherPoses } from "./foilRouting";
 import { balloonInstances } from "./balloonInstances";
 import { POSE_STRIDE, writeInstanceMatrices } from "./poseMath";
 import { SQUASH_ATTRIBUTE, addSquash } from "./squash";
+import { normalMapFromHeight, seededRandom } from "./normalMap";
 
 /** Texels across the crimp normal map. */
 const CRIMP_TEXELS = 256;
 /** Pleats around the rim, where the film crimps as it fills. */
 const CRIMP_PLEATS = 44;
-
-/** A deterministic pseudo-random sequence in [0, 1) (mulberry32): the same crimps every load. */
-function random(seed: number): () => number {
-  let a = seed >>> 0;
-  return () => {
-    a = (a + 0x6d2b79f5) >>> 0;
-    let t = a;
-    t = Math.imul(t ^ (t >>> 15), t | 1);
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
 
 /**
  * A normal map of a filled foil disc seen face-on (uv centre: the disc's
@@ -35,46 +24,21 @@ function random(seed: number): () => number {
  * over, from a height field by central differences.
  */
 function crimpNormalMap(): THREE.DataTexture {
-  const n = CRIMP_TEXELS;
-  const rnd = random(18);
+  const rnd = seededRandom(18);
   const phases = Array.from({ length: 6 }, () => rnd() * Math.PI * 2);
-  const height = new Float32Array(n * n);
-  for (let j = 0; j < n; j++) {
-    for (let i = 0; i < n; i++) {
-      const u = (i + 0.5) / n - 0.5;
-      const v = (j + 0.5) / n - 0.5;
-      const r = Math.hypot(u, v) * 2;
-      const theta = Math.atan2(v, u);
-      // Pleats wander a little so they do not look machined.
-      const wobble = 0.18 * Math.sin(7 * theta + phases[0]) + 0.1 * Math.sin(13 * theta + 9 * r + phases[1]);
-      const pleat = Math.abs(((((CRIMP_PLEATS * theta) / (2 * Math.PI) + wobble) % 1) + 1) % 1 * 2 - 1);
-      const rim = Math.min(1, Math.max(0, (r - 0.55) / 0.4)) ** 2;
-      const crinkle = 0.5 + 0.25 * Math.sin(41 * u + 17 * v + phases[2]) * Math.sin(23 * v - 37 * u + phases[3]);
-      height[j * n + i] = rim * pleat + 0.06 * crinkle;
-    }
-  }
-  const data = new Uint8Array(n * n * 4);
-  const strength = 5;
-  for (let j = 0; j < n; j++) {
-    for (let i = 0; i < n; i++) {
-      const h = (x: number, y: number) => height[Math.min(n - 1, Math.max(0, y)) * n + Math.min(n - 1, Math.max(0, x))];
-      const dx = (h(i + 1, j) - h(i - 1, j)) * strength;
-      const dy = (h(i, j + 1) - h(i, j - 1)) * strength;
-      const len = Math.hypot(dx, dy, 1);
-      const o = (j * n + i) * 4;
-      data[o] = Math.round(((-dx / len) * 0.5 + 0.5) * 255);
-      data[o + 1] = Math.round(((-dy / len) * 0.5 + 0.5) * 255);
-      data[o + 2] = Math.round(((1 / len) * 0.5 + 0.5) * 255);
-      data[o + 3] = 255;
-    }
-  }
-  const texture = new THREE.DataTexture(data, n, n, THREE.RGBAFormat);
-  texture.wrapS = texture.wrapT = THREE.ClampToEdgeWrapping;
-  texture.magFilter = THREE.LinearFilter;
-  texture.minFilter = THREE.LinearMipmapLinearFilter;
-  texture.generateMipmaps = true;
-  texture.needsUpdate = true;
-  return texture;
+  const height = (s: number, t: number) => {
+    const u = s - 0.5;
+    const v = t - 0.5;
+    const r = Math.hypot(u, v) * 2;
+    const theta = Math.atan2(v, u);
+    // Pleats wander a little so they do not look machined.
+    const wobble = 0.18 * Math.sin(7 * theta + phases[0]) + 0.1 * Math.sin(13 * theta + 9 * r + phases[1]);
+    const pleat = Math.abs(((((CRIMP_PLEATS * theta) / (2 * Math.PI) + wobble) % 1) + 1) % 1 * 2 - 1);
+    const rim = Math.min(1, Math.max(0, (r - 0.55) / 0.4)) ** 2;
+    const crinkle = 0.5 + 0.25 * Math.sin(41 * u + 17 * v + phases[2]) * Math.sin(23 * v - 37 * u + phases[3]);
+    return rim * pleat + 0.06 * crinkle;
+  };
+  return normalMapFromHeight(height, 5, CRIMP_TEXELS, false);
 }
 
 /** The engine's surface as a geometry, with uv projected face-on (x, y across the disc) for the crimp map. */
