@@ -23,6 +23,7 @@ import { fileURLToPath } from 'node:url';
 import { performance } from 'node:perf_hooks';
 import { JoltEngine, loadJolt } from './jolt.mjs';
 import { loadUpWasm } from '../sim-node/loadEngine.mjs';
+import { intArg } from '../scripts/cliArgs.mjs';
 
 const HERE = dirname(fileURLToPath(import.meta.url));
 const ROOT = resolve(HERE, '..', '..');
@@ -61,13 +62,6 @@ function parseArgs(argv) {
     rssProbe: null,
     upBench: join(ROOT, 'target', 'release', 'up-bench'),
   };
-  const int = (name, value, min, max) => {
-    const n = Number(value);
-    if (!Number.isInteger(n) || n < min || n > max) {
-      throw new Error(`${name}: expected an integer from ${min} to ${max}, found ${JSON.stringify(value)}`);
-    }
-    return n;
-  };
   for (let i = 2; i < argv.length; i++) {
     const arg = argv[i];
     const next = () => {
@@ -75,10 +69,10 @@ function parseArgs(argv) {
       return argv[++i];
     };
     switch (arg) {
-      case '--balloons': opts.balloons = int(arg, next(), 1, 50000); break;
-      case '--steps': opts.steps = int(arg, next(), 1, 1000000); break;
-      case '--threads': opts.threads = int(arg, next(), 1, 256); break;
-      case '--seed': opts.seed = int(arg, next(), 0, Number.MAX_SAFE_INTEGER); break;
+      case '--balloons': opts.balloons = intArg(arg, next(), 1, 50000); break;
+      case '--steps': opts.steps = intArg(arg, next(), 1, 1000000); break;
+      case '--threads': opts.threads = intArg(arg, next(), 1, 256); break;
+      case '--seed': opts.seed = intArg(arg, next(), 0, Number.MAX_SAFE_INTEGER); break;
       case '--json': opts.json = true; break;
       case '--no-rss': opts.rss = false; break;
       case '--engines':

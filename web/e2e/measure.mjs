@@ -28,16 +28,10 @@
 
 import { base64url, launchChromium, TEST_PATH } from "./browser.mjs";
 import { serveDist } from "./serve.mjs";
+import { intArg } from "../scripts/cliArgs.mjs";
 
 function parseArgs(argv) {
   const opts = { balloons: 10000, threads: [1, 2], steps: 300, seconds: 10 };
-  const int = (name, value, min, max) => {
-    const n = Number(value);
-    if (!Number.isInteger(n) || n < min || n > max) {
-      throw new Error(`${name}: expected an integer from ${min} to ${max}, found ${JSON.stringify(value)}`);
-    }
-    return n;
-  };
   for (let i = 2; i < argv.length; i++) {
     const arg = argv[i];
     const value = () => {
@@ -45,14 +39,14 @@ function parseArgs(argv) {
       return argv[++i];
     };
     switch (arg) {
-      case "--balloons": opts.balloons = int(arg, value(), 1, 50000); break;
+      case "--balloons": opts.balloons = intArg(arg, value(), 1, 50000); break;
       case "--threads": {
         const list = value();
-        opts.threads = list.split(",").map((t) => int("--threads (a comma list)", t.trim(), 1, 256));
+        opts.threads = list.split(",").map((t) => intArg("--threads (a comma list)", t.trim(), 1, 256));
         break;
       }
-      case "--steps": opts.steps = int(arg, value(), 1, 20000); break;
-      case "--seconds": opts.seconds = int(arg, value(), 1, 600); break;
+      case "--steps": opts.steps = intArg(arg, value(), 1, 20000); break;
+      case "--seconds": opts.seconds = intArg(arg, value(), 1, 600); break;
       default: throw new Error(`unknown argument ${JSON.stringify(arg)} (node e2e/measure.mjs [--balloons N] [--threads 1,2] [--steps S] [--seconds S])`);
     }
   }

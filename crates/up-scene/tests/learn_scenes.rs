@@ -1,18 +1,13 @@
 //! The teaching scenes (`assets/scenes/learn-*.toml`) do what their captions
 //! say, and the `[about]` table that carries the captions is checked.
 
-use std::path::PathBuf;
+mod common;
+use common::asset;
 
 use glam::Vec3;
 use up_physics::{BodyId, ForceProbe, World};
 use up_scene::build::{build_world, BuiltScene};
 use up_scene::scene::Scene;
-
-fn asset(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../assets/scenes")
-        .join(name)
-}
 
 fn build(name: &str) -> BuiltScene {
     let scene = Scene::from_path(asset(name)).unwrap_or_else(|e| panic!("{e}"));

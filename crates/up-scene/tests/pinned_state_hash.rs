@@ -7,7 +7,8 @@
 //! commit that does it says why the results changed (a bug fix, a new
 //! model), never "to make the test pass".
 
-use std::path::PathBuf;
+mod common;
+use common::asset;
 
 use up_scene::build::build_world;
 use up_scene::scene::Scene;
@@ -34,12 +35,6 @@ const BOUQUET: &str = "bouquet.toml";
 const BOUQUET_STEPS: u32 = 180;
 /// `World::state_hash()` of `BOUQUET` after `BOUQUET_STEPS` steps.
 const BOUQUET_HASH: u64 = 0x5e0c_729c_8424_cb8f;
-
-fn asset(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../assets/scenes")
-        .join(name)
-}
 
 /// The scene file built and stepped `steps` times on a pool of `threads` threads.
 fn hash_after(name: &str, steps: u32, threads: usize) -> u64 {

@@ -2,18 +2,13 @@
 //! weights together on the floor, its balloons above them at their ribbons'
 //! length), and the original room's ribbons hang inside the room.
 
-use std::path::PathBuf;
+mod common;
+use common::asset;
 
 use glam::Vec3;
 use up_physics::ribbon::WEIGHT_RADIUS;
 use up_scene::build::{build_world, BuiltScene};
 use up_scene::scene::Scene;
-
-fn asset(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../assets/scenes")
-        .join(name)
-}
 
 fn build(name: &str) -> BuiltScene {
     let scene = Scene::from_path(asset(name)).unwrap_or_else(|e| panic!("{e}"));
