@@ -108,6 +108,8 @@ export function createTestHook(app: App) {
       at: agesMs.map((ms) => world.balloons?.squashAt(i, ms) ?? [0, 0, 0, 0]),
       madeAt: world.balloons?.dents.madeAt(i) ?? null,
     }),
+    /** Body i's deepest dent since its balloons were set, as `squash` gives a dent (`SquashDents.peak`). */
+    squashPeak: (i: number, agesMs: number[] = []) => world.balloons?.dents.peak(i, agesMs) ?? { at: [], madeAt: null },
     /**
      * The float plot's samples, and the pixels of its lines' area (the
      * legend and the axis's words left out): those of a line (neither

@@ -60,4 +60,23 @@ describe("squash spring-back", () => {
     expect(dents.write(out, 0)).toBe(0);
     expect(Array.from(out)).toEqual(Array(8).fill(0));
   });
+
+  it("keeps the deepest dent taken as the peak, after a shallower bounce replaced it and after it sprang back", () => {
+    const dents = new SquashDents();
+    dents.reset(1);
+    dents.add(table([0.01, 0, 0, 0.14]), 1000);
+    // Four steps on, the first dent has sprung back below the bounce's 4.5 mm: the bounce shows.
+    dents.add(table([0.0045, 0, 0, 0.14]), 1067);
+    expect(dents.madeAt(0)).toBe(1067);
+    const peak = dents.peak(0, [0, 1000]);
+    expect(peak.madeAt).toBe(1000);
+    expect(peak.at[0][0]).toBeCloseTo(0.01, 6);
+    expect(peak.at[0][3]).toBeCloseTo(0.14, 6);
+    expect(peak.at[1]).toEqual([0, 0, 0, 0]);
+    dents.write(new Float32Array(4), 5000);
+    expect(dents.madeAt(0)).toBeNull();
+    expect(dents.peak(0, []).madeAt).toBe(1000);
+    dents.reset(1);
+    expect(dents.peak(0, [0])).toEqual({ at: [[0, 0, 0, 0]], madeAt: null });
+  });
 });

@@ -43,6 +43,15 @@ export class SquashDents {
   private depth = new Float32Array(0);
   /** Absolute time (ms since the epoch) each dent was made. */
   private made = new Float64Array(0);
+  /**
+   * Per body, the deepest dent taken since the bodies were set (normal,
+   * reach, depth, when): what the test hook reads, since on a page slower
+   * than the bounces a dent may be replaced or sprung back before it looks.
+   */
+  private peakNormals = new Float32Array(0);
+  private peakReach = new Float32Array(0);
+  private peakDepth = new Float32Array(0);
+  private peakMade = new Float64Array(0);
   private count = 0;
 
   /** Forgets every dent (new bodies or a new order), for `count` bodies. */
@@ -53,8 +62,13 @@ export class SquashDents {
       this.reach = new Float32Array(n);
       this.depth = new Float32Array(n);
       this.made = new Float64Array(n);
+      this.peakNormals = new Float32Array(n * 3);
+      this.peakReach = new Float32Array(n);
+      this.peakDepth = new Float32Array(n);
+      this.peakMade = new Float64Array(n);
     }
     this.depth.fill(0);
+    this.peakDepth.fill(0);
     this.count = count;
   }
 
@@ -72,6 +86,12 @@ export class SquashDents {
       const z = table[o + 2];
       const d = Math.hypot(x, y, z);
       if (!(d > 0)) continue;
+      if (d > this.peakDepth[i]) {
+        this.peakNormals.set([x / d, y / d, z / d], 3 * i);
+        this.peakReach[i] = table[o + 3];
+        this.peakDepth[i] = d;
+        this.peakMade[i] = stepTime;
+      }
       if (d <= springBack(this.depth[i], (stepTime - this.made[i]) / 1000)) continue;
       this.normals[3 * i] = x / d;
       this.normals[3 * i + 1] = y / d;
@@ -87,6 +107,18 @@ export class SquashDents {
     const d = i < this.count && this.depth[i] > 0 ? springBack(this.depth[i], ageMs / 1000) : 0;
     if (d === 0) return [0, 0, 0, 0];
     return [this.normals[3 * i] * d, this.normals[3 * i + 1] * d, this.normals[3 * i + 2] * d, this.reach[i]];
+  }
+
+  /** Body `i`'s deepest dent since the bodies were set, `ageMs` after it was made (as `at`), and when it was made (null: none). */
+  peak(i: number, agesMs: number[]): { at: [number, number, number, number][]; madeAt: number | null } {
+    const depth = i < this.count ? this.peakDepth[i] : 0;
+    if (!(depth > 0)) return { at: agesMs.map(() => [0, 0, 0, 0]), madeAt: null };
+    const at = agesMs.map((ms): [number, number, number, number] => {
+      const d = springBack(depth, ms / 1000);
+      if (d === 0) return [0, 0, 0, 0];
+      return [this.peakNormals[3 * i] * d, this.peakNormals[3 * i + 1] * d, this.peakNormals[3 * i + 2] * d, this.peakReach[i]];
+    });
+    return { at, madeAt: this.peakMade[i] };
   }
 
   /** When body `i`'s dent was made, ms since the epoch (null: none showing). */
