@@ -7,26 +7,86 @@
 //! of work per block and thread, so that more threads barely speed the solve
 //! up (docs/perf-log.md).
 //!
-//! Here the threads take blocks by ticket instead: one counter hands out the
-//! blocks in order, and a thread waits before running its block until every
-//! block of the earlier stages is done (a second counter). A thread only ever
-//! waits for blocks that running threads took before it, which finish without
-//! waiting on anyone later, so nothing can deadlock, however many threads join
-//! and whenever they start; a thread that starts late finds the work taken and
-//! leaves. The blocks of a stage touch disjoint data, so which thread runs
-//! which block changes no result.
+//! Here every thread walks the stages itself. A stage's blocks are cut into
+//! one share per thread, in order: the colouring fills the same share of
+//! every colour with the same part of the room, so a thread that takes its
+//! own share in every stage keeps moving the same bodies, whose states stay
+//! in its core's cache instead of crossing to another's at every colour. A
+//! thread runs its own share from the front, then takes what is left of the
+//! others' from their backs (where their owners get to last); each share is
+//! one atomic word, on a cache line of its own. A thread then adds the
+//! blocks it ran to a count and waits until the count holds every block of
+//! the stage before it starts the next.
+//!
+//! A thread only ever waits for blocks that running threads took, which
+//! finish without waiting on anyone, so nothing can deadlock, however many
+//! threads join and whenever they start; a thread that starts late finds the
+//! blocks taken and catches up. The blocks of a stage touch disjoint data, so
+//! which thread runs which block changes no result.
 
 use std::hint::spin_loop;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 
 /// Spins before a waiting thread yields its core (to a thread that holds a
 /// block, when there are more threads than cores).
 const SPINS_BEFORE_YIELD: u32 = 64;
 
-/// A counter alone on its cache line, so that the two counters do not
-/// contend with each other.
+/// An atomic alone on its cache line (128 bytes: some cores fetch lines in
+/// pairs), so that threads updating neighbours do not contend.
 #[repr(align(128))]
-struct Counter(AtomicUsize);
+struct Padded<T>(T);
+
+/// The blocks of one share still to run: `[front, back)`, packed in one word
+/// so that the owner (from the front) and the others (from the back) take
+/// them with one compare-and-swap each.
+struct Share(Padded<AtomicU64>);
+
+impl Share {
+    fn new(front: usize, back: usize) -> Share {
+        Share(Padded(AtomicU64::new(pack(front, back))))
+    }
+
+    /// The first block left, if any.
+    fn take_front(&self) -> Option<usize> {
+        self.take(|front, back| (front, pack(front + 1, back)))
+    }
+
+    /// The last block left, if any.
+    fn take_back(&self) -> Option<usize> {
+        self.take(|front, back| (back - 1, pack(front, back - 1)))
+    }
+
+    /// Takes the block `take(front, back)` names (front < back), leaving the word it gives.
+    fn take(&self, take: impl Fn(usize, usize) -> (usize, u64)) -> Option<usize> {
+        // Relaxed: a share only decides who runs a block; the stage's wait
+        // (Acquire) ordered the block's start after the blocks it depends on.
+        let mut word = self.0 .0.load(Ordering::Relaxed);
+        loop {
+            let (front, back) = unpack(word);
+            if front >= back {
+                return None;
+            }
+            let (block, left) = take(front, back);
+            match self
+                .0
+                 .0
+                .compare_exchange_weak(word, left, Ordering::Relaxed, Ordering::Relaxed)
+            {
+                Ok(_) => return Some(block),
+                Err(now) => word = now,
+            }
+        }
+    }
+}
+
+fn pack(front: usize, back: usize) -> u64 {
+    debug_assert!(front <= u32::MAX as usize && back <= u32::MAX as usize);
+    (back as u64) << 32 | front as u64
+}
+
+fn unpack(word: u64) -> (usize, usize) {
+    ((word & u64::from(u32::MAX)) as usize, (word >> 32) as usize)
+}
 
 /// Runs `run(k)` for every block `k` of `stage_first.len()`, on rayon's
 /// threads, where `stage_first[k]` is the first block of block k's stage
@@ -48,24 +108,55 @@ pub(crate) fn run_in_stages(stage_first: &[u32], run: impl Fn(usize) + Sync) {
             && stage_first[first] as usize == first
             && (k == 0 || stage_first[k - 1] as usize <= first)
     }));
-    let next = Counter(AtomicUsize::new(0));
-    let done = Counter(AtomicUsize::new(0));
+    let threads = rayon::current_num_threads().clamp(1, blocks.max(1));
+    // Each stage's first block, and its shares, `threads` a stage.
+    let stage_starts: Vec<usize> = (0..blocks)
+        .filter(|&k| stage_first[k] as usize == k)
+        .collect();
+    let shares: Vec<Share> = stage_starts
+        .iter()
+        .enumerate()
+        .flat_map(|(s, &first)| {
+            let end = stage_starts.get(s + 1).copied().unwrap_or(blocks);
+            let len = end - first;
+            (0..threads).map(move |t| {
+                Share::new(first + len * t / threads, first + len * (t + 1) / threads)
+            })
+        })
+        .collect();
+    let joined = AtomicUsize::new(0);
+    let done = Padded(AtomicUsize::new(0));
     let failed = AtomicBool::new(false);
-    let work = || loop {
-        // Tickets in block order: a block's stage waits only on lower tickets.
-        let k = next.0.fetch_add(1, Ordering::Relaxed);
-        if k >= blocks || !wait_until_done(&done.0, stage_first[k] as usize, &failed) {
-            return;
+    let work = || {
+        // Shares by order of arrival: a thread that never comes leaves its
+        // share to the others.
+        let own = joined.fetch_add(1, Ordering::Relaxed) % threads;
+        for (s, &first) in stage_starts.iter().enumerate() {
+            if !wait_until_done(&done.0, first, &failed) {
+                return;
+            }
+            let stage = &shares[s * threads..(s + 1) * threads];
+            let mut ran = 0;
+            let mut run_counted = |k: usize| {
+                let unwinding = FlagOnUnwind(&failed);
+                run(k);
+                std::mem::forget(unwinding);
+                ran += 1;
+            };
+            while let Some(k) = stage[own].take_front() {
+                run_counted(k);
+            }
+            for other in (own + 1..threads).chain(0..own) {
+                while let Some(k) = stage[other].take_back() {
+                    run_counted(k);
+                }
+            }
+            // Release: the blocks' writes are seen by whoever sees the count.
+            done.0.fetch_add(ran, Ordering::Release);
         }
-        let unwinding = FlagOnUnwind(&failed);
-        run(k);
-        std::mem::forget(unwinding);
-        // Release: the block's writes are seen by whoever sees the count.
-        done.0.fetch_add(1, Ordering::Release);
     };
-    let helpers = rayon::current_num_threads().min(blocks).saturating_sub(1);
     rayon::scope(|scope| {
-        for _ in 0..helpers {
+        for _ in 1..threads {
             scope.spawn(|_| work());
         }
         work();
@@ -81,10 +172,11 @@ impl Drop for FlagOnUnwind<'_> {
     }
 }
 
-/// Waits until `done` counts at least `blocks`: the blocks before a stage
-/// finish in any order, but no later block can finish first (it waits here),
-/// so the count reaching a stage's first block means they all have. Returns
-/// false, at once, if a block panicked.
+/// Waits until `done` counts at least `blocks`: a thread counts a stage's
+/// blocks it ran once it finds none left, and none starts the next stage
+/// before the count holds all of them, so the count reaching a stage's first
+/// block means every block before it has finished. Returns false, at once,
+/// if a block panicked.
 fn wait_until_done(done: &AtomicUsize, blocks: usize, failed: &AtomicBool) -> bool {
     let mut spins = 0;
     // Acquire: pairs with the Release of every block counted.

@@ -20,6 +20,12 @@
 //! fixed side's lanes alone instead of gathering and updating four bodies
 //! that cannot move. A colour's constraints are independent, so where in the
 //! colour each goes changes no result.
+//!
+//! That freedom buys locality on several threads: within each run the
+//! constraints are ordered by their first body's *zone* (a slab of the room,
+//! `Solver::zones`), so that the same part of every colour, which the same
+//! thread takes (`staged`), moves the same bodies, whose states then stay in
+//! that thread's cache instead of crossing between cores at every colour.
 
 use super::body_state::BodyState;
 use super::lanes::LANES;
@@ -39,6 +45,10 @@ const LEVELS: usize = 192;
 
 /// The colour index of the constraints run serially, after the levels.
 const SERIAL: usize = COLORS + LEVELS;
+
+/// Slabs of the room that order a run's constraints (`Coloring::assign`'s
+/// `zones`): enough that a thread's share of a colour is a few slabs.
+pub(crate) const ZONES: usize = 32;
 
 /// Most groups a block holds (`ColourBlocks`), but for the serial rest and
 /// the blocks that join one-block stages in a row.
@@ -78,6 +88,40 @@ impl Moving {
     }
 }
 
+/// The groups of a colour's `runs` as pieces, zone after zone, each zone's
+/// pieces in the runs' order, into `pieces`: a stage cut in order into shares
+/// then gives each thread a part of the room, whichever sides move.
+/// `zone_starts(moving)` holds where each zone starts in that run, in
+/// constraints; a group goes with the zone of its last lane, a run's last
+/// group, partly filled, with the last zone.
+#[cfg(feature = "parallel")]
+fn pieces_by_zone<'a>(
+    runs: &[ColourRun],
+    zone_starts: impl Fn(Moving) -> &'a [u32],
+    pieces: &mut Vec<ColourRun>,
+) {
+    pieces.clear();
+    let lanes = LANES as u32;
+    let zones = runs.first().map_or(0, |r| zone_starts(r.moving).len());
+    for zone in 0..zones {
+        for run in runs {
+            let starts = zone_starts(run.moving);
+            let start = run.start + starts[zone] / lanes;
+            let end = starts
+                .get(zone + 1)
+                .map_or(run.end, |&s| run.start + s / lanes);
+            if start < end {
+                pieces.push(ColourRun { start, end, ..*run });
+            }
+        }
+    }
+}
+
+/// Where run (`color`, `moving`)'s count of zone `zone` is kept in `Coloring::zone_counts`.
+fn zone_index(color: usize, moving: Moving, zone: usize, zone_count: usize) -> usize {
+    (color * 3 + moving as usize) * zone_count + zone
+}
+
 /// Groups `[start, end)` of one colour whose constraints all move `moving`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct ColourRun {
@@ -90,8 +134,9 @@ pub(crate) struct ColourRun {
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Coloring {
     /// Colour of each constraint, in the narrowphase's order (from `COLORS`
-    /// on the overflow's levels, `SERIAL` the serial rest), and the sides it moves.
-    color: Vec<(u16, Moving)>,
+    /// on the overflow's levels, `SERIAL` the serial rest), the sides it
+    /// moves, and its zone.
+    color: Vec<(u16, Moving, u8)>,
     /// Colours already used by each body's constraints.
     used: Vec<u64>,
     /// Whether each body moves (takes impulses) and whether it is fixed
@@ -100,6 +145,12 @@ pub(crate) struct Coloring {
     /// The level after the last one each body's overflow constraints took
     /// (sized only in a step that overflows).
     next_level: Vec<u16>,
+    /// Constraints of each zone of each run (colour, sides, zone), then
+    /// where the next one of that zone goes in its run.
+    zone_counts: Vec<u32>,
+    /// A colour's runs cut by zone, in zone order (`pieces_by_zone`).
+    #[cfg(feature = "parallel")]
+    pieces: Vec<ColourRun>,
     /// The groups of `LANES` constraints, colour by colour (levels after
     /// colours), each colour in up to three runs (`Moving::ALL`'s order); the
     /// last run is the serial rest, one constraint per group so that it runs
@@ -202,19 +253,31 @@ impl Coloring {
     pub fn release_spare(&mut self) {
         release_spare(&mut self.color, BUFFER_FLOOR);
         release_spare(&mut self.next_level, BUFFER_FLOOR);
+        release_spare(&mut self.zone_counts, BUFFER_FLOOR);
         release_spare(&mut self.slot, BUFFER_FLOOR);
         #[cfg(feature = "parallel")]
         release_spare(&mut self.constraint_at, BUFFER_FLOOR);
         #[cfg(feature = "parallel")]
         self.blocks.release_spare();
+        #[cfg(feature = "parallel")]
+        release_spare(&mut self.pieces, BUFFER_FLOOR);
     }
 
     /// Colours the constraints between the body pairs `pairs` greedily
     /// (lowest free colour, in the given order, so room contacts, which come
     /// first, are solved first; then the overflow's levels) and gives each a
     /// slot: colour by colour, the sides it moves within a colour, `LANES` to
-    /// a group, in the given order within those.
-    pub fn assign(&mut self, pairs: impl Iterator<Item = (u32, u32)>, states: &[BodyState]) {
+    /// a group, in the given order within those, but for `zones`: each
+    /// body's zone (below `ZONES`; none: one zone), by which a run's
+    /// constraints are ordered first (the first body's; the serial rest keeps
+    /// the given order, which it runs in).
+    pub fn assign(
+        &mut self,
+        pairs: impl Iterator<Item = (u32, u32)>,
+        states: &[BodyState],
+        zones: &[u8],
+    ) {
+        let zone_count = if zones.is_empty() { 1 } else { ZONES };
         self.used.clear();
         self.used.resize(states.len(), 0);
         self.next_level.clear();
@@ -224,6 +287,8 @@ impl Coloring {
         #[cfg(feature = "parallel")]
         self.constraint_at.clear();
         let mut counts = [[0u32; 3]; SERIAL + 1];
+        self.zone_counts.clear();
+        self.zone_counts.resize((SERIAL + 1) * 3 * zone_count, 0);
         self.kind.clear();
         self.kind
             .extend(states.iter().map(|s| (s.inv_mass > 0.0, s.is_fixed())));
@@ -244,13 +309,24 @@ impl Coloring {
             } else {
                 color = self.overflow_colour([(a, a_moves), (b, b_moves)], states.len());
             }
-            let sides = if color < SERIAL {
-                Moving::of(a_fixed, b_fixed)
+            let (sides, zone) = if color < SERIAL {
+                let zone = zones.get(a as usize).map_or(0, |&z| z as usize);
+                debug_assert!(zone < zone_count, "zone {zone} of {zone_count}");
+                (Moving::of(a_fixed, b_fixed), zone)
             } else {
-                Moving::Both
+                (Moving::Both, 0)
             };
-            self.color.push((color as u16, sides));
+            self.color.push((color as u16, sides, zone as u8));
             counts[color][sides as usize] += 1;
+            self.zone_counts[zone_index(color, sides, zone, zone_count)] += 1;
+        }
+
+        // Each zone's first place in its run: the zones' counts summed before it.
+        for run in self.zone_counts.chunks_exact_mut(zone_count) {
+            let mut before = 0;
+            for count in run {
+                (*count, before) = (before, before + *count);
+            }
         }
 
         // Each run's first group; the serial rest takes a group per constraint.
@@ -280,17 +356,29 @@ impl Coloring {
                 start += groups;
             }
             #[cfg(feature = "parallel")]
-            self.blocks
-                .add_stage(&self.ranges[colour_runs..], color == SERIAL);
+            {
+                let runs = &self.ranges[colour_runs..];
+                if color == SERIAL {
+                    self.blocks.add_stage(runs, true);
+                } else {
+                    let zone_starts = |moving: Moving| {
+                        let first = zone_index(color, moving, 0, zone_count);
+                        &self.zone_counts[first..first + zone_count]
+                    };
+                    pieces_by_zone(runs, zone_starts, &mut self.pieces);
+                    self.blocks.add_stage(&self.pieces, false);
+                }
+            }
         }
         self.groups = start as usize;
 
         self.slot.clear();
-        let mut seen = [[0u32; 3]; SERIAL + 1];
-        for &(color, moving) in &self.color {
+        for &(color, moving, zone) in &self.color {
+            let next = &mut self.zone_counts
+                [zone_index(color as usize, moving, zone as usize, zone_count)];
+            let k = *next;
+            *next += 1;
             let (color, moving) = (color as usize, moving as usize);
-            let k = seen[color][moving];
-            seen[color][moving] += 1;
             let first = first_group[color][moving];
             let slot = if color == SERIAL {
                 (first + k) * LANES as u32

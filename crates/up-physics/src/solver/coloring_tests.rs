@@ -16,7 +16,7 @@ fn moving() -> BodyState {
 /// The constraints of each colour (then each level, then the serial rest), as (a, b) pairs.
 fn colours(coloring: &Coloring, pairs: &[(u32, u32)]) -> Vec<Vec<(u32, u32)>> {
     let mut by_colour = vec![Vec::new(); SERIAL + 1];
-    for (&pair, &(colour, _)) in pairs.iter().zip(&coloring.color) {
+    for (&pair, &(colour, _, _)) in pairs.iter().zip(&coloring.color) {
         by_colour[colour as usize].push(pair);
     }
     by_colour
@@ -44,7 +44,7 @@ fn no_colour_moves_a_body_twice_and_the_room_is_shared() {
     pairs.extend([(0, 1), (1, 2), (2, 3), (4, 0), (4, 1), (4, 2), (4, 3)]);
 
     let mut coloring = Coloring::default();
-    coloring.assign(pairs.iter().copied(), &states);
+    coloring.assign(pairs.iter().copied(), &states, &[]);
 
     // Every constraint has its own slot, inside the groups.
     let mut slots = coloring.slot.clone();
@@ -103,8 +103,8 @@ fn levels(coloring: &Coloring) -> Vec<usize> {
     let over = coloring
         .color
         .iter()
-        .filter(|&&(c, _)| c as usize >= COLORS);
-    over.map(|&(c, _)| c as usize - COLORS).collect()
+        .filter(|&&(c, _, _)| c as usize >= COLORS);
+    over.map(|&(c, _, _)| c as usize - COLORS).collect()
 }
 
 #[test]
@@ -115,7 +115,7 @@ fn overflowing_constraints_take_levels_in_their_bodies_order() {
     let mut pairs = star(0, 1, 5);
     pairs.extend(star(100, 101, 3));
     let mut coloring = Coloring::default();
-    coloring.assign(pairs.iter().copied(), &states);
+    coloring.assign(pairs.iter().copied(), &states, &[]);
     assert_eq!(levels(&coloring), vec![0, 1, 2, 3, 4, 0, 1, 2]);
     // The levels come after the colours, in order, then the empty serial run.
     let runs = &coloring.ranges[COLORS..];
@@ -129,7 +129,7 @@ fn overflowing_constraints_take_levels_in_their_bodies_order() {
     }
     // Each body meets its overflowing constraints in the given order.
     let mut last_level = vec![None; states.len()];
-    for (&(a, b), &(colour, _)) in pairs.iter().zip(&coloring.color) {
+    for (&(a, b), &(colour, _, _)) in pairs.iter().zip(&coloring.color) {
         if (colour as usize) < COLORS {
             continue;
         }
@@ -149,7 +149,7 @@ fn constraints_past_the_last_level_run_serially_one_a_group() {
     // Between the hub, whose later constraints must stay serial, and a fresh body.
     pairs.push((spokes as u32 + 1, 0));
     let mut coloring = Coloring::default();
-    coloring.assign(pairs.iter().copied(), &states);
+    coloring.assign(pairs.iter().copied(), &states, &[]);
     let serial = coloring.ranges.last().unwrap();
     assert_eq!(coloring.ranges.len(), SERIAL + 1);
     assert_eq!(serial.end - serial.start, 4);
@@ -215,7 +215,7 @@ fn the_blocks_hold_every_group_in_order() {
     let mut pairs: Vec<(u32, u32)> = (0..400).map(|i| (i, 400)).collect();
     pairs.extend((0..400u32).flat_map(|i| (1..=12).map(move |d| (i, (i + d) % 400))));
     let mut coloring = Coloring::default();
-    coloring.assign(pairs.iter().copied(), &states);
+    coloring.assign(pairs.iter().copied(), &states, &[]);
     let blocks = &coloring.blocks;
     let stage_first = &blocks.stage_first;
     assert!(
@@ -256,7 +256,7 @@ fn constraints_against_fixed_bodies_get_groups_of_their_own() {
     states.extend([sleeper, BodyState::STATIC]);
     let pairs = [(0, 5), (4, 1), (2, 3), (1, 5), (3, 5), (4, 0)];
     let mut coloring = Coloring::default();
-    coloring.assign(pairs.iter().copied(), &states);
+    coloring.assign(pairs.iter().copied(), &states, &[]);
 
     let run = |start, end, moving| ColourRun { start, end, moving };
     // Colour 0: (2, 3) between moving bodies, then (0, 5) against the
@@ -278,5 +278,90 @@ fn constraints_against_fixed_bodies_get_groups_of_their_own() {
         let (a, b) = (&states[*a as usize], &states[*b as usize]);
         assert_eq!(run.moving.fixes(0), a.is_fixed(), "{run:?}");
         assert_eq!(run.moving.fixes(1), b.is_fixed(), "{run:?}");
+    }
+}
+
+/// With zones, each constraint keeps its colour and its run, but a run's
+/// constraints come zone by zone; on several threads each colour's blocks
+/// follow the zones across its runs, so that a share of the blocks is a
+/// part of the room whichever sides move.
+#[test]
+fn zones_order_each_run_and_keep_every_colour() {
+    // A crowd of 1,600 bodies, each touching its next 12, every third asleep
+    // (so each colour has runs of both kinds of sides); zones by index.
+    let n = 1600u32;
+    let mut sleeper = BodyState::STATIC;
+    sleeper.q = glam::Quat::from_rotation_z(0.3);
+    let mut states: Vec<BodyState> = (0..n)
+        .map(|i| if i % 3 == 0 { sleeper } else { moving() })
+        .collect();
+    states.push(BodyState::STATIC);
+    let pairs: Vec<(u32, u32)> = (0..n)
+        .flat_map(|i| (1..=12).map(move |d| (i, (i + d) % n)))
+        .filter(|&(a, b)| a % 3 != 0 || b % 3 != 0)
+        .collect();
+    let zones: Vec<u8> = (0..n)
+        .map(|i| (i as usize * ZONES / n as usize) as u8)
+        .collect();
+    let mut plain = Coloring::default();
+    plain.assign(pairs.iter().copied(), &states, &[]);
+    let mut zoned = Coloring::default();
+    zoned.assign(pairs.iter().copied(), &states, &zones);
+
+    assert_eq!(colours(&plain, &pairs), colours(&zoned, &pairs));
+    assert_eq!(plain.ranges, zoned.ranges);
+    assert_eq!(runs(&plain), runs(&zoned));
+    let zone_of_slot: std::collections::HashMap<u32, u8> = zoned
+        .slot
+        .iter()
+        .zip(&pairs)
+        .map(|(&slot, &(a, _))| (slot, zones[a as usize]))
+        .collect();
+    for run in &zoned.ranges {
+        let slots = run.start * LANES as u32..run.end * LANES as u32;
+        let in_order: Vec<u8> = slots
+            .filter_map(|s| zone_of_slot.get(&s).copied())
+            .collect();
+        assert!(in_order.is_sorted(), "{run:?}: {in_order:?}");
+    }
+    #[cfg(feature = "parallel")]
+    {
+        let blocks = &zoned.blocks;
+        let stage_first = &blocks.stage_first;
+        let mut mixed_stages = 0;
+        for (k, &first) in stage_first.iter().enumerate() {
+            // Each stage of several blocks once, from its first (a lone block may
+            // hold several colours, each in zone order).
+            let several = stage_first.get(k + 1) == Some(&first);
+            if first as usize != k || !several {
+                continue;
+            }
+            let stage = (k..stage_first.len()).take_while(|&j| stage_first[j] == first);
+            let pieces: Vec<ColourRun> = stage.flat_map(|j| blocks.block(j).to_vec()).collect();
+            // The zone of each piece's first group (the zone of its last lane
+            // that holds a constraint), along the stage; but for pieces of one
+            // group (a run's last group, partly filled, goes with the last zone).
+            let piece_zones: Vec<u8> = pieces
+                .iter()
+                .filter(|p| p.end - p.start > 1)
+                .filter_map(|p| {
+                    let lanes = p.start * LANES as u32..(p.start + 1) * LANES as u32;
+                    lanes.rev().find_map(|s| zone_of_slot.get(&s).copied())
+                })
+                .collect();
+            assert!(
+                piece_zones.is_sorted(),
+                "stage at block {k}: {piece_zones:?}"
+            );
+            if pieces
+                .windows(2)
+                .filter(|w| w[0].moving != w[1].moving)
+                .count()
+                > 1
+            {
+                mixed_stages += 1;
+            }
+        }
+        assert!(mixed_stages > 0, "a stage whose zones interleave two runs");
     }
 }

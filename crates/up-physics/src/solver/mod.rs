@@ -32,6 +32,7 @@ pub(crate) mod softness;
 mod stabilize_tests;
 #[cfg(test)]
 mod test_support;
+pub(crate) mod zones;
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -77,6 +78,9 @@ pub(crate) struct Solver {
     joint_colouring: JointColouring,
     /// Dense indices of the awake bodies.
     pub awake: Vec<u32>,
+    /// Each body's zone, a slab of the room that orders the constraints
+    /// within their colours (`coloring`): set on several threads, empty on one.
+    pub zones: Vec<u8>,
 }
 
 /// The parameters of one step's solve.
@@ -174,7 +178,7 @@ impl Solver {
     /// Colours the constraints; returns how many groups they fill and the
     /// room's state.
     fn colour(&mut self, pairs: impl Iterator<Item = (u32, u32)>) -> (usize, u32) {
-        self.coloring.assign(pairs, &self.states);
+        self.coloring.assign(pairs, &self.states, &self.zones);
         (self.coloring.groups, self.room)
     }
 

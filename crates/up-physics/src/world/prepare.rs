@@ -16,6 +16,8 @@ use crate::solver::contact_constraint;
 use crate::solver::contact_constraint::PreparedContact;
 use crate::solver::integrate::GrabSpring;
 use crate::solver::joint_constraint::PreparedJoint;
+#[cfg(feature = "parallel")]
+use crate::solver::zones::zone_bodies;
 use crate::solver::Solver;
 use crate::tasks::for_each_run;
 #[cfg(feature = "parallel")]
@@ -101,6 +103,12 @@ impl World {
                 *forces = BodyForces::assemble(&input, shape, bodies.size[i], &load);
             }
         });
+        // Ordering the constraints by zone pays only where threads share the solve.
+        solver.zones.clear();
+        #[cfg(feature = "parallel")]
+        if rayon::current_num_threads() > 1 {
+            zone_bodies(&bodies.center, &mut solver.zones);
+        }
         // The room: one static state after the bodies.
         solver.room = n as u32;
         solver.states.push(BodyState::STATIC);
