@@ -17,14 +17,20 @@
 //    pose still becomes an instance matrix each frame;
 // 3. pauses and measures the frames alone for a few seconds (same input);
 // 4. restarts the scene in the worker and times `steps` steps one by one
-//    (sim/stepMeter.ts), the balloons still not drawn: the physics ms per step
-//    by the engine's own timer over the same window on every thread count,
-//    and the state hash after it, which must be the same on every thread count.
+//    (sim/stepMeter.ts) while the page's frames skip their render call
+//    (`holdDrawing`): the physics ms per step by the engine's own timer over
+//    the same window on every thread count, and the state hash after it,
+//    which must be the same on every thread count. SwiftShader rasterises
+//    on the same cores as the engine's threads, which a visitor's GPU does
+//    not, so it is held off the window that times the engine;
+// 5. the same window again with the page drawing (the balloons not drawn):
+//    `physics_ms_while_drawing`, what this machine's page shows.
 // Ends with one JSON line: {"balloons", "steps", "runs": [{"threads",
 // "physics_ms": {median, mean, p95}, "realtime_factor", "frame_ms": {median,
-// p95}, "state_hash", "steps", ...}], "speedup_mean": {"T": mean at 1 thread
-// over mean at T}, "speedup_median", "hashes_equal", ...}; exits 1 when the
-// hashes differ.
+// p95}, "state_hash", "steps", "physics_ms_while_drawing", ...}],
+// "speedup_mean": {"T": mean at 1 thread over mean at T}, "speedup_median",
+// "speedup_mean_while_drawing", "hashes_equal", ...}; exits 1 when the hashes
+// differ.
 
 import { base64url, launchChromium, TEST_PATH } from "./browser.mjs";
 import { serveDist } from "./serve.mjs";
@@ -146,6 +152,35 @@ async function phase(page, ms) {
   };
 }
 
+/**
+ * Holds the page's drawing and waits until SwiftShader has drawn every frame
+ * sent before (seconds each at thousands of balloons, on the CPU, also after
+ * the render call returned): the frames then come at the display's rate, 30
+ * in a row under 40 ms apart (at most `timeoutMs`).
+ */
+async function settleDrawing(page, timeoutMs = 300_000) {
+  await page.evaluate(() => window.__up.holdDrawing(true));
+  await page.evaluate(() => window.__up.finishDrawing());
+  const settled = await page.evaluate(
+    (timeout) =>
+      new Promise((resolve) => {
+        const start = performance.now();
+        let last = start;
+        let quick = 0;
+        const tick = (t) => {
+          quick = t - last < 40 ? quick + 1 : 0;
+          last = t;
+          if (quick >= 30) resolve(true);
+          else if (t - start > timeout) resolve(false);
+          else requestAnimationFrame(tick);
+        };
+        requestAnimationFrame(tick);
+      }),
+    timeoutMs,
+  );
+  if (!settled) throw new Error(`the page's frames did not settle within ${timeoutMs / 1000} s of holding its drawing`);
+}
+
 async function measureThreads(browser, url, opts, threads) {
   const page = await browser.newPage({ viewport });
   const errors = [];
@@ -177,9 +212,21 @@ async function measureThreads(browser, url, opts, threads) {
     await page.waitForTimeout(500);
     const paused = await phase(page, Math.min(5, opts.seconds) * 1000);
     log(`${threads} thread(s): drawing alone measured (${paused.frames} frames); timing ${opts.steps} steps`);
-    // The worker restarts the scene and steps the window; the page draws on meanwhile.
-    const window_ = await page.evaluate((steps) => window.__up.measureSteps(steps), opts.steps);
+    // The worker restarts the scene and steps the window; the page's frames
+    // go on without their render call, then the same with it.
+    const timeWindow = async (held) => {
+      if (held) await settleDrawing(page);
+      else await page.evaluate(() => window.__up.holdDrawing(false));
+      return page.evaluate((steps) => window.__up.measureSteps(steps), opts.steps);
+    };
+    const window_ = await timeWindow(true);
     const physics = summary(window_.engineMs, 2);
+    log(`${threads} thread(s): physics mean ${physics.mean} ms per step, drawing held; the window again, drawing`);
+    const whileDrawing = await timeWindow(false);
+    const physicsWhileDrawing = summary(whileDrawing.engineMs, 2);
+    if (whileDrawing.stateHash !== window_.stateHash) {
+      throw new Error(`the window ended on ${window_.stateHash} drawing held and on ${whileDrawing.stateHash} drawing`);
+    }
     const dtMs = 1000 / 60;
     return {
       threads,
@@ -188,6 +235,8 @@ async function measureThreads(browser, url, opts, threads) {
       balloons: inPage.count,
       physics_ms: { median: physics.median, mean: physics.mean, p95: physics.p95, max: physics.max },
       physics_wall_ms: summary(window_.wallMs, 2),
+      // The same window while the page draws (the balloons not drawn): SwiftShader on the same cores.
+      physics_ms_while_drawing: { median: physicsWhileDrawing.median, mean: physicsWhileDrawing.mean, p95: physicsWhileDrawing.p95, max: physicsWhileDrawing.max },
       // Simulated seconds per second at the window's mean (1: real time), and what the page
       // reached while running (at most 1: the worker steps in real time or slower).
       realtime_factor: round(dtMs / physics.mean, 3),
@@ -259,6 +308,8 @@ try {
       speedup_median: ratio("median"),
       // The same by the worker's clock around each step call (the engine's time, and any wait for the pool's workers).
       speedup_wall_mean: ratio("mean", "physics_wall_ms"),
+      // While SwiftShader draws the page on the same cores.
+      speedup_mean_while_drawing: ratio("mean", "physics_ms_while_drawing"),
       hashes_equal: hashesEqual,
       viewport,
       chromium: browser.version(),

@@ -112,6 +112,19 @@ for (const threads of [1, 2, 4]) {
   });
 }
 
+test("make measure's window: the drawing held, the scene restarted and stepped on 2 threads to the native hash", async ({ page }) => {
+  await open(page, `&threads=2${sceneHash(SCENE)}`);
+  const dt = await page.evaluate(() => JSON.parse(window.__up!.sceneJson()).sim.dt as number);
+  await page.evaluate(() => window.__up!.holdDrawing(true));
+  const drawn = await page.evaluate(() => window.__up!.frames().drawn);
+  const window_ = await page.evaluate(() => window.__up!.measureSteps(40));
+  expect(window_.engineMs).toHaveLength(40);
+  expect(window_.stateHash, "the window's hash after 40 steps from the scene's start").toBe(nativeHash(40, dt));
+  expect(await page.evaluate(() => window.__up!.frames().drawn), "no frame drawn while held").toBe(drawn);
+  await page.evaluate(() => window.__up!.holdDrawing(false));
+  await page.waitForFunction((d) => window.__up!.frames().drawn > d, drawn);
+});
+
 test.describe("served without the isolation headers", () => {
   let server: { url: string; close: () => Promise<void> };
   test.beforeAll(async () => {

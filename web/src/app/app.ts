@@ -56,6 +56,13 @@ export class App {
   lastStats: { stats: EngineStats; stepsPerSecond: number } | null = null;
   /** Frames drawn with balloons, and main-thread ms spent in renderer.render over them (measurements). */
   readonly frames = { drawn: 0, renderMs: 0 };
+  /**
+   * Measurements only: frames do nothing, so that the page sends the GPU
+   * nothing to draw or composite. Headless Chromium draws through
+   * SwiftShader on the CPU, which would take the cores that a timed physics
+   * window is measuring.
+   */
+  drawingHeld = false;
   /** The main thread's work and render call per frame (measurements). */
   readonly frameMeter = new FrameMeter();
   private firstWorld = true;
@@ -215,6 +222,11 @@ export class App {
 
   /** One animation frame: controls, the world from the newest physics frame, the HUD, the render. */
   private frame(now: number): void {
+    if (this.drawingHeld) {
+      this.lastFrameTime = now;
+      requestAnimationFrame((t) => this.frame(t));
+      return;
+    }
     const workStart = performance.now();
     const dt = Math.min(0.1, (now - this.lastFrameTime) / 1000);
     this.lastFrameTime = now;

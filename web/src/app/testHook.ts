@@ -31,6 +31,16 @@ export function createTestHook(app: App) {
     measureSteps: (steps: number) => app.bridge.measureSteps(steps),
     /** Measurements: balloons drawn or not (the frame's work goes on; SwiftShader's drawing of thousands takes the CPU). */
     drawBalloons: (on: boolean) => world.balloons?.setVisible(on),
+    /** Measurements: frames that do nothing (the GPU gets nothing to draw), or their work again (`App.drawingHeld`). */
+    holdDrawing: (held: boolean) => {
+      app.drawingHeld = held;
+    },
+    /**
+     * Measurements: returns once the GPU has finished every frame sent so far
+     * (SwiftShader takes seconds over a frame of thousands of balloons, on the
+     * CPU, after the render call has returned).
+     */
+    finishDrawing: () => renderer.getContext().finish(),
     debugView: () => world.debug.visible,
     /** Contacts the debug view draws now, and how many the current frame carried. */
     contacts: () => ({

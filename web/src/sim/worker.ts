@@ -109,9 +109,12 @@ function worldInfo(e: Engine): WorldInfo {
   };
 }
 
-/** Builds the world from `sceneJson` (default scene when null) and announces it. */
-function load(sceneJson: string | null, sceneToml?: string): void {
-  if (!state.engine) return;
+/**
+ * Builds the world from `sceneJson` (default scene when null) and announces
+ * it, unless `announce` is false (the caller then does, with the info returned).
+ */
+function load(sceneJson: string | null, sceneToml?: string, announce = true): WorldInfo | null {
+  if (!state.engine) return null;
   if (sceneToml !== undefined) state.engine.loadSceneToml(sceneToml);
   else if (sceneJson === null) state.engine.loadDefaultScene();
   else state.engine.loadSceneJson(sceneJson);
@@ -125,7 +128,8 @@ function load(sceneJson: string | null, sceneToml?: string): void {
   state.accumulator = 0;
   state.version++;
   state.dirty = true;
-  post({ type: "ready", info });
+  if (announce) post({ type: "ready", info });
+  return info;
 }
 
 /** Takes a free buffer of at least `bytes`, or allocates one (only when the world grew). */
@@ -474,11 +478,15 @@ function handle(msg: ToWorker): void {
       case "release":
         state.engine.release();
         break;
-      case "measureSteps":
-        load(state.currentSceneJson);
+      case "measureSteps": {
+        // The page rebuilds its world on "ready": told after the window, so that
+        // the rebuild does not take cores from the steps being timed.
+        const info = load(state.currentSceneJson, undefined, false);
         post({ type: "stepsMeasured", ...measureSteps(state.engine, msg.steps) });
         state.steps = msg.steps;
+        if (info) post({ type: "ready", info });
         break;
+      }
     }
   } catch (err) {
     if (restartAfterTrap(err)) return;
