@@ -17,8 +17,8 @@
 //    pose still becomes an instance matrix each frame;
 // 3. pauses and measures the frames alone for a few seconds (same input);
 // 4. restarts the scene in the worker and times `steps` steps one by one
-//    (sim/stepMeter.ts) while the page's frames skip their render call
-//    (`holdDrawing`): the physics ms per step by the engine's own timer over
+//    (sim/stepMeter.ts) while the page's frames do nothing (`holdDrawing`,
+//    once SwiftShader has drawn those sent before): the physics ms per step by the engine's own timer over
 //    the same window on every thread count, and the state hash after it,
 //    which must be the same on every thread count. SwiftShader rasterises
 //    on the same cores as the engine's threads, which a visitor's GPU does
@@ -213,7 +213,7 @@ async function measureThreads(browser, url, opts, threads) {
     const paused = await phase(page, Math.min(5, opts.seconds) * 1000);
     log(`${threads} thread(s): drawing alone measured (${paused.frames} frames); timing ${opts.steps} steps`);
     // The worker restarts the scene and steps the window; the page's frames
-    // go on without their render call, then the same with it.
+    // held (they do nothing), then the same window with the page drawing.
     const timeWindow = async (held) => {
       if (held) await settleDrawing(page);
       else await page.evaluate(() => window.__up.holdDrawing(false));
