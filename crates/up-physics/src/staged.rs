@@ -27,18 +27,22 @@
 use std::hint::spin_loop;
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 
+use crate::spare::{release_spare, BUFFER_FLOOR};
+
 /// Spins before a waiting thread yields its core (to a thread that holds a
 /// block, when there are more threads than cores).
 const SPINS_BEFORE_YIELD: u32 = 64;
 
 /// An atomic alone on its cache line (128 bytes: some cores fetch lines in
 /// pairs), so that threads updating neighbours do not contend.
+#[derive(Debug)]
 #[repr(align(128))]
 struct Padded<T>(T);
 
 /// The blocks of one share still to run: `[front, back)`, packed in one word
 /// so that the owner (from the front) and the others (from the back) take
 /// them with one compare-and-swap each.
+#[derive(Debug)]
 struct Share(Padded<AtomicU64>);
 
 impl Share {
@@ -88,42 +92,100 @@ fn unpack(word: u64) -> (usize, usize) {
     ((word & u64::from(u32::MAX)) as usize, (word >> 32) as usize)
 }
 
-/// Runs `run(k)` for every block `k` of `stage_first.len()`, on rayon's
-/// threads, where `stage_first[k]` is the first block of block k's stage
-/// (non-decreasing, `stage_first[k] <= k`, and a stage's first block is its
-/// own stage's first): every block of a stage starts after all the blocks of
-/// the stages before it have finished, and the memory they wrote is visible
-/// to it. A panic in a block keeps the blocks of later stages from starting
-/// and reaches the caller (rather than leaving the others waiting for a block
-/// that will never be done).
+/// Blocks in stages, laid out once for the passes of a step that run them
+/// (`run_in_stages`), with the shares those passes deal out and reset.
+#[derive(Debug, Default)]
+pub(crate) struct Stages {
+    /// Each stage's first block, then the number of blocks.
+    starts: Vec<u32>,
+    /// Threads the blocks are shared among.
+    threads: usize,
+    /// `threads` shares a stage, stage after stage.
+    shares: Vec<Share>,
+}
+
+impl Clone for Stages {
+    fn clone(&self) -> Self {
+        let mut stages = Stages::default();
+        stages.starts.clone_from(&self.starts);
+        stages.threads = self.threads;
+        stages.shares = (0..self.shares.len()).map(|_| Share::new(0, 0)).collect();
+        stages
+    }
+}
+
+impl Stages {
+    /// Lays out the stages of `stage_first`, where `stage_first[k]` is the
+    /// first block of block k's stage (non-decreasing, `stage_first[k] <= k`,
+    /// and a stage's first block is its own stage's first), for the threads
+    /// of the current pool.
+    pub fn lay_out(&mut self, stage_first: &[u32]) {
+        let blocks = stage_first.len();
+        debug_assert!(stage_first.iter().enumerate().all(|(k, &first)| {
+            let first = first as usize;
+            first <= k
+                && stage_first[first] as usize == first
+                && (k == 0 || stage_first[k - 1] as usize <= first)
+        }));
+        self.starts.clear();
+        self.starts.extend(
+            (0..blocks)
+                .filter(|&k| stage_first[k] as usize == k)
+                .map(|k| k as u32),
+        );
+        self.starts.push(blocks as u32);
+        self.threads = rayon::current_num_threads().clamp(1, blocks.max(1));
+        let shares = self.stages() * self.threads;
+        if self.shares.len() != shares {
+            self.shares.resize_with(shares, || Share::new(0, 0));
+        }
+    }
+
+    /// Blocks in all.
+    pub fn blocks(&self) -> usize {
+        self.starts.last().map_or(0, |&n| n as usize)
+    }
+
+    fn stages(&self) -> usize {
+        self.starts.len().saturating_sub(1)
+    }
+
+    /// Deals each stage's blocks into its shares, in order.
+    fn deal(&self) {
+        let threads = self.threads;
+        for (s, stage) in self.starts.windows(2).enumerate() {
+            let (first, len) = (stage[0] as usize, (stage[1] - stage[0]) as usize);
+            for t in 0..threads {
+                let share = pack(first + len * t / threads, first + len * (t + 1) / threads);
+                // Relaxed: the run's fork hands these to every thread.
+                self.shares[s * threads + t]
+                    .0
+                     .0
+                    .store(share, Ordering::Relaxed);
+            }
+        }
+    }
+
+    /// Gives back the capacity the last layout left unused (`spare`).
+    pub fn release_spare(&mut self) {
+        release_spare(&mut self.starts, BUFFER_FLOOR);
+        release_spare(&mut self.shares, BUFFER_FLOOR);
+    }
+}
+
+/// Runs `run(k)` for every block `k` of `stages`, on rayon's threads: every
+/// block of a stage starts after all the blocks of the stages before it have
+/// finished, and the memory they wrote is visible to it. A panic in a block
+/// keeps the blocks of later stages from starting and reaches the caller
+/// (rather than leaving the others waiting for a block that will never be
+/// done). Runs of the same `stages` must not overlap (they reuse its shares).
 ///
 /// `run` must not wait on rayon work (`join`, `scope`, parallel iterators):
 /// a thread waiting there can take up a later block of this very run, which
 /// then waits for the block below it on its own stack.
-pub(crate) fn run_in_stages(stage_first: &[u32], run: impl Fn(usize) + Sync) {
-    let blocks = stage_first.len();
-    debug_assert!(stage_first.iter().enumerate().all(|(k, &first)| {
-        let first = first as usize;
-        first <= k
-            && stage_first[first] as usize == first
-            && (k == 0 || stage_first[k - 1] as usize <= first)
-    }));
-    let threads = rayon::current_num_threads().clamp(1, blocks.max(1));
-    // Each stage's first block, and its shares, `threads` a stage.
-    let stage_starts: Vec<usize> = (0..blocks)
-        .filter(|&k| stage_first[k] as usize == k)
-        .collect();
-    let shares: Vec<Share> = stage_starts
-        .iter()
-        .enumerate()
-        .flat_map(|(s, &first)| {
-            let end = stage_starts.get(s + 1).copied().unwrap_or(blocks);
-            let len = end - first;
-            (0..threads).map(move |t| {
-                Share::new(first + len * t / threads, first + len * (t + 1) / threads)
-            })
-        })
-        .collect();
+pub(crate) fn run_in_stages(stages: &Stages, run: impl Fn(usize) + Sync) {
+    let threads = stages.threads;
+    stages.deal();
     let joined = AtomicUsize::new(0);
     let done = Padded(AtomicUsize::new(0));
     let failed = AtomicBool::new(false);
@@ -131,11 +193,11 @@ pub(crate) fn run_in_stages(stage_first: &[u32], run: impl Fn(usize) + Sync) {
         // Shares by order of arrival: a thread that never comes leaves its
         // share to the others.
         let own = joined.fetch_add(1, Ordering::Relaxed) % threads;
-        for (s, &first) in stage_starts.iter().enumerate() {
-            if !wait_until_done(&done.0, first, &failed) {
+        for (s, &first) in stages.starts[..stages.stages()].iter().enumerate() {
+            if !wait_until_done(&done.0, first as usize, &failed) {
                 return;
             }
-            let stage = &shares[s * threads..(s + 1) * threads];
+            let stage = &stages.shares[s * threads..(s + 1) * threads];
             let mut ran = 0;
             let mut run_counted = |k: usize| {
                 let unwinding = FlagOnUnwind(&failed);
@@ -220,7 +282,9 @@ mod tests {
             for _ in 0..200 {
                 let ran: Vec<AtomicU32> = stage_of.iter().map(|_| AtomicU32::new(0)).collect();
                 pool.install(|| {
-                    run_in_stages(&stage_first, |k| {
+                    let mut stages = Stages::default();
+                    stages.lay_out(&stage_first);
+                    run_in_stages(&stages, |k| {
                         for (j, flag) in ran.iter().enumerate() {
                             let seen = flag.load(Ordering::Relaxed);
                             if stage_of[j] < stage_of[k] {
@@ -269,7 +333,9 @@ mod tests {
                 (0..BLOCKS).map(|_| AtomicU32::new(0)).collect(),
             ];
             pool.install(|| {
-                run_in_stages(&stage_first, |k| {
+                let mut stages = Stages::default();
+                stages.lay_out(&stage_first);
+                run_in_stages(&stages, |k| {
                     let (stage, cell) = (k / BLOCKS, k % BLOCKS);
                     // Relaxed: only the stages' own ordering makes the values current.
                     let read: Vec<u32> = cells[stage % 2]
@@ -302,7 +368,9 @@ mod tests {
                 .unwrap();
             let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
                 pool.install(|| {
-                    run_in_stages(&stage_first, |k| assert_ne!(k, 19, "block 19 fails"));
+                    let mut stages = Stages::default();
+                    stages.lay_out(&stage_first);
+                    run_in_stages(&stages, |k| assert_ne!(k, 19, "block 19 fails"));
                 })
             }));
             sender.send(result.is_err()).unwrap();

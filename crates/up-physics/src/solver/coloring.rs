@@ -30,6 +30,8 @@
 use super::body_state::BodyState;
 use super::lanes::LANES;
 use crate::spare::{release_spare, BUFFER_FLOOR};
+#[cfg(feature = "parallel")]
+use crate::staged::Stages;
 
 /// Marks a slot that holds no constraint.
 #[cfg(feature = "parallel")]
@@ -186,6 +188,8 @@ pub(crate) struct ColourBlocks {
     pub piece_end: Vec<u32>,
     /// The first block of block k's stage.
     pub stage_first: Vec<u32>,
+    /// The stages laid out for the passes (`finish`).
+    pub stages: Stages,
 }
 
 #[cfg(feature = "parallel")]
@@ -200,6 +204,12 @@ impl ColourBlocks {
         release_spare(&mut self.pieces, BUFFER_FLOOR);
         release_spare(&mut self.piece_end, BUFFER_FLOOR);
         release_spare(&mut self.stage_first, BUFFER_FLOOR);
+        self.stages.release_spare();
+    }
+
+    /// Lays out the stages once every one is added.
+    fn finish(&mut self) {
+        self.stages.lay_out(&self.stage_first);
     }
 
     /// The pieces of block `k`.
@@ -371,6 +381,8 @@ impl Coloring {
             }
         }
         self.groups = start as usize;
+        #[cfg(feature = "parallel")]
+        self.blocks.finish();
 
         self.slot.clear();
         for &(color, moving, zone) in &self.color {

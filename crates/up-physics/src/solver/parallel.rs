@@ -154,9 +154,9 @@ pub(crate) fn for_each_colored<K>(
     #[cfg(feature = "parallel")]
     {
         let blocks = &coloring.blocks;
-        if rayon::current_num_threads() > 1 && blocks.stage_first.len() > 1 {
+        if rayon::current_num_threads() > 1 && blocks.stages.blocks() > 1 {
             let shared_groups = SharedSlice::new(groups);
-            run_in_stages(&blocks.stage_first, |k| {
+            run_in_stages(&blocks.stages, |k| {
                 for piece in blocks.block(k) {
                     // SAFETY: the blocks' pieces do not overlap and each
                     // block is run by one task, so its groups are its own;
