@@ -18,6 +18,8 @@ pub mod gas;
 mod grab;
 mod hash;
 mod joint;
+#[cfg(feature = "parallel")]
+mod keep_awake;
 mod narrow_phase;
 mod quarantine;
 pub mod ribbon;

@@ -23,6 +23,8 @@ use serde::{Deserialize, Serialize};
 use super::World;
 use crate::continuous::{sweep_fast_bodies, SweepInput};
 use crate::counters::{Counters, Stopwatch};
+#[cfg(feature = "parallel")]
+use crate::keep_awake::with_threads_kept_awake;
 use crate::ribbon;
 use crate::ribbon::solve::SubstepInput;
 use crate::sleep::{self, SleepRules};
@@ -52,10 +54,14 @@ impl World {
         // Called from outside rayon's pool, the whole step moves onto one of
         // its threads: otherwise every parallel pass (hundreds a step) would
         // hand its work across threads and put this one to sleep until done.
+        // There the pool's other threads stay awake until the step ends.
         #[cfg(feature = "parallel")]
         if rayon::current_thread_index().is_none() {
-            return rayon::scope(|_| self.step_here());
+            rayon::scope(|_| with_threads_kept_awake(|| self.step_here()))
+        } else {
+            with_threads_kept_awake(|| self.step_here())
         }
+        #[cfg(not(feature = "parallel"))]
         self.step_here()
     }
 
