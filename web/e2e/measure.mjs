@@ -26,8 +26,9 @@
 // 5. the same window again with the page drawing (the balloons not drawn):
 //    `physics_ms_while_drawing`, what this machine's page shows.
 // Ends with one JSON line: {"balloons", "steps", "runs": [{"threads",
-// "physics_ms": {median, mean, p95}, "realtime_factor", "frame_ms": {median,
-// p95}, "state_hash", "steps", "physics_ms_while_drawing", ...}],
+// "physics_ms": {median, mean, p95}, "physics_stages_ms": {stage: mean},
+// "realtime_factor", "frame_ms": {median, p95}, "state_hash", "steps",
+// "physics_ms_while_drawing", ...}],
 // "speedup_mean": {"T": mean at 1 thread over mean at T}, "speedup_median",
 // "speedup_mean_while_drawing", "hashes_equal", ...}; exits 1 when the hashes
 // differ.
@@ -235,6 +236,8 @@ async function measureThreads(browser, url, opts, threads) {
       balloons: inPage.count,
       physics_ms: { median: physics.median, mean: physics.mean, p95: physics.p95, max: physics.max },
       physics_wall_ms: summary(window_.wallMs, 2),
+      // The engine's stages over the same window: each one's mean ms per step (which ones scale).
+      physics_stages_ms: Object.fromEntries(window_.stageMeanMs.map(([name, ms]) => [name, round(ms, 2)])),
       // The same window while the page draws (the balloons not drawn): SwiftShader on the same cores.
       physics_ms_while_drawing: { median: physicsWhileDrawing.median, mean: physicsWhileDrawing.mean, p95: physicsWhileDrawing.p95, max: physicsWhileDrawing.max },
       // Simulated seconds per second at the window's mean (1: real time), and what the page

@@ -24,6 +24,15 @@ describe("measureSteps", () => {
       expect(r.wallMs[i]).toBeGreaterThanOrEqual(r.engineMs[i] * 0.5);
     }
     expect(r.bodies).toBe(40);
+    // The stages' means: the engine's names, "total" last, which is the mean of the steps' totals.
+    const names = r.stageMeanMs.map(([name]) => name);
+    expect(names).toContain("solve");
+    expect(names.at(-1)).toBe("total");
+    const meanTotal = r.engineMs.reduce((a, b) => a + b, 0) / r.engineMs.length;
+    expect(r.stageMeanMs.at(-1)![1]).toBeCloseTo(meanTotal, 9);
+    const parts = r.stageMeanMs.slice(0, -1).reduce((sum, [, ms]) => sum + ms, 0);
+    expect(parts).toBeGreaterThan(0);
+    expect(parts).toBeLessThanOrEqual(meanTotal * 1.000001);
   }, 30_000);
 
   it("ends where stepping the same scene as many steps in one call ends (the same state hash)", () => {

@@ -16,6 +16,8 @@ export interface StepsMeasured {
   engineMs: number[];
   /** The worker's ms around each step call (the engine's time and the call's). */
   wallMs: number[];
+  /** Each of the engine's stages (broadphase, …, "total" last): its mean ms per step over the window. */
+  stageMeanMs: [string, number][];
   /** The engine's state hash after the window: 16 hex digits, as the `up` CLI prints it. */
   stateHash: string;
   /** Bodies, awake bodies and contacts after the window. */
@@ -42,6 +44,15 @@ function total(stats: EngineStats): number {
   return entry[1];
 }
 
+/** Adds one step's stage times to `sums` (named as the engine names them, in its order). */
+function addStages(sums: [string, number][], stats: EngineStats): void {
+  if (sums.length === 0) sums.push(...stats.stages.map(([name]): [string, number] => [name, 0]));
+  for (const [name, ms] of stats.stages) {
+    const sum = sums.find(([n]) => n === name);
+    if (sum) sum[1] += ms;
+  }
+}
+
 /** Steps `engine` `steps` times, timing each step. */
 export function measureSteps(engine: SteppedEngine, steps: number, clock: () => number = () => performance.now()): StepsMeasured {
   if (!Number.isInteger(steps) || steps < 1 || steps > MAX_MEASURED_STEPS) {
@@ -51,17 +62,21 @@ export function measureSteps(engine: SteppedEngine, steps: number, clock: () => 
   engine.stats();
   const engineMs: number[] = [];
   const wallMs: number[] = [];
+  const stageSums: [string, number][] = [];
   for (let i = 0; i < steps; i++) {
     const t0 = clock();
     engine.step(1);
     wallMs.push(clock() - t0);
-    engineMs.push(total(engine.stats()));
+    const stats = engine.stats();
+    engineMs.push(total(stats));
+    addStages(stageSums, stats);
   }
   const last = engine.stats();
   return {
     steps,
     engineMs,
     wallMs,
+    stageMeanMs: stageSums.map(([name, sum]) => [name, sum / steps]),
     stateHash: hashHex(engine.stateHash()),
     bodies: last.bodies,
     awake: last.awake,
