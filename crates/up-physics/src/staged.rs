@@ -102,6 +102,8 @@ pub(crate) struct Stages {
     threads: usize,
     /// `threads` shares a stage, stage after stage.
     shares: Vec<Share>,
+    /// Whether a run deals out the shares now (runs must not overlap).
+    running: AtomicBool,
 }
 
 impl Clone for Stages {
@@ -178,12 +180,19 @@ impl Stages {
 /// finished, and the memory they wrote is visible to it. A panic in a block
 /// keeps the blocks of later stages from starting and reaches the caller
 /// (rather than leaving the others waiting for a block that will never be
-/// done). Runs of the same `stages` must not overlap (they reuse its shares).
+/// done). Runs of the same `stages` must not overlap (they reuse its
+/// shares): one that would panics instead.
 ///
 /// `run` must not wait on rayon work (`join`, `scope`, parallel iterators):
 /// a thread waiting there can take up a later block of this very run, which
 /// then waits for the block below it on its own stack.
 pub(crate) fn run_in_stages(stages: &Stages, run: impl Fn(usize) + Sync) {
+    // Acquire: pairs with the Release that ended the last run.
+    assert!(
+        !stages.running.swap(true, Ordering::Acquire),
+        "two runs of the same stages at once"
+    );
+    let _over = ClearOnDrop(&stages.running);
     let threads = stages.threads;
     stages.deal();
     let joined = AtomicUsize::new(0);
@@ -223,6 +232,16 @@ pub(crate) fn run_in_stages(stages: &Stages, run: impl Fn(usize) + Sync) {
         }
         work();
     });
+}
+
+/// Clears its flag when dropped, however the run ends.
+struct ClearOnDrop<'a>(&'a AtomicBool);
+
+impl Drop for ClearOnDrop<'_> {
+    fn drop(&mut self) {
+        // Release: the run's writes come before the next run's start.
+        self.0.store(false, Ordering::Release);
+    }
 }
 
 /// Sets its flag when dropped, which only a panic does (it is forgotten otherwise).
@@ -353,6 +372,37 @@ mod tests {
                 .collect();
             assert_eq!(last, expected[STAGES % 2]);
         }
+    }
+
+    /// A run of stages already running is refused, and the stages run again after.
+    #[test]
+    fn a_second_run_of_the_same_stages_at_once_is_refused() {
+        let stage_first: Vec<u32> = (0..8).map(|k| k / 4 * 4).collect();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut stages = Stages::default();
+            stages.lay_out(&stage_first);
+            let nested = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                run_in_stages(&stages, |k| {
+                    if k == 5 {
+                        run_in_stages(&stages, |_| {});
+                    }
+                })
+            }));
+            let message = nested.expect_err("the nested run must panic");
+            assert_eq!(
+                message.downcast_ref::<&str>(),
+                Some(&"two runs of the same stages at once")
+            );
+            let ran = AtomicU32::new(0);
+            run_in_stages(&stages, |_| {
+                ran.fetch_add(1, Ordering::Relaxed);
+            });
+            assert_eq!(ran.load(Ordering::Relaxed), 8);
+        });
     }
 
     /// A block that panics ends the run with its panic, on any thread,
