@@ -28,8 +28,8 @@
 use glam::Vec3;
 
 use crate::hash::mix64;
-use crate::spare::{release_spare, release_spare_each, BUFFER_FLOOR};
-use crate::tasks::{collect_in_order, fill_chunks};
+use crate::threading::spare::{release_spare, release_spare_each, BUFFER_FLOOR};
+use crate::threading::tasks::{collect_in_order, fill_chunks};
 
 /// Bodies whose neighbours one task looks up.
 const BODY_CHUNK: usize = 512;

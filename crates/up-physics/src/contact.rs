@@ -6,7 +6,7 @@ use std::ops::Range;
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
-use crate::spare::{release_spare, BUFFER_FLOOR};
+use crate::threading::spare::{release_spare, BUFFER_FLOOR};
 
 /// Stands for the static room in a contact's `body_b`.
 pub(crate) const STATIC_BODY: u32 = u32::MAX;

@@ -9,7 +9,7 @@ use up_geom::{Sphere, TriMesh};
 
 use crate::body::{Bodies, ShapeData};
 use crate::solver::Solver;
-use crate::tasks::collect_in_order;
+use crate::threading::tasks::collect_in_order;
 
 /// A fast body's core, swept against the room: this share of each leaf's radius.
 const CORE_FRACTION: f32 = 0.5;

@@ -1,41 +1,201 @@
-//! Time spent in each stage of a step, for the CLI and the web HUD.
+//! Time spent in each stage of a step, for the CLI and the web HUD: one
+//! counter per stage that `World::step` runs, under the stage's own name.
 
 use serde::{Deserialize, Serialize};
+
+macro_rules! stages {
+    ($($(#[$doc:meta])* $stage:ident = $name:literal in $phase:ident,)*) => {
+        /// A stage of the step, in the order the step runs them
+        /// (`world/step.rs`); its name is its counter's.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+        pub enum Stage {
+            $($(#[$doc])* $stage,)*
+        }
+
+        impl Stage {
+            /// Every stage, in step order.
+            pub const ALL: [Stage; Stage::COUNT] = [$(Stage::$stage,)*];
+            pub const COUNT: usize = [$(Stage::$stage,)*].len();
+
+            /// Its counter's name (snake case).
+            pub fn name(self) -> &'static str {
+                match self {
+                    $(Stage::$stage => $name,)*
+                }
+            }
+
+            /// The phase of the step it belongs to, for a short summary.
+            pub fn phase(self) -> Phase {
+                match self {
+                    $(Stage::$stage => Phase::$phase,)*
+                }
+            }
+        }
+    };
+}
+
+stages! {
+    /// The room's air and every balloon's gas a step on; sizes that moved.
+    Gas = "gas" in Gas,
+    /// Pairs of bodies held by a joint, for the sleep islands.
+    Joined = "joined" in Joints,
+    /// Balloons woken whose sleeping ribbons a moving balloon reaches.
+    WakeRibbons = "wake_ribbons" in Ribbons,
+    /// Sphere trees at their poses, bounds widened by the step's motion.
+    Place = "place" in Broadphase,
+    /// The broadphase's pairs of bounds.
+    Pairs = "pairs" in Broadphase,
+    /// Sleepers that restless bodies reach, woken.
+    WakeBodies = "wake_bodies" in Broadphase,
+    /// The pairs of the bodies just woken (zero when none woke).
+    PairWoken = "pair_woken" in Broadphase,
+    /// How far each pair may knock its bodies this step.
+    Knocks = "knocks" in Broadphase,
+    /// The narrowphase: contact points of the pairs.
+    Contacts = "contacts" in Narrowphase,
+    /// Solver states and forces of the awake bodies.
+    PrepareBodies = "prepare_bodies" in Prepare,
+    /// Contact constraints: coloured, in groups of four, warm-started.
+    PrepareContacts = "prepare_contacts" in Prepare,
+    /// The joints with an awake body.
+    PrepareJoints = "prepare_joints" in Joints,
+    /// The spring of a held balloon.
+    GrabSpring = "grab_spring" in Prepare,
+    /// The awake ribbons' points taken out, with the room and balloons near each.
+    PrepareRibbons = "prepare_ribbons" in Ribbons,
+    /// The probed bodies and their constant forces (nothing when off).
+    BeginProbe = "begin_probe" in Probe,
+    /// The substeps: forces, contacts, joints, ribbons, relax.
+    Solve = "solve" in Solve,
+    /// Restitution's bounces.
+    Bounce = "bounce" in Finish,
+    /// Contact impulses kept for the next step's warm start.
+    StoreImpulses = "store_impulses" in Finish,
+    /// Joint tensions kept.
+    StoreTensions = "store_tensions" in Joints,
+    /// Position passes: overlap beyond the slop removed.
+    RemoveOverlap = "remove_overlap" in Finish,
+    /// The solver's results back to the bodies.
+    FinishMotion = "finish_motion" in Finish,
+    /// The probed bodies' velocities before the sweep (nothing when off).
+    ProbeBeforeSweep = "probe_before_sweep" in Probe,
+    /// Fast bodies swept against the room.
+    Sweep = "sweep" in Continuous,
+    /// The ribbons' points handed back; which still move.
+    FinishRibbons = "finish_ribbons" in Ribbons,
+    /// The probed bodies' force breakdowns (nothing when off).
+    FinishProbe = "finish_probe" in Probe,
+    /// Rest clocks; groups that fall asleep.
+    Sleep = "sleep" in Sleep,
+    /// Bodies gone non-finite taken out.
+    Quarantine = "quarantine" in Sleep,
+    /// Spare buffer capacity given back.
+    ReleaseSpare = "release_spare" in Sleep,
+}
+
+/// A group of stages for a short summary (`Counters::phases`): what kind of
+/// work they do, not where they run (the ribbons' three stages are spread
+/// over the step).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Phase {
+    Gas,
+    Joints,
+    Ribbons,
+    Broadphase,
+    Narrowphase,
+    Prepare,
+    Probe,
+    Solve,
+    Finish,
+    Continuous,
+    Sleep,
+}
+
+impl Phase {
+    pub fn name(self) -> &'static str {
+        match self {
+            Phase::Gas => "gas",
+            Phase::Joints => "joints",
+            Phase::Ribbons => "ribbons",
+            Phase::Broadphase => "broadphase",
+            Phase::Narrowphase => "narrowphase",
+            Phase::Prepare => "prepare",
+            Phase::Probe => "probe",
+            Phase::Solve => "solve",
+            Phase::Finish => "finish",
+            Phase::Continuous => "continuous",
+            Phase::Sleep => "sleep",
+        }
+    }
+}
 
 /// Milliseconds spent in each stage of the last step.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Counters {
-    /// Placing sphere trees and finding candidate pairs on the grid.
-    pub broadphase_ms: f64,
-    /// Sphere-tree descent against other balloons and the room; warm-start matching.
-    pub narrowphase_ms: f64,
-    /// Building constraints: anchors, effective masses, warm-start impulses.
-    pub prepare_ms: f64,
-    /// The substeps: forces, warm start, solve, integrate positions, relax.
-    pub solve_ms: f64,
-    /// Restitution and storing impulses for the next step.
-    pub restitution_ms: f64,
-    /// Sweeping fast balloons against the room.
-    pub continuous_ms: f64,
-    /// Islands and sleep.
-    pub sleep_ms: f64,
-    /// The whole step.
-    pub total_ms: f64,
+    /// Per stage, in `Stage::ALL` order.
+    ms: [f64; Stage::COUNT],
+    /// The whole step: the stages summed.
+    total_ms: f64,
 }
 
 impl Counters {
-    /// Stage names and times, in the order the step runs them.
+    /// Milliseconds `stage` took in the last step.
+    pub fn ms(&self, stage: Stage) -> f64 {
+        self.ms[stage as usize]
+    }
+
+    /// The whole last step, ms.
+    pub fn total_ms(&self) -> f64 {
+        self.total_ms
+    }
+
+    /// Stage names and times, in the order the step runs them, then "total".
     pub fn stages(&self) -> Vec<(&'static str, f64)> {
-        vec![
-            ("broadphase", self.broadphase_ms),
-            ("narrowphase", self.narrowphase_ms),
-            ("prepare", self.prepare_ms),
-            ("solve", self.solve_ms),
-            ("restitution", self.restitution_ms),
-            ("continuous", self.continuous_ms),
-            ("sleep", self.sleep_ms),
-            ("total", self.total_ms),
-        ]
+        let stages = Stage::ALL.iter().map(|&s| (s.name(), self.ms(s)));
+        stages.chain([("total", self.total_ms)]).collect()
+    }
+
+    /// Phase names and their stages' times summed, each phase where its
+    /// first stage runs, then "total".
+    pub fn phases(&self) -> Vec<(&'static str, f64)> {
+        let mut phases: Vec<(Phase, f64)> = Vec::new();
+        for stage in Stage::ALL {
+            match phases.iter_mut().find(|(p, _)| *p == stage.phase()) {
+                Some((_, ms)) => *ms += self.ms(stage),
+                None => phases.push((stage.phase(), self.ms(stage))),
+            }
+        }
+        let phases = phases.into_iter().map(|(p, ms)| (p.name(), ms));
+        phases.chain([("total", self.total_ms)]).collect()
+    }
+}
+
+/// Times the stages of one step into `Counters`: `lap(stage)` gives the
+/// stage the milliseconds since the last lap. A clock read a stage, no
+/// allocation.
+pub(crate) struct StageClock {
+    last: f64,
+    counters: Counters,
+}
+
+impl StageClock {
+    pub fn start() -> Self {
+        Self {
+            last: now_ms(),
+            counters: Counters::default(),
+        }
+    }
+
+    pub fn lap(&mut self, stage: Stage) {
+        let now = now_ms();
+        self.counters.ms[stage as usize] = now - self.last;
+        self.last = now;
+    }
+
+    /// The counters, with the total.
+    pub fn finish(mut self) -> Counters {
+        self.counters.total_ms = self.counters.ms.iter().sum();
+        self.counters
     }
 }
 
@@ -59,20 +219,45 @@ pub(crate) fn now_ms() -> f64 {
     unsafe { up_now_ms() }
 }
 
-/// Measures consecutive stages: `lap()` returns the milliseconds since the last lap.
-pub(crate) struct Stopwatch {
-    last: f64,
-}
+#[cfg(test)]
+mod tests {
+    use super::*;
 
-impl Stopwatch {
-    pub fn start() -> Self {
-        Self { last: now_ms() }
+    #[test]
+    fn every_stage_has_a_name_of_its_own_and_total_comes_last() {
+        let names: Vec<&str> = Counters::default()
+            .stages()
+            .iter()
+            .map(|&(n, _)| n)
+            .collect();
+        assert_eq!(names.len(), Stage::COUNT + 1);
+        assert_eq!(names.last(), Some(&"total"));
+        let mut unique = names.clone();
+        unique.sort_unstable();
+        unique.dedup();
+        assert_eq!(unique.len(), names.len(), "{names:?}");
     }
 
-    pub fn lap(&mut self) -> f64 {
-        let now = now_ms();
-        let dt = now - self.last;
-        self.last = now;
-        dt
+    #[test]
+    fn the_phases_sum_to_the_stages() {
+        let mut clock = StageClock::start();
+        for stage in Stage::ALL {
+            clock.lap(stage);
+        }
+        let mut counters = clock.finish();
+        for (k, ms) in counters.ms.iter_mut().enumerate() {
+            *ms = (k + 1) as f64;
+        }
+        counters.total_ms = counters.ms.iter().sum();
+        let phases: f64 = counters.phases()[..]
+            .split_last()
+            .unwrap()
+            .1
+            .iter()
+            .map(|p| p.1)
+            .sum();
+        assert_eq!(phases, counters.total_ms());
+        assert_eq!(counters.ms(Stage::Gas), 1.0);
+        assert_eq!(counters.phases()[0], ("gas", 1.0));
     }
 }

@@ -1,7 +1,8 @@
 //! UP's physics world: rigid balloons made of sphere trees, a static
 //! triangle-mesh room, a substepped soft contact solver with friction and
 //! restitution, joints solved in the same substeps, and the forces of air
-//! (buoyancy, drag, added mass) and of the scene's force fields.
+//! (buoyancy, drag, added mass) and of the scene's force fields, which act on
+//! balloons and ribbons alike (`forces::field`, the step's extension point).
 //!
 //! Conventions, stated once: SI units (m, kg, s, N), right-handed, Y up.
 //! Deterministic: the same inputs give bit-identical states on every run and
@@ -18,8 +19,6 @@ pub mod gas;
 mod grab;
 mod hash;
 mod joint;
-#[cfg(feature = "parallel")]
-mod keep_awake;
 mod narrow_phase;
 mod quarantine;
 pub mod ribbon;
@@ -27,16 +26,13 @@ mod sleep;
 mod slots;
 mod snapshot;
 mod solver;
-mod spare;
-#[cfg(feature = "parallel")]
-mod staged;
-mod tasks;
+mod threading;
 mod world;
 
 pub use body::{BalloonShape, BodyDef, BodyId, ShapeId};
-pub use counters::Counters;
+pub use counters::{Counters, Phase, Stage};
 pub use forces::atmosphere::Atmosphere;
-pub use forces::field::{FieldSample, ForceField};
+pub use forces::field::{FieldSample, ForceField, PointSample};
 pub use gas::{EnvelopeDef, EnvelopeKind, Gas, TemperatureSchedule};
 pub use joint::{DistanceJointDef, DistanceLimit, JointAnchor, JointId};
 pub use quarantine::{QuarantinedBody, MAX_QUARANTINE_REPORTS};

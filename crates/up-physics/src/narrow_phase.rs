@@ -27,8 +27,8 @@ use up_geom::{prune_shadowed, Contact, PlacedTree, RelativeMotion, TriMesh};
 
 use crate::body::{BodySize, ShapeData};
 use crate::contact::{pair_key, ContactFeature, ContactPoint, STATIC_BODY};
-use crate::spare::{release_spare, BUFFER_FLOOR, TASK_LIST_FLOOR};
-use crate::tasks::{collect_in_order, TaskList};
+use crate::threading::spare::{release_spare, BUFFER_FLOOR, TASK_LIST_FLOOR};
+use crate::threading::tasks::{collect_in_order, TaskList};
 
 /// Broadphase pairs whose knocks one task finds.
 #[cfg(feature = "parallel")]
@@ -126,10 +126,10 @@ pub(crate) fn add_knocks(
         m.knock = Vec3::ZERO;
     }
     #[cfg(feature = "parallel")]
-    if crate::tasks::worth_splitting(pairs.len(), KNOCK_CHUNK) {
+    if crate::threading::tasks::worth_splitting(pairs.len(), KNOCK_CHUNK) {
         thrown.resize(pairs.len(), None);
         let read: &[StepMotion] = motion;
-        crate::tasks::fill_chunks(thrown, KNOCK_CHUNK, |first, out| {
+        crate::threading::tasks::fill_chunks(thrown, KNOCK_CHUNK, |first, out| {
             for (k, t) in out.iter_mut().enumerate() {
                 let (a, b) = pairs[first + k];
                 *t = knocks(read, a as usize, b as usize);

@@ -7,7 +7,7 @@ use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
 use crate::body::{Bodies, BodyId};
-use crate::tasks::collect_in_order;
+use crate::threading::tasks::collect_in_order;
 
 /// A body taken out of the world because its state was no longer finite.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -74,6 +74,6 @@ pub(crate) struct FaultBuffers {
 impl FaultBuffers {
     /// Gives back the capacity the tasks' lists left unused (`spare`).
     pub fn release_spare(&mut self) {
-        crate::spare::release_spare_each(&mut self.task_faulty);
+        crate::threading::spare::release_spare_each(&mut self.task_faulty);
     }
 }

@@ -59,6 +59,11 @@ impl BodyForces {
         let (scale, mass, volume) = (size.scale, size.mass, shape.volume(size.scale));
         let buoyancy = buoyancy_force(input.air_density, volume, input.gravity);
         let mut force = gravity_force(mass, input.gravity) + buoyancy + load.force;
+        let drag_factor = drag_factor(
+            input.air_density,
+            input.drag_coefficient,
+            shape.def.reference_area * (scale * scale),
+        );
         if !input.fields.is_empty() {
             force += input.fields.force(&FieldSample {
                 center: load.center,
@@ -66,6 +71,7 @@ impl BodyForces {
                 user_data: load.user_data,
                 mass,
                 volume,
+                drag_factor,
                 time: input.time,
             });
         }
@@ -74,11 +80,7 @@ impl BodyForces {
             buoyancy,
             buoyancy_arm: shape.buoyancy_arm * scale,
             torque: load.torque,
-            drag_factor: drag_factor(
-                input.air_density,
-                input.drag_coefficient,
-                shape.def.reference_area * (scale * scale),
-            ),
+            drag_factor,
         }
     }
 

@@ -1,8 +1,10 @@
 //! The ribbons' part of each substep, run after the bodies have moved and the
 //! joints have been projected, before the contacts' relax pass:
 //!
-//! 1. each point falls under gravity and air drag (drag taken implicitly, as
-//!    the bodies' is, across and along the ribbon apart, viscous when slow);
+//! 1. each point falls under gravity, the world's force fields
+//!    (`ForceField::force_on_point`, when there are any) and air drag (drag
+//!    taken implicitly, as the bodies' is, across and along the ribbon
+//!    apart, viscous when slow);
 //! 2. points are pushed out of the balloons near the ribbon and out of the room;
 //! 3. the chain, knot included, is brought back to its lengths by direct
 //!    solves (`chain`; follow-the-leader if a jerk outruns them), and the
@@ -10,7 +12,9 @@
 //! 4. each point's velocity is what it moved over the substep (less any
 //!    bounce off a balloon).
 //!
-//! The ribbons read the bodies' states and write only their own points, so
+//! The solver runs it as its `ribbons` part (`RibbonSubsteps`, a
+//! `solver::SubstepPart`). The ribbons read the bodies' states and write
+//! only their own points, so
 //! they run on rayon's threads in any split; their pulls on their balloons
 //! (one ribbon a balloon) and the pushes back of the balloons they touched
 //! are then applied in ribbon order. A pull moves its balloon's centre but
@@ -33,8 +37,10 @@ use super::{
     TANGENT_DRAG_COEFFICIENT, WEIGHT_DRAG_COEFFICIENT, WEIGHT_RADIUS,
 };
 use crate::body::{BodySize, ShapeData};
+use crate::forces::field::{ForceFields, PointSample};
 use crate::solver::body_state::BodyState;
-use crate::tasks::fill_chunks;
+use crate::solver::SubstepPart;
+use crate::threading::tasks::fill_chunks;
 
 /// Most direct solves of a ribbon's chain a substep. Each takes out what the
 /// last one's linearisation left (a taut ribbon whose light points swing
@@ -55,6 +61,8 @@ pub(crate) struct ActiveRibbon {
     pub slot: u32,
     /// Its balloon's solver state (dense index).
     pub state: u32,
+    /// Its balloon's `BodyDef::user_data`, for the force fields.
+    pub user_data: u32,
     /// The balloon's centre of mass at the step's start, m.
     pub origin: Vec3,
     /// The knot from the centre of mass, world frame at the step's start, m.
@@ -157,6 +165,10 @@ pub(crate) struct SubstepInput<'a> {
     pub shapes: &'a [ShapeData],
     pub triangles: &'a [NearTriangle],
     pub bodies: &'a [u32],
+    /// The world's force fields (their `force_on_point`), and the simulated
+    /// seconds at the step's start.
+    pub fields: &'a ForceFields,
+    pub time: f64,
 }
 
 /// The ribbons' buffers for a step.
@@ -183,8 +195,20 @@ pub(crate) struct RibbonStage {
     pub moving: Vec<bool>,
 }
 
+/// The awake ribbons as the solver's `ribbons` part of each substep.
+pub(crate) struct RibbonSubsteps<'a> {
+    pub active: &'a mut [ActiveRibbon],
+    pub input: SubstepInput<'a>,
+}
+
+impl SubstepPart for RibbonSubsteps<'_> {
+    fn substep(&mut self, states: &mut [BodyState]) {
+        substep(self.active, &self.input, states);
+    }
+}
+
 /// One substep of every active ribbon; then their pulls on their balloons.
-pub(crate) fn substep(active: &mut [ActiveRibbon], input: &SubstepInput, states: &mut [BodyState]) {
+fn substep(active: &mut [ActiveRibbon], input: &SubstepInput, states: &mut [BodyState]) {
     let read: &[BodyState] = states;
     fill_chunks(active, RIBBON_CHUNK, |_, ribbons| {
         for r in ribbons {
@@ -208,7 +232,7 @@ fn substep_one(r: &mut ActiveRibbon, input: &SubstepInput, states: &[BodyState])
     let n = r.points.len() - 1;
     r.start.clear();
     r.start.extend_from_slice(&r.points);
-    fall(r, input.gravity, h);
+    fall(r, input, h);
     if let Some((k, target)) = r.grab {
         // Carried at the speed that reaches the target by the step's end.
         let to = target - r.start[k];
@@ -302,14 +326,28 @@ fn follow_the_leader(points: &mut [Vec3], inv_mass: &[f32], segment_length: f32)
     }
 }
 
-/// Gravity and drag on each point, then its move over the substep.
-fn fall(r: &mut ActiveRibbon, gravity: Vec3, h: f32) {
+/// Gravity, the fields' forces and drag on each point, then its move over
+/// the substep.
+fn fall(r: &mut ActiveRibbon, input: &SubstepInput, h: f32) {
     let n = r.points.len() - 1;
+    let fields = (!input.fields.is_empty()).then_some(input.fields);
     for i in 1..=n {
         if r.inv_mass[i] == 0.0 {
             continue;
         }
-        let v = r.velocities[i] + h * gravity;
+        let mut v = r.velocities[i] + h * input.gravity;
+        if let Some(fields) = fields {
+            let force = fields.force_on_point(&PointSample {
+                position: r.points[i],
+                velocity: r.velocities[i],
+                mass: 1.0 / r.inv_mass[i],
+                end: i == n,
+                drag_factor: r.drag[i][0],
+                user_data: r.user_data,
+                time: input.time,
+            });
+            v += h * r.inv_mass[i] * force;
+        }
         // Along the ribbon: from the point before to the one after.
         let along = r.points[(i + 1).min(n)] - r.points[i - 1];
         let len = along.norm();

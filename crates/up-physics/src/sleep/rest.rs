@@ -7,7 +7,7 @@ use up_geom::norm::Norm;
 use super::{SleepBuffers, SleepInput, SleepingIslands};
 use crate::body::Bodies;
 use crate::contact::{WarmStartCache, STATIC_BODY};
-use crate::tasks::fill_chunks;
+use crate::threading::tasks::fill_chunks;
 use crate::world::{roots_within, PLACE_CHUNK};
 
 /// Sleep timers, then the rested bodies that fall asleep.

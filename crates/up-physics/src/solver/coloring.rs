@@ -29,9 +29,9 @@
 
 use super::body_state::BodyState;
 use super::lanes::LANES;
-use crate::spare::{release_spare, BUFFER_FLOOR};
+use crate::threading::spare::{release_spare, BUFFER_FLOOR};
 #[cfg(feature = "parallel")]
-use crate::staged::Stages;
+use crate::threading::staged::Stages;
 
 /// Marks a slot that holds no constraint.
 #[cfg(feature = "parallel")]

@@ -6,8 +6,8 @@
 //!    instructions and can run a colour's groups on several threads (`parallel`);
 //! 2. per substep: integrate velocities (forces), warm start, solve (soft
 //!    push-out of overlap), integrate positions, project the joints to their
-//!    lengths (`joint_constraint`, position level), the ribbons (handed in
-//!    by the world, `ribbon::solve`), relax (no push-out, so the
+//!    lengths (`joint_constraint`, position level), the ribbons (a
+//!    `SubstepPart` in `SubstepParts::ribbons`, `ribbon::solve`), relax (no push-out, so the
 //!    push-out's velocity does not linger as jitter; each contact's separation
 //!    is first brought to the new positions in the same pass);
 //! 3. restitution (bounces), and store impulses for the next step;
@@ -50,8 +50,8 @@ use position_skips::PositionSkips;
 
 use crate::contact::StoredImpulse;
 use crate::forces::BodyForces;
-use crate::spare::{release_spare, BUFFER_FLOOR};
-use crate::tasks::fill_chunks;
+use crate::threading::spare::{release_spare, BUFFER_FLOOR};
+use crate::threading::tasks::fill_chunks;
 
 /// Constraints whose impulses one task stores.
 const STORE_CHUNK: usize = 1024;
@@ -93,6 +93,24 @@ pub(crate) struct SolveParams {
     pub max_push_out: f32,
     pub friction: f32,
     pub angular_damping: f32,
+}
+
+/// A part of every substep that the world hands the solver in a named slot
+/// of `SubstepParts`, which the solver runs at that slot's place: it reads
+/// the bodies' states and may move them (impulses, pulls).
+pub(crate) trait SubstepPart {
+    /// One substep of this part.
+    fn substep(&mut self, states: &mut [BodyState]);
+}
+
+/// What moves in the substeps besides the bodies, the contacts and the
+/// joints that the solver holds itself, each in the slot that says where in
+/// the substep it runs. An empty slot costs nothing.
+#[derive(Default)]
+pub(crate) struct SubstepParts<'a> {
+    /// After the positions are integrated and the joints projected, before
+    /// the relax pass: the ribbons (`ribbon::solve::RibbonSubsteps`).
+    pub ribbons: Option<&'a mut dyn SubstepPart>,
 }
 
 /// How the position passes run after the solve (`Solver::stabilize`).
@@ -266,16 +284,16 @@ impl Solver {
         Some(g.totals(slot % LANES))
     }
 
-    /// Runs the substeps over prepared `states`, `forces` and constraints.
-    /// `after_positions` runs once a substep on the states, after the joints
-    /// and before the relax pass (the ribbons).
+    /// Runs the substeps over prepared `states`, `forces` and constraints,
+    /// and the `parts` at their places in each.
     pub fn solve(
         &mut self,
         p: &SolveParams,
         grab: Option<&GrabSpring>,
         mut probe: Option<&mut probe::SubstepProbe>,
-        after_positions: &mut dyn FnMut(&mut [BodyState]),
+        parts: SubstepParts,
     ) {
+        let SubstepParts { mut ribbons } = parts;
         let h = p.dt / p.substeps as f32;
         let inv_h = 1.0 / h;
         // Stiffer than a quarter of the substep rate would ring.
@@ -327,7 +345,9 @@ impl Solver {
                 s.integrate_position(h)
             });
             self.project_joints(h);
-            after_positions(&mut self.states);
+            if let Some(ribbons) = ribbons.as_deref_mut() {
+                ribbons.substep(&mut self.states);
+            }
             self.refresh_and_relax(&relax);
         }
     }

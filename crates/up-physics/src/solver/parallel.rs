@@ -15,10 +15,10 @@ use super::contact_constraint::ContactGroup;
 use super::contact_constraint::{GroupAnchors, GroupRecords};
 use super::lanes::LANES;
 #[cfg(feature = "parallel")]
-use crate::staged::run_in_stages;
-use crate::tasks::for_each_run;
+use crate::threading::staged::run_in_stages;
+use crate::threading::tasks::for_each_run;
 #[cfg(feature = "parallel")]
-use crate::tasks::worth_splitting;
+use crate::threading::tasks::worth_splitting;
 
 /// Contact groups (of four constraints) handed to one task of a pass over
 /// all groups at once; below this such a pass stays serial.

@@ -19,7 +19,7 @@
 use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
 
 use super::lanes::LANES;
-use crate::spare::{release_spare, BUFFER_FLOOR};
+use crate::threading::spare::{release_spare, BUFFER_FLOOR};
 
 /// How far short of the bound a group's bodies must stay to skip it, m:
 /// separations are rounded to ≈ 1e-8 m in a room tens of metres wide.

@@ -5,7 +5,7 @@
 use glam::Vec3;
 
 use super::contact_constraint::{self, PreparedContact};
-use super::{SolveParams, Solver, Stabilization};
+use super::{SolveParams, Solver, Stabilization, SubstepParts};
 
 /// The balloons' radius in these tests, m.
 pub(super) const RADIUS: f32 = 0.1;
@@ -48,7 +48,7 @@ pub(super) fn solve_bounce_stabilize(solver: &mut Solver) {
         friction: 0.5,
         angular_damping: 2.0,
     };
-    solver.solve(&params, None, None, &mut |_| {});
+    solver.solve(&params, None, None, SubstepParts::default());
     solver.restitution(0.4, 0.01);
     solver.stabilize(&Stabilization {
         slop: 0.0005,

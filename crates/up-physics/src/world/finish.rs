@@ -6,7 +6,7 @@ use glam::Vec3;
 use super::{World, PLACE_CHUNK};
 use crate::contact::StoredImpulse;
 use crate::solver::body_state::world_inverse_inertia;
-use crate::tasks::for_each_run;
+use crate::threading::tasks::for_each_run;
 
 impl World {
     /// What each contact hands to the next step's warm start.

@@ -2,11 +2,13 @@
 //!
 //! This file holds the `World` and its buffers; the public calls are in
 //! `bodies` (adding and removing), `actions` (pushing, grabbing, waking),
-//! `queries` (reading the state), `joints`, `ribbons` and `state` (hash,
-//! snapshots).
-//! The step is `step.rs`: a list of named stages, each in a file of its own
-//! here or in the crate (`place`, `contacts`, `prepare`, the solver,
-//! `finish`, `crate::continuous`, `crate::sleep`), each stage owning its buffers.
+//! `queries` (reading the state), `joints`, `ribbons`, `gas`, `probe` and
+//! `state` (hash, snapshots).
+//! The step is `step.rs`: a list of named stages, each timed under its own
+//! name (`crate::counters::Stage`), each in a file of its own here or in the
+//! crate (`gas_step`, `place`, `contacts`, `prepare`, `ribbons_step`,
+//! `probe_step`, the solver, `finish`, `crate::continuous`, `crate::sleep`),
+//! each stage owning its buffers.
 
 mod actions;
 mod bodies;
@@ -15,13 +17,16 @@ mod def;
 mod error;
 mod finish;
 mod gas;
+mod gas_step;
 mod joints;
 pub mod limits;
 mod place;
 mod prepare;
 mod probe;
+mod probe_step;
 mod queries;
 mod ribbons;
+mod ribbons_step;
 mod state;
 mod step;
 
@@ -172,9 +177,10 @@ impl World {
         &self.def
     }
 
-    /// Adds a force field (`forces::field`): from the next step on, its
-    /// force acts on every awake body; the sleepers wake, since the forces
-    /// that held them changed. Not kept by snapshots.
+    /// Adds a force field (`forces::field`, the step's extension point):
+    /// from the next step on, its forces act on every awake balloon (once a
+    /// step) and every awake ribbon's points (once a substep); the sleepers
+    /// wake, since the forces that held them changed. Not kept by snapshots.
     pub fn add_force_field(&mut self, field: std::sync::Arc<dyn crate::ForceField>) {
         self.fields.push(field);
         self.wake_all();

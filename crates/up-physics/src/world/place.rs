@@ -9,7 +9,7 @@ use up_geom::Pose;
 use super::{World, PLACE_CHUNK};
 use crate::body::{Bodies, ShapeData};
 use crate::narrow_phase::{add_knocks, StepMotion};
-use crate::tasks::{fill_chunks, for_each_run, Ragged};
+use crate::threading::tasks::{fill_chunks, for_each_run, Ragged};
 
 /// The placing stage's buffers: per body unless said otherwise.
 #[derive(Clone, Debug, Default)]
@@ -35,7 +35,10 @@ pub(crate) struct Placement {
 impl Placement {
     /// Gives back the capacity the knocks' buffer left unused (`spare`).
     pub fn release_spare(&mut self) {
-        crate::spare::release_spare(&mut self.thrown, crate::spare::BUFFER_FLOOR);
+        crate::threading::spare::release_spare(
+            &mut self.thrown,
+            crate::threading::spare::BUFFER_FLOOR,
+        );
     }
 }
 

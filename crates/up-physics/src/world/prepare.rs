@@ -19,9 +19,9 @@ use crate::solver::joint_constraint::PreparedJoint;
 #[cfg(feature = "parallel")]
 use crate::solver::zones::zone_bodies;
 use crate::solver::Solver;
-use crate::tasks::for_each_run;
+use crate::threading::tasks::for_each_run;
 #[cfg(feature = "parallel")]
-use crate::tasks::{fill_chunks, worth_splitting};
+use crate::threading::tasks::{fill_chunks, worth_splitting};
 
 /// Contacts one task prepares.
 #[cfg(feature = "parallel")]
@@ -40,15 +40,20 @@ impl SolverStage {
     /// Gives back the capacity this step's constraints left unused (`spare`).
     pub fn release_spare(&mut self) {
         #[cfg(feature = "parallel")]
-        crate::spare::release_spare(&mut self.prepared, crate::spare::BUFFER_FLOOR);
+        crate::threading::spare::release_spare(
+            &mut self.prepared,
+            crate::threading::spare::BUFFER_FLOOR,
+        );
         self.solver.release_spare();
     }
 }
 
 impl World {
-    /// Body states, forces, contact constraints and joints for this step's
-    /// solve; the grab spring, if a body is held.
-    pub(super) fn prepare_solver(&mut self) -> Option<GrabSpring> {
+    /// Each body's solver state and forces for this step's solve, and the
+    /// room's static state after them; then the contacts
+    /// (`prepare_contacts`), the joints (`prepare_joints`) and the grab
+    /// spring (`grab_spring`), stages of their own.
+    pub(super) fn prepare_bodies(&mut self) {
         let n = self.bodies.len();
         let solver = &mut self.stages.solve.solver;
         solver.awake.clear();
@@ -112,16 +117,13 @@ impl World {
         // The room: one static state after the bodies.
         solver.room = n as u32;
         solver.states.push(BodyState::STATIC);
-        self.prepare_contacts();
-        self.prepare_joints();
-        self.grab_spring()
     }
 
     /// The contact constraints, each warm-started from its impulse last
     /// step. With several threads the contacts are prepared in tasks (in the
     /// narrowphase's order, one lookup a pair), then gathered into their
     /// groups in tasks; on one, each goes straight to its slot.
-    fn prepare_contacts(&mut self) {
+    pub(super) fn prepare_contacts(&mut self) {
         let found = &self.stages.narrow.found;
         let room_state = self.stages.solve.solver.room;
         let state_of = |body: u32| {
@@ -190,7 +192,7 @@ impl World {
     /// The joints with an awake body, each end at its body's pose at the
     /// step's start (a sleeping body's state is static, so its end holds
     /// still). A joint between sleepers is left out and keeps its tension.
-    fn prepare_joints(&mut self) {
+    pub(super) fn prepare_joints(&mut self) {
         let (bodies, handles) = (&self.bodies, &self.handles);
         let solver = &mut self.stages.solve.solver;
         let room = solver.room;
@@ -223,7 +225,7 @@ impl World {
     }
 
     /// The soft spring that pulls a held body toward the pointer.
-    fn grab_spring(&self) -> Option<GrabSpring> {
+    pub(super) fn grab_spring(&self) -> Option<GrabSpring> {
         let grab = self.grab?;
         let i = self.handles.dense(grab.body)?;
         if !self.bodies.awake[i] {

@@ -1,36 +1,45 @@
 //! The step, as the list of its stages. Each stage is a method or a module
-//! of its own, owning its buffers:
+//! of its own, owning its buffers, and is timed under its own name
+//! (`crate::counters::Stage`, in this order):
 //!
-//! 1. broadphase: wake the balloons whose sleeping ribbons an awake one
-//!    reaches (`ribbons`), place the bodies (`place`), pair their bounds, wake what
-//!    restless bodies reach (`sleep::wake`), and each pair's knocks;
-//! 2. narrowphase: the contact points of the pairs (`contacts`);
-//! 3. prepare: solver states, forces (`forces::body_forces`), contact
-//!    constraints and joints (`prepare`), the awake ribbons (`ribbons`);
-//! 4. solve: the substeps (`solver`), the ribbons' in them (`ribbon::solve`);
-//! 5. restitution and position: bounces, impulses kept for the next step,
-//!    overlap removed, results back to the bodies (`finish`);
-//! 6. continuous: fast bodies swept against the room (`continuous`); the
-//!    ribbons' points handed back (`ribbons`); the probed bodies' forces
-//!    (`probe`);
-//! 7. sleep: rest clocks and groups falling asleep (`sleep::rest`), bodies
-//!    gone non-finite taken out, spare capacity given back.
-//!
-//! Each stage is timed into `Counters`.
+//! 1. `gas`: the room's air and every balloon's gas a step on, the sleepers
+//!    it moved too far woken, sizes taken (`gas_step`);
+//! 2. `joined`: the pairs of bodies a joint holds, for the sleep islands
+//!    (`joints`);
+//! 3. `wake_ribbons`: the balloons woken whose sleeping ribbons an awake one
+//!    reaches (`ribbons_step`);
+//! 4. broadphase: `place` the bodies' trees and bounds (`place`), `pairs` of
+//!    bounds, `wake_bodies` that restless bodies reach (`sleep::wake`),
+//!    `pair_woken` (the pairs of those), `knocks` each pair may give;
+//! 5. `contacts`: the narrowphase's contact points (`contacts`);
+//! 6. prepare: `prepare_bodies` (solver states, forces and the force fields'
+//!    on balloons, `forces::body_forces`), `prepare_contacts`,
+//!    `prepare_joints`, `grab_spring` (`prepare`), `prepare_ribbons` (the
+//!    awake ribbons taken out, `ribbons_step`), `begin_probe` (`probe_step`);
+//! 7. `solve`: the substeps (`solver`), the ribbons in them as the solver's
+//!    `ribbons` part (`ribbon::solve`, where the force fields act on their
+//!    points);
+//! 8. finish: `bounce` (restitution), `store_impulses`, `store_tensions`,
+//!    `remove_overlap` (position passes), `finish_motion` (results back to
+//!    the bodies) (`finish`);
+//! 9. `probe_before_sweep`, `sweep` (fast bodies swept against the room,
+//!    `crate::continuous`), `finish_ribbons` (points handed back,
+//!    `ribbons_step`), `finish_probe` (`probe_step`);
+//! 10. `sleep` (rest clocks, groups falling asleep: `sleep::rest`),
+//!     `quarantine` (bodies gone non-finite taken out), `release_spare`
+//!     (spare capacity given back).
 
 use serde::{Deserialize, Serialize};
 
 use super::World;
 use crate::continuous::{sweep_fast_bodies, SweepInput};
-use crate::counters::{Counters, Stopwatch};
-#[cfg(feature = "parallel")]
-use crate::keep_awake::with_threads_kept_awake;
-use crate::ribbon;
-use crate::ribbon::solve::SubstepInput;
+use crate::counters::{Stage, StageClock};
+use crate::ribbon::solve::{RibbonSubsteps, SubstepInput};
 use crate::sleep::{self, SleepRules};
-use crate::solver::body_state::BodyState;
 use crate::solver::integrate::GrabSpring;
-use crate::solver::{SolveParams, Stabilization};
+use crate::solver::{SolveParams, Stabilization, SubstepParts};
+#[cfg(feature = "parallel")]
+use crate::threading::keep_awake::with_threads_kept_awake;
 
 /// What the last step measured.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -67,90 +76,106 @@ impl World {
 
     /// `step`, on the calling thread.
     fn step_here(&mut self) {
-        let mut clock = Stopwatch::start();
-        let mut counters = Counters::default();
+        let mut clock = StageClock::start();
 
         self.update_gas();
+        clock.lap(Stage::Gas);
         self.find_joined();
+        clock.lap(Stage::Joined);
         self.wake_touched_ribbons();
+        clock.lap(Stage::WakeRibbons);
         self.place_bodies(false);
+        clock.lap(Stage::Place);
         self.find_pairs();
-        if self.wake_touched_bodies() {
+        clock.lap(Stage::Pairs);
+        let woke = self.wake_touched_bodies();
+        clock.lap(Stage::WakeBodies);
+        if woke {
             self.pair_woken_bodies();
         }
+        clock.lap(Stage::PairWoken);
         self.add_knocks();
-        counters.broadphase_ms = clock.lap();
+        clock.lap(Stage::Knocks);
 
         self.find_contacts(false);
-        counters.narrowphase_ms = clock.lap();
+        clock.lap(Stage::Contacts);
 
-        let grab = self.prepare_solver();
+        self.prepare_bodies();
+        clock.lap(Stage::PrepareBodies);
+        self.prepare_contacts();
+        clock.lap(Stage::PrepareContacts);
+        self.prepare_joints();
+        clock.lap(Stage::PrepareJoints);
+        let grab = self.grab_spring();
+        clock.lap(Stage::GrabSpring);
         self.prepare_ribbons();
+        clock.lap(Stage::PrepareRibbons);
         self.begin_probe();
-        counters.prepare_ms = clock.lap();
+        clock.lap(Stage::BeginProbe);
 
         self.solve(grab.as_ref());
         self.stages.solved = true;
-        counters.solve_ms = clock.lap();
+        clock.lap(Stage::Solve);
 
         self.bounce();
+        clock.lap(Stage::Bounce);
         self.store_impulses();
+        clock.lap(Stage::StoreImpulses);
         self.store_tensions();
+        clock.lap(Stage::StoreTensions);
         self.remove_overlap();
+        clock.lap(Stage::RemoveOverlap);
         self.finish_motion();
-        counters.restitution_ms = clock.lap();
+        clock.lap(Stage::FinishMotion);
 
         self.probe_before_sweep();
+        clock.lap(Stage::ProbeBeforeSweep);
         self.sweep_fast_bodies();
+        clock.lap(Stage::Sweep);
         self.finish_ribbons();
+        clock.lap(Stage::FinishRibbons);
         self.finish_probe();
-        counters.continuous_ms = clock.lap();
+        clock.lap(Stage::FinishProbe);
 
         self.update_sleep();
+        clock.lap(Stage::Sleep);
         self.quarantine_non_finite();
+        clock.lap(Stage::Quarantine);
         self.release_spare();
-        counters.sleep_ms = clock.lap();
+        clock.lap(Stage::ReleaseSpare);
 
         self.time += self.def.dt as f64;
         self.step_count += 1;
-        counters.total_ms = counters.broadphase_ms
-            + counters.narrowphase_ms
-            + counters.prepare_ms
-            + counters.solve_ms
-            + counters.restitution_ms
-            + counters.continuous_ms
-            + counters.sleep_ms;
-        self.counters = counters;
+        self.counters = clock.finish();
     }
 
-    /// The substeps: velocities, contacts, joints and ribbons (`solver`,
-    /// `ribbon::solve`).
+    /// The substeps: velocities, contacts, joints (`solver`), and the awake
+    /// ribbons in the solver's `ribbons` slot (`ribbon::solve`).
     fn solve(&mut self, grab: Option<&GrabSpring>) {
         let params = self.solve_params();
         let stages = &mut self.stages;
         let probe = &mut stages.probe.substeps;
         let probe = (!probe.is_empty()).then_some(probe);
         let ribbons = &mut stages.ribbons;
-        let input = SubstepInput {
-            h: params.dt / params.substeps as f32,
-            gravity: self.def.gravity,
-            centers: &self.bodies.center,
-            shape_of: &self.bodies.shape,
-            size: &self.bodies.size,
-            shapes: &self.shapes,
-            triangles: &ribbons.triangles,
-            bodies: &ribbons.bodies,
+        let mut ribbons = RibbonSubsteps {
+            active: &mut ribbons.active[..ribbons.awake],
+            input: SubstepInput {
+                h: params.dt / params.substeps as f32,
+                gravity: self.def.gravity,
+                centers: &self.bodies.center,
+                shape_of: &self.bodies.shape,
+                size: &self.bodies.size,
+                shapes: &self.shapes,
+                triangles: &ribbons.triangles,
+                bodies: &ribbons.bodies,
+                fields: &self.fields,
+                time: self.time,
+            },
         };
-        let active = &mut ribbons.active[..ribbons.awake];
-        let mut ribbons_substep = |states: &mut [BodyState]| {
-            if !active.is_empty() {
-                ribbon::solve::substep(active, &input, states);
-            }
+        let parts = SubstepParts {
+            ribbons: (!ribbons.active.is_empty()).then_some(&mut ribbons as _),
         };
-        stages
-            .solve
-            .solver
-            .solve(&params, grab, probe, &mut ribbons_substep);
+        stages.solve.solver.solve(&params, grab, probe, parts);
     }
 
     /// Bounces, for contacts that closed faster than the restitution threshold.

@@ -27,7 +27,7 @@
 use std::hint::spin_loop;
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 
-use crate::spare::{release_spare, BUFFER_FLOOR};
+use crate::threading::spare::{release_spare, BUFFER_FLOOR};
 
 /// Spins before a waiting thread yields its core (to a thread that holds a
 /// block, when there are more threads than cores).

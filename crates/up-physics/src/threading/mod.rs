@@ -1,0 +1,13 @@
+//! How the step's passes run on rayon's threads, apart from the physics they
+//! run: a pass split into tasks or run whole (`tasks`), the solver's colours
+//! run stage after stage in one fork-join (`staged`), the pool's threads kept
+//! awake through a step (`keep_awake`), and the capacity the passes' buffers
+//! took in a busy step given back (`spare`, whose floors are sized by the
+//! tasks' lists). Which thread runs which work changes no result.
+
+#[cfg(feature = "parallel")]
+pub(crate) mod keep_awake;
+pub(crate) mod spare;
+#[cfg(feature = "parallel")]
+pub(crate) mod staged;
+pub(crate) mod tasks;

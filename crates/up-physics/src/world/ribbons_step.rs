@@ -1,0 +1,215 @@
+//! The ribbons' stages of the step (`crate::ribbon`): `wake_ribbons` before
+//! the broadphase, `prepare_ribbons` before the substeps (which solve them,
+//! `ribbon::solve`), `finish_ribbons` after the continuous sweep.
+
+use up_geom::norm::Norm;
+use up_geom::Aabb;
+
+use super::World;
+use crate::ribbon::collide::NearTriangle;
+use crate::ribbon::solve::ActiveRibbon;
+use crate::ribbon::GRAB_MAX_SPEED;
+
+impl World {
+    /// Wakes the balloons whose sleeping ribbons a moving balloon reaches
+    /// (its bounding sphere, widened by its motion this step, meets a point),
+    /// so that the ribbon is pushed aside instead of passed through. Before
+    /// the broadphase, from where the last step left the bodies.
+    pub(super) fn wake_touched_ribbons(&mut self) {
+        let b = &self.bodies;
+        let stage = &mut self.stages.ribbons;
+        stage.bound_center.clear();
+        stage.bound_radius.clear();
+        stage.awake_bodies.clear();
+        // A balloon slower than the sleep speed pushes no ribbon aside to
+        // speak of: waking a ribbon for it would keep a pile awake for ever,
+        // each group woken by its neighbours as it falls asleep.
+        let (slow, turning) = (self.def.sleep_linear_speed, self.def.sleep_angular_speed);
+        let restless = |i: usize| {
+            b.awake[i]
+                && (b.linear_velocity[i].norm() >= slow || b.angular_velocity[i].norm() >= turning)
+        };
+        for i in (0..b.len()).filter(|&i| restless(i)) {
+            let shape = &self.shapes[b.shape[i] as usize];
+            let reach = b.linear_velocity[i].norm() * self.def.dt + self.def.speculative_distance;
+            stage.bound_center.push(b.center[i]);
+            stage
+                .bound_radius
+                .push(shape.bound_radius * b.size[i].scale + reach);
+            stage.awake_bodies.push(i as u32);
+        }
+        let asleep = |body| self.handles.dense(body).is_some_and(|i| !b.awake[i]);
+        if stage.awake_bodies.is_empty() || !self.ribbons.iter().any(|(_, r)| asleep(r.body)) {
+            return;
+        }
+        stage.nearby.build(&stage.bound_center, &stage.bound_radius);
+        let mut touched = std::mem::take(&mut stage.touched);
+        let found = &mut stage.found;
+        touched.clear();
+        for (_, ribbon) in self.ribbons.iter() {
+            let Some(i) = self.handles.dense(ribbon.body) else {
+                continue;
+            };
+            if b.awake[i] {
+                continue;
+            }
+            let aabb = Aabb::from_points(&ribbon.points).expanded(ribbon.radius(ribbon.segments()));
+            found.clear();
+            stage
+                .nearby
+                .query(&aabb, &stage.bound_center, &stage.bound_radius, found);
+            let reached = found.iter().any(|&k| {
+                let (c, r) = (
+                    stage.bound_center[k as usize],
+                    stage.bound_radius[k as usize],
+                );
+                let other = stage.awake_bodies[k as usize] as usize;
+                other != i
+                    && ribbon.points.iter().enumerate().any(|(p, point)| {
+                        point.distance_squared(c) < (r + ribbon.radius(p)).powi(2)
+                    })
+            });
+            if reached {
+                touched.push(ribbon.body);
+            }
+        }
+        for &body in &touched {
+            // A ribbon's body exists while the ribbon does.
+            let _ = self.wake(body);
+        }
+        self.stages.ribbons.touched = touched;
+    }
+
+    /// Takes the awake ribbons' points for the solve, and finds the room's
+    /// triangles and the balloons near each. Ribbons of sleepers stay still
+    /// (one that a moving balloon reached was woken before the broadphase).
+    pub(super) fn prepare_ribbons(&mut self) {
+        let stage = &mut self.stages.ribbons;
+        stage.awake = 0;
+        stage.triangles.clear();
+        stage.bodies.clear();
+        let b = &self.bodies;
+        let awake = |body| self.handles.dense(body).is_some_and(|i| b.awake[i]);
+        if !self.ribbons.iter().any(|(_, r)| awake(r.body)) {
+            return; // every ribbon sleeps, or there are none
+        }
+        let n = self.bodies.len();
+        let dt = self.def.dt;
+        let fall = 0.5 * self.def.gravity.norm() * dt * dt;
+        let margin = self.def.speculative_distance + fall;
+        stage.bound_center.clear();
+        stage.bound_radius.clear();
+        for i in 0..n {
+            let shape = &self.shapes[b.shape[i] as usize];
+            stage.bound_center.push(b.center[i]);
+            let reach = if b.awake[i] {
+                b.linear_velocity[i].norm() * dt
+            } else {
+                0.0
+            };
+            stage
+                .bound_radius
+                .push(shape.bound_radius * b.size[i].scale + reach + margin);
+        }
+        stage.nearby.build(&stage.bound_center, &stage.bound_radius);
+        let air_density = self.air.air_density();
+        let grab = self.ribbon_grab;
+        let room = self.def.room.as_ref();
+        let mut count = 0;
+        for (slot, ribbon) in self.ribbons.slots_mut().enumerate() {
+            let Some(ribbon) = ribbon else { continue };
+            let Some(i) = self.handles.dense(ribbon.body) else {
+                continue;
+            };
+            // A sleeper's ribbon keeps its points and the (sleep-slow)
+            // velocities it fell asleep with, as they are, until it wakes.
+            if !b.awake[i] {
+                continue;
+            }
+            if stage.active.len() == count {
+                stage.active.push(ActiveRibbon::default());
+            }
+            let r = &mut stage.active[count];
+            count += 1;
+            r.slot = slot as u32;
+            r.state = i as u32;
+            r.user_data = b.user_data[i];
+            r.origin = b.center[i];
+            r.arm0 = b.rotation[i] * (ribbon.arm * b.size[i].scale);
+            r.grab = grab
+                .filter(|g| g.ribbon.index as usize == slot)
+                .map(|g| (g.point as usize, g.target));
+            if let Some((k, target)) = r.grab {
+                let distance = target.distance(ribbon.points[k]);
+                r.grab_speed = (distance / dt).min(GRAB_MAX_SPEED);
+            }
+            let speed = ribbon
+                .velocities
+                .iter()
+                .fold(0.0f32, |m, v| m.max(v.norm()));
+            let reach = speed * dt + margin + ribbon.radius(ribbon.segments());
+            let aabb = Aabb::from_points(&ribbon.points).expanded(reach);
+            r.take(ribbon, air_density);
+            if let Some((k, _)) = r.grab {
+                r.inv_mass[k] = 0.0; // carried, not pushed
+            }
+            let first = stage.bodies.len() as u32;
+            stage.nearby.query(
+                &aabb,
+                &stage.bound_center,
+                &stage.bound_radius,
+                &mut stage.bodies,
+            );
+            r.bodies = first..stage.bodies.len() as u32;
+            let first = stage.triangles.len() as u32;
+            if let Some(room) = room {
+                room.query_aabb(&aabb, |t| {
+                    if !room.is_degenerate(t) {
+                        stage.triangles.push(NearTriangle {
+                            corners: room.triangle(t),
+                            normal: room.normal(t),
+                        });
+                    }
+                });
+            }
+            r.triangles = first..stage.triangles.len() as u32;
+        }
+        stage.awake = count;
+    }
+
+    /// Hands the points back to the ribbons, each knot where its balloon
+    /// ended the step; keeps the largest stretch; marks the balloons whose
+    /// ribbons still move as a whole (their points' root-mean-square speed:
+    /// a free end's millimetre sway alone keeps no pile awake) — those may
+    /// not sleep yet — and those whose ribbons
+    /// went non-finite (quarantined with them).
+    pub(super) fn finish_ribbons(&mut self) {
+        let stage = &mut self.stages.ribbons;
+        let n = self.bodies.len();
+        stage.moving.clear();
+        stage.moving.resize(n, false);
+        if self.ribbons.is_empty() {
+            return;
+        }
+        let slow = self.def.sleep_linear_speed;
+        let mut max_stretch = self.ribbons.max_stretch;
+        for r in &mut stage.active[..stage.awake] {
+            let Some(ribbon) = self.ribbons.slot_mut(r.slot) else {
+                continue;
+            };
+            r.give_back(ribbon);
+            let i = r.state as usize;
+            let arm = self.bodies.rotation[i] * (ribbon.arm * self.bodies.size[i].scale);
+            ribbon.points[0] = self.bodies.center[i] + arm;
+            ribbon.velocities[0] =
+                self.bodies.linear_velocity[i] + self.bodies.angular_velocity[i].cross(arm);
+            if !ribbon.points.iter().all(|p| p.is_finite()) {
+                self.stages.faults.non_finite.push(i);
+                continue;
+            }
+            stage.moving[i] = ribbon.rms_speed() >= slow;
+            max_stretch = max_stretch.max(ribbon.stretch());
+        }
+        self.ribbons.max_stretch = max_stretch;
+    }
+}
