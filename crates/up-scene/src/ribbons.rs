@@ -52,6 +52,7 @@ pub fn ribbon_def(body: BodyId, model: &BalloonModel, spec: &RibbonSpec) -> Ribb
         mass_per_length: spec.mass_per_m_g * 1e-3,
         segments: spec.segments,
         end_mass: spec.weight_g * 1e-3,
+        anchor: None,
     }
 }
 

@@ -80,6 +80,11 @@ pub struct RibbonDef {
     pub segments: u32,
     /// A weight tied to the free end, kg (0: none).
     pub end_mass: f32,
+    /// Where the free end is tied, world frame, m (None: it hangs free): the
+    /// end is held there, as a point of infinite mass in the chain's solve,
+    /// so the ribbon holds its balloon within its length of the point.
+    #[serde(default)]
+    pub anchor: Option<Vec3>,
 }
 
 impl RibbonDef {
@@ -92,6 +97,7 @@ impl RibbonDef {
             mass_per_length: DEFAULT_MASS_PER_LENGTH,
             segments,
             end_mass: 0.0,
+            anchor: None,
         }
     }
 }
@@ -121,6 +127,8 @@ pub(crate) struct Ribbon {
     pub velocities: Vec<Vec3>,
     /// The ribbon's mean pull on the knot over the last step it was awake, N.
     pub pull: Vec3,
+    /// Where its free end is tied (`RibbonDef::anchor`).
+    pub anchor: Option<Vec3>,
 }
 
 impl Ribbon {

@@ -2,6 +2,7 @@
 //! part of the step is `ribbons_step`.
 
 use glam::Vec3;
+use up_geom::norm::Norm;
 
 use super::{PhysicsError, World};
 use crate::body::BodyId;
@@ -20,9 +21,11 @@ pub(crate) struct RibbonGrab {
 impl World {
     /// Ties a ribbon to a balloon's knot; wakes the balloon. The ribbon
     /// starts hanging straight down from the knot, along the floor where it
-    /// reaches it. Refused, naming why: a body that does not exist or already
-    /// has a ribbon, a length or mass per metre not finite and > 0, segments
-    /// outside [2, 128], a weight not finite and ≥ 0.
+    /// reaches it; one with an anchor starts sagging from the knot to the
+    /// anchor at its length. Refused, naming why: a body that does not exist
+    /// or already has a ribbon, a length or mass per metre not finite and
+    /// above 0, segments outside [2, 128], a weight not finite and ≥ 0, an
+    /// anchor not finite or farther from the knot than the ribbon's length.
     pub fn add_ribbon(&mut self, def: &RibbonDef) -> Result<RibbonId, PhysicsError> {
         let bad = |why: String| Err(PhysicsError::BadRibbon(why));
         if !(def.length.is_finite() && def.length > 0.0) {
@@ -49,6 +52,9 @@ impl World {
         if !def.knot.is_finite() {
             return Err(PhysicsError::NonFinite { what: "knot" });
         }
+        if def.anchor.is_some_and(|a| !a.is_finite()) {
+            return Err(PhysicsError::NonFinite { what: "anchor" });
+        }
         let i = self.dense(def.body)?;
         if self.ribbons.on(def.body).is_some() {
             return bad(format!("body {:?} already has a ribbon", def.body));
@@ -73,8 +79,22 @@ impl World {
             points: Vec::new(),
             velocities: vec![Vec3::ZERO; segments + 1],
             pull: Vec3::ZERO,
+            anchor: def.anchor,
         };
-        ribbon.points = self.hang(knot, &ribbon, segments);
+        ribbon.points = match def.anchor {
+            None => self.hang(knot, &ribbon, segments),
+            Some(anchor) => {
+                let reach = knot.distance(anchor);
+                if reach > def.length * (1.0 + 1e-4) {
+                    return bad(format!(
+                        "anchor {reach} m from the knot, beyond the ribbon's {} m",
+                        def.length
+                    ));
+                }
+                let down = self.def.gravity.try_normalize().unwrap_or(Vec3::NEG_Y);
+                sag(knot, anchor, segment_length, segments, down)
+            }
+        };
         self.wake(def.body)?;
         Ok(self.ribbons.add(ribbon))
     }
@@ -221,6 +241,11 @@ impl World {
                 ribbon.segments()
             )));
         }
+        if ribbon.anchor.is_some() && point == ribbon.segments() {
+            return Err(PhysicsError::BadRibbon(format!(
+                "point {point}: the free end is tied to its anchor"
+            )));
+        }
         let body = ribbon.body;
         self.wake(body)?;
         self.grab = None;
@@ -236,4 +261,50 @@ impl World {
     pub fn grabbed_ribbon(&self) -> Option<(RibbonId, usize)> {
         self.ribbon_grab.map(|g| (g.ribbon, g.point as usize))
     }
+}
+
+/// `n` points from `knot` to `anchor`, `segment` apart, sagging along
+/// `down`: the corners of a regular polygon's arc whose chord joins them
+/// (a ribbon tied at both ends, laid out at its length). The arc's step
+/// angle φ solves d/s = sin(n·φ/2) / sin(φ/2), which falls from n to 0 as φ
+/// goes from 0 to 2π/n; bisected, so the layout is the same everywhere.
+fn sag(knot: Vec3, anchor: Vec3, segment: f32, n: usize, down: Vec3) -> Vec<Vec3> {
+    let chord = anchor - knot;
+    let d = chord.norm();
+    let nf = n as f32;
+    if d >= segment * nf * (1.0 - 1e-6) {
+        // Taut: straight from the knot to the anchor.
+        return (0..=n).map(|i| knot + chord * (i as f32 / nf)).collect();
+    }
+    let u = if d > 1e-9 {
+        chord / d
+    } else {
+        down.any_orthonormal_vector()
+    };
+    let w = (down - down.dot(u) * u)
+        .try_normalize()
+        .unwrap_or_else(|| u.any_orthonormal_vector());
+    let ratio = d / segment;
+    let (mut lo, mut hi) = (0.0f32, 2.0 * std::f32::consts::PI / nf);
+    for _ in 0..64 {
+        let phi = 0.5 * (lo + hi);
+        if libm::sinf(0.5 * nf * phi) / libm::sinf(0.5 * phi) > ratio {
+            lo = phi;
+        } else {
+            hi = phi;
+        }
+    }
+    let phi = 0.5 * (lo + hi);
+    let radius = segment / (2.0 * libm::sinf(0.5 * phi));
+    let center = knot + 0.5 * chord - w * (radius * libm::cosf(0.5 * nf * phi));
+    let mut points: Vec<Vec3> = (0..=n)
+        .map(|i| {
+            let theta = (i as f32 - 0.5 * nf) * phi;
+            center + radius * (libm::sinf(theta) * u + libm::cosf(theta) * w)
+        })
+        .collect();
+    // Exactly at its ends, whatever the rounding.
+    points[0] = knot;
+    points[n] = anchor;
+    points
 }

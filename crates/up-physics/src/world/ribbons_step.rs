@@ -150,6 +150,13 @@ impl World {
             let reach = speed * dt + margin + ribbon.radius(ribbon.segments());
             let aabb = Aabb::from_points(&ribbon.points).expanded(reach);
             r.take(ribbon, air_density);
+            if let Some(anchor) = ribbon.anchor {
+                // Held where it is tied: no mass the chain's solve can move.
+                let n = r.points.len() - 1;
+                r.points[n] = anchor;
+                r.velocities[n] = glam::Vec3::ZERO;
+                r.inv_mass[n] = 0.0;
+            }
             if let Some((k, _)) = r.grab {
                 r.inv_mass[k] = 0.0; // carried, not pushed
             }
