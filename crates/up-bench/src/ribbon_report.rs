@@ -238,30 +238,32 @@ pub fn ribbon_section(results: &[EngineResult], commands: &[(String, Option<f64>
             ratio(mean(&up), mean(&bare)),
         );
     }
-    let _ = writeln!(
-        md,
-        "\nWhere UP's time goes (`World::counters`, ms per step over the run; the ribbons are \
-         solved in `solve`, their neighbours found in `prepare`):\n"
-    );
-    let mut header = false;
-    for r in results.iter().filter(|r| r.engine == "up") {
-        let Some(stages) = &r.stage_ms_mean else {
-            continue;
-        };
-        if !header {
-            let names: Vec<&str> = stages.iter().map(|(n, _)| n.as_str()).collect();
-            let _ = writeln!(md, "| balloons | ribbons | {} |", names.join(" | "));
-            let _ = writeln!(md, "|--:|--:|{}", "--:|".repeat(names.len()));
-            header = true;
-        }
-        let times: Vec<String> = stages.iter().map(|(_, ms)| format!("{ms:.3}")).collect();
+    // A row per stage (the step has a few dozen), a column per run.
+    let runs: Vec<(&EngineResult, &Vec<(String, f64)>)> = results
+        .iter()
+        .filter(|r| r.engine == "up")
+        .filter_map(|r| r.stage_ms_mean.as_ref().map(|s| (r, s)))
+        .collect();
+    if let Some((_, first)) = runs.first() {
         let _ = writeln!(
             md,
-            "| {} | {} | {} |",
-            r.balloons,
-            r.ribbons,
-            times.join(" | ")
+            "\nWhere UP's time goes (`World::counters`, ms per step over the run, stage by stage \
+             in step order; the ribbons are solved in `solve`, their neighbours found in \
+             `prepare_ribbons`):\n"
         );
+        let columns: Vec<String> = runs
+            .iter()
+            .map(|(r, _)| format!("{} balloons, {} ribbons", r.balloons, r.ribbons))
+            .collect();
+        let _ = writeln!(md, "| stage | {} |", columns.join(" | "));
+        let _ = writeln!(md, "|:--|{}", "--:|".repeat(columns.len()));
+        for (k, (name, _)) in first.iter().enumerate() {
+            let times: Vec<String> = runs
+                .iter()
+                .map(|(_, s)| s.get(k).map_or("–".into(), |(_, ms)| format!("{ms:.3}")))
+                .collect();
+            let _ = writeln!(md, "| {name} | {} |", times.join(" | "));
+        }
     }
     let _ = writeln!(md, "\n{RIBBONS_END}");
     md
@@ -319,8 +321,11 @@ mod tests {
             md.contains("| 1000 | impulse | 10.00 | 12.00 | 2.00 | 1.25 |"),
             "{md}"
         );
-        assert!(md.contains("| 1000 | 1000 | 1.500 |"), "{md}");
-        assert!(md.contains("| 1000 | 0 | 1.500 |"), "{md}");
+        assert!(
+            md.contains("| stage | 1000 balloons, 1000 ribbons | 1000 balloons, 0 ribbons |"),
+            "{md}"
+        );
+        assert!(md.contains("| solve | 1.500 | 1.500 |"), "{md}");
     }
 
     #[test]
