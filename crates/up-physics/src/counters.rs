@@ -132,7 +132,7 @@ impl Phase {
 /// Milliseconds spent in each stage of the last step.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Counters {
-    /// Per stage, in `Stage::ALL` order.
+    /// Per stage, in `Stage::ALL` order (serde derives arrays of up to 32).
     ms: [f64; Stage::COUNT],
     /// The whole step: the stages summed.
     total_ms: f64,

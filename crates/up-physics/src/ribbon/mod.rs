@@ -13,6 +13,11 @@
 //! an impulse on the balloon (two-way), so the balloon carries exactly the
 //! ribbon it lifts.
 //!
+//! A ribbon's free end may be tied to a fixed point (`RibbonDef::anchor`):
+//! the solve holds it there as a point of infinite mass, which the direct
+//! solve takes as it takes a held point, so the ribbon holds its balloon
+//! within its length of the point.
+//!
 //! Balloons push ribbons aside and take the opposite impulse (a few
 //! milligrams' worth); ribbons do not collide with each other. A ribbon
 //! sleeps and wakes with its balloon, and keeps its balloon awake while it
