@@ -52,8 +52,12 @@ pub struct BenchSummary {
     pub p95_ms: f64,
     pub max_ms: f64,
     /// Mean ms per step in each stage, in the order a step runs them (the
-    /// engine's own counters; `total` is the engine's timing of the whole step).
+    /// engine's own counters, one per stage under its name; `total` is the
+    /// engine's timing of the whole step).
     pub stages: Vec<StageTime>,
+    /// The same summed by phase (broadphase, solve, ribbons, ...), each
+    /// where its first stage runs, then `total` (`Counters::phases`).
+    pub phases: Vec<StageTime>,
     pub max_penetration_m: f32,
     pub state_hash: String,
 }
@@ -70,6 +74,8 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let mut step_ms = Vec::with_capacity(args.steps as usize);
     let mut stage_sums: Vec<(&'static str, f64)> = world.counters().stages();
     stage_sums.iter_mut().for_each(|(_, ms)| *ms = 0.0);
+    let mut phase_sums: Vec<(&'static str, f64)> = world.counters().phases();
+    phase_sums.iter_mut().for_each(|(_, ms)| *ms = 0.0);
     let mut max_penetration = 0.0f32;
     let progress = progress_bar(args.steps, "steps");
     let started = Instant::now();
@@ -78,6 +84,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         world.step();
         step_ms.push(t0.elapsed().as_secs_f64() * 1000.0);
         for (sum, (_, ms)) in stage_sums.iter_mut().zip(world.counters().stages()) {
+            sum.1 += ms;
+        }
+        for (sum, (_, ms)) in phase_sums.iter_mut().zip(world.counters().phases()) {
             sum.1 += ms;
         }
         max_penetration = max_penetration.max(world.stats().max_penetration);
@@ -107,13 +116,8 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         median_ms: percentile(0.5),
         p95_ms: percentile(0.95),
         max_ms: sorted[sorted.len() - 1],
-        stages: stage_sums
-            .iter()
-            .map(|(name, sum)| StageTime {
-                name: name.to_string(),
-                ms_per_step: sum / n,
-            })
-            .collect(),
+        stages: means(&stage_sums, n),
+        phases: means(&phase_sums, n),
         max_penetration_m: max_penetration,
         state_hash: format!("{:016x}", world.state_hash()),
     };
@@ -130,19 +134,27 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         ("p95", format!("{:.3} ms/step", summary.p95_ms)),
         ("max", format!("{:.3} ms/step", summary.max_ms)),
     ];
-    let stage_rows: Vec<(String, String)> = summary
-        .stages
-        .iter()
-        .map(|s| {
-            (
-                format!("  {}", s.name),
-                format!("{:.3} ms/step", s.ms_per_step),
-            )
-        })
-        .collect();
+    let indented = |times: &[StageTime]| -> Vec<(String, String)> {
+        times
+            .iter()
+            .map(|s| {
+                (
+                    format!("  {}", s.name),
+                    format!("{:.3} ms/step", s.ms_per_step),
+                )
+            })
+            .collect()
+    };
+    let (stage_rows, phase_rows) = (indented(&summary.stages), indented(&summary.phases));
     rows.push(("stages (mean)", String::new()));
     rows.extend(
         stage_rows
+            .iter()
+            .map(|(name, value)| (name.as_str(), value.clone())),
+    );
+    rows.push(("phases (mean)", String::new()));
+    rows.extend(
+        phase_rows
             .iter()
             .map(|(name, value)| (name.as_str(), value.clone())),
     );
@@ -156,4 +168,14 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         println!("{}", serde_json::to_string(&summary)?);
     }
     Ok(())
+}
+
+/// Each sum over `steps` steps as a mean per step.
+fn means(sums: &[(&'static str, f64)], steps: f64) -> Vec<StageTime> {
+    sums.iter()
+        .map(|(name, sum)| StageTime {
+            name: name.to_string(),
+            ms_per_step: sum / steps,
+        })
+        .collect()
 }

@@ -18,8 +18,22 @@ fn bench_reports_timings_and_stages() {
     ] {
         assert!(j[key].is_number() || j[key].is_string(), "{key} in {j}");
     }
+    // One mean per stage, in step order, then the total; the phases sum them.
     let stages = j["stages"].as_array().unwrap();
-    assert!(stages.iter().any(|s| s["name"] == "solve"), "{j}");
+    let names: Vec<&str> = stages.iter().map(|s| s["name"].as_str().unwrap()).collect();
+    assert_eq!(names.first(), Some(&"gas"), "{j}");
+    assert_eq!(names.last(), Some(&"total"), "{j}");
+    assert!(
+        names.contains(&"solve") && names.contains(&"prepare_ribbons"),
+        "{j}"
+    );
+    let ms = |s: &serde_json::Value| s["ms_per_step"].as_f64().unwrap();
+    let sum = |list: &[serde_json::Value]| list[..list.len() - 1].iter().map(ms).sum::<f64>();
+    let total = ms(stages.last().unwrap());
+    assert!((sum(stages) - total).abs() <= 1e-9 * total.max(1.0), "{j}");
+    let phases = j["phases"].as_array().unwrap();
+    assert!(phases.len() < stages.len(), "{j}");
+    assert!((sum(phases) - total).abs() <= 1e-9 * total.max(1.0), "{j}");
     up_err(&["bench", "--steps", "0"]);
     up_err(&["bench", "no-such-scene.toml"]);
 }
