@@ -1,10 +1,8 @@
 //! Range checks on a parsed scene. The first problem found is returned, with
 //! the key path and line of the offending value and the documented range.
 
-use super::{
-    parse_color, AirSpec, BalloonKind, CeilingKind, Finish, RibbonSpec, Scene, Treatment,
-    MAX_FILLED_HOURS_BEFORE, MAX_SCHEDULE_HOURS, MAX_SCHEDULE_POINTS,
-};
+use super::METRES_PER_INCH;
+use super::{parse_color, AirSpec, BalloonKind, CeilingKind, Finish, RibbonSpec, Scene, Treatment};
 use crate::error::SceneError;
 use up_physics::limits::{self, Limit};
 use up_physics::ribbon::{MAX_SEGMENTS, MIN_SEGMENTS};
@@ -39,6 +37,21 @@ pub const MAX_RIBBON_LENGTH_M: f32 = 20.0;
 pub const MAX_RIBBON_MASS_PER_M_G: f32 = 1000.0;
 /// Heaviest weight at a ribbon's end, g.
 pub const MAX_RIBBON_WEIGHT_G: f32 = 1000.0;
+
+/// Latest fill before the run, h (`filled_hours_before`): 12 weeks, past
+/// any balloon's float time.
+pub const MAX_FILLED_HOURS_BEFORE: f32 = 2000.0;
+/// Most points of `air.temperature_schedule`.
+pub const MAX_SCHEDULE_POINTS: usize = 1000;
+/// Latest time of a `temperature_schedule` point, h (as `filled_hours_before`).
+pub const MAX_SCHEDULE_HOURS: f32 = 2000.0;
+
+impl Scene {
+    /// Checks every value against its documented range.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        validate(self)
+    }
+}
 
 struct Checker<'a> {
     scene: &'a Scene,
@@ -93,7 +106,7 @@ impl Checker<'_> {
     }
 }
 
-pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
+fn validate(scene: &Scene) -> Result<(), SceneError> {
     super::about::check(scene)?;
     let c = Checker { scene };
     let room = &scene.room;
@@ -249,7 +262,7 @@ pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
             c.range(&key("diameter_m"), d, dmin, dmax, false, "m")?;
         }
         if let Some(inches) = group.size_in {
-            let (lo, hi) = (dmin / super::METRES_PER_INCH, dmax / super::METRES_PER_INCH);
+            let (lo, hi) = (dmin / METRES_PER_INCH, dmax / METRES_PER_INCH);
             c.range(&key("size_in"), inches, lo.ceil(), hi.floor(), false, "in")?;
         }
         if let Some(m) = group.envelope_mass_g {

@@ -13,14 +13,16 @@ use up_geom::{Pose, SplitMix64};
 use up_physics::gas::{EnvelopeDef, EnvelopeKind};
 use up_physics::{BodyDef, BodyId, World, WorldDef};
 
+use crate::balloon::gas_fill::{fill_balloon, group_envelope, PermeanceFactors};
 use crate::balloon::{build_balloon, BalloonModel, BalloonSpec, Gas};
 use crate::error::SceneError;
-use crate::gas_fill::{fill_balloon, group_envelope, PermeanceFactors};
-use crate::ribbons::{tie_ribbon, GroupRibbon};
-use crate::room::{box_room, room_from_obj, Ceiling, RoomMesh};
 use crate::scene::{parse_color, BalloonKind, CeilingKind, GasKind, Scene};
+use ribbons::{tie_ribbon, GroupRibbon};
+use room::{box_room, room_from_obj, Ceiling, RoomMesh};
 
-#[path = "build_spawn.rs"]
+pub mod bench_scene;
+pub mod ribbons;
+pub mod room;
 pub mod spawn;
 
 use spawn::{place_spheres, Occupancy, SpawnRegion};
@@ -305,5 +307,6 @@ fn random_upright(rng: &mut SplitMix64, tilt_deg: f32, yaw_deg: f32) -> Quat {
 }
 
 #[cfg(test)]
-#[path = "build_tests.rs"]
+mod room_tests;
+#[cfg(test)]
 mod tests;
