@@ -106,6 +106,7 @@ impl Default for RibbonSpec {
             segments: DEFAULT_RIBBON_SEGMENTS,
             color: DEFAULT_RIBBON_COLOR.to_string(),
             weight_g: 0.0,
+            anchor: None,
         }
     }
 }

@@ -52,6 +52,7 @@ fn example_scenes_parse_and_validate() {
         "thrown.toml",
         "two-gases.json",
         "evening.toml",
+        "tied.toml",
     ];
     for name in names {
         let scene = Scene::from_path(asset(name)).unwrap_or_else(|e| panic!("{e}"));

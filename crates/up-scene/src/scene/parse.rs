@@ -138,3 +138,21 @@ pub(super) fn pairs<'de, D: serde::Deserializer<'de>>(
         })
         .collect()
 }
+
+/// `[x, y, z]`, exactly three numbers (as `pairs`, TOML's reader would drop
+/// a fourth unseen if read straight into `[f32; 3]`).
+pub(super) fn point<'de, D: serde::Deserializer<'de>>(
+    deserializer: D,
+) -> Result<Option<[f32; 3]>, D::Error> {
+    let Some(point) = Option::<Vec<f32>>::deserialize(deserializer)? else {
+        return Ok(None);
+    };
+    <[f32; 3]>::try_from(point.as_slice())
+        .map(Some)
+        .map_err(|_| {
+            serde::de::Error::custom(format!(
+                "expected [x, y, z], three numbers, found {}",
+                point.len()
+            ))
+        })
+}

@@ -98,3 +98,73 @@ fn documented_ribbon_table_is_the_default_ribbon() {
     assert_eq!(scene.balloons[0].count, 50);
     assert_eq!(scene.balloons[0].ribbon, Some(RibbonSpec::default()));
 }
+
+#[test]
+fn an_anchor_round_trips_through_toml_and_json_and_is_left_out_when_absent() {
+    let text =
+        "[[balloons]]\ncount = 3\n[balloons.ribbon]\nlength_m = 1\nanchor = [0.5, 0.9, -1]\n";
+    let scene = Scene::from_toml_str(text, "r.toml").unwrap();
+    let ribbon = scene.balloons[0].tied_ribbon().unwrap();
+    assert_eq!(ribbon.anchor, Some([0.5, 0.9, -1.0]));
+    let toml = scene.to_toml_string().unwrap();
+    assert_eq!(Scene::from_toml_str(&toml, "rt.toml").unwrap(), scene);
+    let json = scene.to_json_string().unwrap();
+    assert_eq!(Scene::from_json_str(&json, "rt.json").unwrap(), scene);
+    // JSON may write it out as null: no anchor.
+    let none = "{\"balloons\": [{\"ribbon\": {\"anchor\": null}}]}";
+    let scene = Scene::from_json_str(none, "n.json").unwrap();
+    assert_eq!(scene.balloons[0].ribbon.as_ref().unwrap().anchor, None);
+    // Without one, the written scene does not mention it.
+    let toml = Scene::default().to_toml_string().unwrap();
+    assert!(!toml.contains("anchor"), "{toml}");
+    assert_eq!(RibbonSpec::default().anchor, None);
+}
+
+#[test]
+fn bad_anchors_name_their_key_line_and_range() {
+    // The default room: 6 m × 6 m, walls 3 m, apex 4.5 m.
+    let room = "from [-3.0, 0.0, -3.0] to [3.0, 4.5, 3.0] m";
+    let cases = [
+        ("anchor = [3.5, 1, 0]", room),
+        ("anchor = [0, -0.1, 0]", room),
+        ("anchor = [0, 4.6, 0]", room),
+        ("anchor = [0, 1, -3.01]", room),
+        ("anchor = [nan, 1, 0]", room),
+        ("anchor = [0, inf, 0]", room),
+        (
+            "length_m = 0\nanchor = [0, 1, 0]",
+            "no anchor on a group without a ribbon",
+        ),
+    ];
+    for (lines, expected) in cases {
+        let text = format!("[[balloons]]\ncount = 1\n\n[[balloons]]\n[balloons.ribbon]\n{lines}\n");
+        let e = toml_err(&text);
+        assert!(matches!(e, SceneError::Invalid { .. }), "{lines}: {e}");
+        assert_eq!(e.key(), Some("balloons[1].ribbon.anchor"), "{lines}: {e}");
+        let line = 5 + lines.lines().count();
+        assert_eq!(e.line(), Some(line), "{lines}: {e}");
+        assert!(e.to_string().contains(expected), "{lines}: {e}");
+    }
+    // A flat ceiling lowers the top of the room's box.
+    let text =
+        "[room]\nceiling = \"flat\"\n[[balloons]]\n[balloons.ribbon]\nanchor = [0, 3.2, 0]\n";
+    let e = toml_err(text);
+    assert!(e.to_string().contains("to [3.0, 3.0, 3.0] m"), "{e}");
+    // Not three numbers, in TOML and JSON alike.
+    for (points, found) in [("[1, 2]", 2), ("[1, 2, 3, 4]", 4), ("[]", 0)] {
+        let e = toml_err(&format!(
+            "[[balloons]]\n[balloons.ribbon]\nanchor = {points}\n"
+        ));
+        assert!(matches!(e, SceneError::Parse { .. }), "{points}: {e}");
+        assert_eq!(e.key(), Some("balloons[0].ribbon.anchor"), "{points}: {e}");
+        assert_eq!(e.line(), Some(3), "{points}: {e}");
+        let message = format!("expected [x, y, z], three numbers, found {found}");
+        assert!(e.to_string().contains(&message), "{e}");
+        let json = format!("{{\"balloons\": [{{\"ribbon\": {{\"anchor\": {points}}}}}]}}");
+        let e = json_err(&json);
+        assert_eq!(e.key(), Some("balloons[0].ribbon.anchor"), "{points}: {e}");
+        assert!(e.to_string().contains(&message), "{e}");
+    }
+    let e = json_err("{\"balloons\": [{\"ribbon\": {\"anchor\": \"chair\"}}]}");
+    assert_eq!(e.key(), Some("balloons[0].ribbon.anchor"), "{e}");
+}

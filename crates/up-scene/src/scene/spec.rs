@@ -251,7 +251,8 @@ impl BalloonGroup {
 }
 
 /// A ribbon tied to each balloon of a group, at its knot, hanging from it;
-/// a weight at the free end if `weight_g > 0`.
+/// a weight at the free end if `weight_g > 0`; its free end tied to a fixed
+/// point if `anchor` is given.
 #[cfg_attr(feature = "tsify", derive(tsify_next::Tsify))]
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -266,6 +267,14 @@ pub struct RibbonSpec {
     pub color: String,
     /// g: a balloon weight tied to the free end; 0 (none). Range [0, 1000].
     pub weight_g: f32,
+    /// m, world frame: the free end is tied to this fixed point (a chair's
+    /// back, a table leg), so each balloon floats at most `length_m` from it.
+    /// Left out: the end hangs free. Inside the room; needs `length_m > 0`.
+    #[serde(
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "super::parse::point"
+    )]
+    pub anchor: Option<[f32; 3]>,
 }
 
 /// A box the balloons of a group fill, m, world frame.

@@ -1,8 +1,10 @@
 //! Range checks on a parsed scene. The first problem found is returned, with
 //! the key path and line of the offending value and the documented range.
 
-use super::METRES_PER_INCH;
-use super::{parse_color, AirSpec, BalloonKind, CeilingKind, Finish, RibbonSpec, Scene, Treatment};
+use super::{
+    parse_color, AirSpec, BalloonKind, CeilingKind, Finish, RibbonSpec, RoomSpec, Scene, Treatment,
+    METRES_PER_INCH,
+};
 use crate::error::SceneError;
 use up_physics::limits::{self, Limit};
 use up_physics::ribbon::{MAX_SEGMENTS, MIN_SEGMENTS};
@@ -286,6 +288,7 @@ fn validate(scene: &Scene) -> Result<(), SceneError> {
         }
         if let Some(ribbon) = &group.ribbon {
             check_ribbon(&c, &key("ribbon"), ribbon)?;
+            check_anchor(&c, &key("ribbon"), ribbon, room)?;
         }
 
         // The balloon must fit in a box room (mesh rooms are checked when built).
@@ -452,4 +455,40 @@ fn check_ribbon(c: &Checker, at: &str, ribbon: &RibbonSpec) -> Result<(), SceneE
         false,
         "g",
     )
+}
+
+/// A ribbon's `anchor`: a finite point inside the room's box (a mesh room's
+/// bounds are checked when it is built), on a ribbon that exists.
+fn check_anchor(
+    c: &Checker,
+    at: &str,
+    ribbon: &RibbonSpec,
+    room: &RoomSpec,
+) -> Result<(), SceneError> {
+    let Some(anchor) = ribbon.anchor else {
+        return Ok(());
+    };
+    let key = format!("{at}.anchor");
+    if ribbon.length_m == 0.0 {
+        return Err(c.fail(
+            &key,
+            "no anchor on a group without a ribbon (length_m = 0)",
+            format!("{anchor:?}"),
+        ));
+    }
+    let (lo, hi) = if room.mesh.is_none() {
+        let (hx, hz) = (room.width / 2.0, room.depth / 2.0);
+        ([-hx, 0.0, -hz], [hx, room.top(), hz])
+    } else {
+        ([-MAX_ROOM_SIZE_M; 3], [MAX_ROOM_SIZE_M; 3])
+    };
+    let inside = (0..3).all(|a| anchor[a].is_finite() && lo[a] <= anchor[a] && anchor[a] <= hi[a]);
+    if !inside {
+        return Err(c.fail(
+            &key,
+            format!("a point [x, y, z] inside the room, from {lo:?} to {hi:?} m"),
+            format!("{anchor:?}"),
+        ));
+    }
+    Ok(())
 }
