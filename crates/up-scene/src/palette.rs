@@ -63,6 +63,18 @@ pub fn color_names() -> impl ExactSizeIterator<Item = &'static str> {
     PALETTE.iter().map(|c| c.name)
 }
 
+/// `"#rrggbb"` → RGB in 0–1 (sRGB, as written); colour names are looked up in the `palette`.
+pub fn parse_color(name: &str) -> Option<[f32; 3]> {
+    if let Some(hex) = name.strip_prefix('#') {
+        if hex.len() != 6 || !hex.is_ascii() {
+            return None;
+        }
+        let channel = |i: usize| u8::from_str_radix(&hex[i..i + 2], 16).ok();
+        return Some([channel(0)?, channel(2)?, channel(4)?].map(|c| f32::from(c) / 255.0));
+    }
+    color_rgb(name)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

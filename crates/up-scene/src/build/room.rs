@@ -203,7 +203,3 @@ impl RoomMesh {
         total < -2.0 * std::f64::consts::PI
     }
 }
-
-#[cfg(test)]
-#[path = "room_tests.rs"]
-mod tests;

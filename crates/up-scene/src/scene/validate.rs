@@ -2,8 +2,8 @@
 //! the key path and line of the offending value and the documented range.
 
 use super::{
-    parse_color, AirSpec, BalloonKind, CeilingKind, Finish, RibbonSpec, Scene, Treatment,
-    MAX_FILLED_HOURS_BEFORE, MAX_SCHEDULE_HOURS, MAX_SCHEDULE_POINTS,
+    parse_color, AirSpec, BalloonKind, CeilingKind, Finish, RibbonSpec, RoomSpec, Scene, Treatment,
+    METRES_PER_INCH,
 };
 use crate::error::SceneError;
 use up_physics::limits::{self, Limit};
@@ -39,6 +39,21 @@ pub const MAX_RIBBON_LENGTH_M: f32 = 20.0;
 pub const MAX_RIBBON_MASS_PER_M_G: f32 = 1000.0;
 /// Heaviest weight at a ribbon's end, g.
 pub const MAX_RIBBON_WEIGHT_G: f32 = 1000.0;
+
+/// Latest fill before the run, h (`filled_hours_before`): 12 weeks, past
+/// any balloon's float time.
+pub const MAX_FILLED_HOURS_BEFORE: f32 = 2000.0;
+/// Most points of `air.temperature_schedule`.
+pub const MAX_SCHEDULE_POINTS: usize = 1000;
+/// Latest time of a `temperature_schedule` point, h (as `filled_hours_before`).
+pub const MAX_SCHEDULE_HOURS: f32 = 2000.0;
+
+impl Scene {
+    /// Checks every value against its documented range.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        validate(self)
+    }
+}
 
 struct Checker<'a> {
     scene: &'a Scene,
@@ -93,7 +108,7 @@ impl Checker<'_> {
     }
 }
 
-pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
+fn validate(scene: &Scene) -> Result<(), SceneError> {
     super::about::check(scene)?;
     let c = Checker { scene };
     let room = &scene.room;
@@ -249,7 +264,7 @@ pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
             c.range(&key("diameter_m"), d, dmin, dmax, false, "m")?;
         }
         if let Some(inches) = group.size_in {
-            let (lo, hi) = (dmin / super::METRES_PER_INCH, dmax / super::METRES_PER_INCH);
+            let (lo, hi) = (dmin / METRES_PER_INCH, dmax / METRES_PER_INCH);
             c.range(&key("size_in"), inches, lo.ceil(), hi.floor(), false, "in")?;
         }
         if let Some(m) = group.envelope_mass_g {
@@ -273,6 +288,7 @@ pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
         }
         if let Some(ribbon) = &group.ribbon {
             check_ribbon(&c, &key("ribbon"), ribbon)?;
+            check_anchor(&c, &key("ribbon"), ribbon, room)?;
         }
 
         // The balloon must fit in a box room (mesh rooms are checked when built).
@@ -439,4 +455,40 @@ fn check_ribbon(c: &Checker, at: &str, ribbon: &RibbonSpec) -> Result<(), SceneE
         false,
         "g",
     )
+}
+
+/// A ribbon's `anchor`: a finite point inside the room's box (a mesh room's
+/// bounds are checked when it is built), on a ribbon that exists.
+fn check_anchor(
+    c: &Checker,
+    at: &str,
+    ribbon: &RibbonSpec,
+    room: &RoomSpec,
+) -> Result<(), SceneError> {
+    let Some(anchor) = ribbon.anchor else {
+        return Ok(());
+    };
+    let key = format!("{at}.anchor");
+    if ribbon.length_m == 0.0 {
+        return Err(c.fail(
+            &key,
+            "no anchor on a group without a ribbon (length_m = 0)",
+            format!("{anchor:?}"),
+        ));
+    }
+    let (lo, hi) = if room.mesh.is_none() {
+        let (hx, hz) = (room.width / 2.0, room.depth / 2.0);
+        ([-hx, 0.0, -hz], [hx, room.top(), hz])
+    } else {
+        ([-MAX_ROOM_SIZE_M; 3], [MAX_ROOM_SIZE_M; 3])
+    };
+    let inside = (0..3).all(|a| anchor[a].is_finite() && lo[a] <= anchor[a] && anchor[a] <= hi[a]);
+    if !inside {
+        return Err(c.fail(
+            &key,
+            format!("a point [x, y, z] inside the room, from {lo:?} to {hi:?} m"),
+            format!("{anchor:?}"),
+        ));
+    }
+    Ok(())
 }

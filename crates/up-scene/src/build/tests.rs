@@ -171,6 +171,7 @@ fn example_scenes_build() {
         ("thrown.toml", 1, 0),
         ("two-gases.json", 18, 0),
         ("evening.toml", 43, 43),
+        ("tied.toml", 6, 6),
     ];
     for (name, count, ribbons) in expected {
         let scene = Scene::from_path(dir.join(name)).unwrap();

@@ -25,9 +25,9 @@ use glam::Vec3;
 use up_geom::SplitMix64;
 
 use crate::build::build_group_model;
+use crate::build::room::{box_room, Ceiling};
 use crate::build::spawn::{place_spheres, Occupancy, SpawnRegion};
 use crate::error::SceneError;
-use crate::room::{box_room, Ceiling};
 use crate::scene::{
     BalloonGroup, CeilingKind, RoomSpec, Scene, MAX_ROOM_SIZE_M, MAX_TOTAL_BALLOONS,
     MIN_ROOM_SIZE_M,

@@ -18,7 +18,7 @@ use glam::Vec3;
 use up_geom::SplitMix64;
 
 /// Gap between neighbouring balloons' bounding cubes: 5 % of the diameter plus 5 mm.
-fn cell_size(radius: f32) -> f32 {
+pub(crate) fn cell_size(radius: f32) -> f32 {
     2.0 * radius * 1.05 + 0.005
 }
 

@@ -145,7 +145,7 @@ impl std::ops::Add for Moments {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::balloon_mesh::BalloonMesh;
+    use crate::balloon::mesh::BalloonMesh;
     use up_geom::fit::mesh_integrals::{shell_integrals, solid_integrals};
 
     /// A fine UV sphere, wound outward.

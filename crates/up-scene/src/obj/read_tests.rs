@@ -1,6 +1,8 @@
-//! OBJ/MTL reading and writing tests.
+//! OBJ reading tests.
 
-use super::*;
+use std::path::{Path, PathBuf};
+
+use super::read::*;
 
 /// A fresh, empty directory under the system temp dir for one test.
 fn scratch(name: &str) -> PathBuf {

@@ -1,5 +1,5 @@
 //! Reading Wavefront OBJ triangle meshes (through tobj): rooms and the
-//! shapes `up fit-spheres` fits. Writing them is `obj_export`.
+//! shapes `up fit-spheres` fits. Writing them is `export`.
 //!
 //! Reading checks each line first, so a bad file is reported with its name,
 //! its line and what was expected; tobj then triangulates polygons. Vertices
@@ -113,7 +113,7 @@ pub fn read_obj_mesh(path: &Path) -> Result<ObjMesh, ObjError> {
 }
 
 /// Reads at most `max` bytes of `path` as UTF-8; more is an error, not a truncation.
-fn read_capped(path: &Path, max: u64) -> Result<String, ObjError> {
+pub(super) fn read_capped(path: &Path, max: u64) -> Result<String, ObjError> {
     let io_error = |source: std::io::Error| match source.kind() {
         std::io::ErrorKind::NotFound => ObjError::Missing {
             path: path.to_path_buf(),
@@ -308,7 +308,3 @@ fn weld(vertices: Vec<Vec3>, triangles: Vec<[u32; 3]>) -> (Vec<Vec3>, Vec<[u32; 
         .collect();
     (welded, triangles)
 }
-
-#[cfg(test)]
-#[path = "obj_tests.rs"]
-mod tests;

@@ -1,6 +1,8 @@
-//! Room tests.
+//! Room tests: the box room, OBJ rooms, and what is written reads back.
 
-use super::*;
+use glam::Vec3;
+
+use super::room::*;
 use up_geom::fit::check_closed;
 
 fn original() -> RoomMesh {
@@ -111,7 +113,7 @@ fn obj_room_with_outward_normals_is_flipped_inward() {
         .map(|t| [t[0], t[2], t[1]])
         .collect();
     let text =
-        crate::obj_export::flat_obj_text("hall", original.vertices(), &outward, "x.mtl", "x");
+        crate::obj::export::flat_obj_text("hall", original.vertices(), &outward, "x.mtl", "x");
     let path = dir.join("hall.obj");
     std::fs::write(&path, text).unwrap();
     let room = room_from_obj(&path).unwrap();
@@ -120,7 +122,7 @@ fn obj_room_with_outward_normals_is_flipped_inward() {
     assert!(room.contains_point(Vec3::new(0.0, 1.0, 0.0)));
 
     // Already inward: kept as it is.
-    crate::obj_export::export_room_obj(&dir, &original).unwrap();
+    crate::obj::export::export_room_obj(&dir, &original).unwrap();
     let again = room_from_obj(&dir.join("room.obj")).unwrap();
     assert_eq!(corners(&again), corners(&original));
 }

@@ -27,7 +27,7 @@
 
 use glam::Vec3;
 
-use crate::balloon_mesh::{
+use crate::balloon::mesh::{
     cos_sin, pole_to_pole_triangles, vertex_normals, BalloonDimensions, BalloonMesh,
     BalloonMeshError,
 };

@@ -312,8 +312,8 @@ mod tests {
         let world = &built.world;
         let body = world.body_ids()[0];
         let pose = world.pose(body).unwrap();
-        let knot =
-            pose.position + pose.rotation * crate::ribbons::knot_point(&built.balloon_models[0]);
+        let knot = pose.position
+            + pose.rotation * crate::build::ribbons::knot_point(&built.balloon_models[0]);
         let ribbon = world.ribbon_of(body).unwrap();
         assert!(knot.distance(world.ribbon_points(ribbon).unwrap()[0]) < 1e-5);
         let nearest = models[0]

@@ -2,7 +2,8 @@
 //! and every balloon placed without overlap, deterministically from `sim.seed`,
 //! filled with its gas (`gas_fill`: its group's envelope, its own leak
 //! factor, filled `filled_hours_before` h before the run), and with its
-//! group's ribbon tied at its knot (`ribbons::tie_ribbon`).
+//! group's ribbon tied at its knot (`ribbons::tie_ribbon`), its free end
+//! tied down where the group gives an anchor (`anchor::tie_down`).
 //!
 //! Each body's `user_data` packs its group and colour:
 //! `group << 16 | colour`, where `colour` indexes `BuiltScene::colors`
@@ -11,18 +12,22 @@
 use glam::{Quat, Vec3};
 use up_geom::{Pose, SplitMix64};
 use up_physics::gas::{EnvelopeDef, EnvelopeKind};
-use up_physics::{BodyDef, BodyId, World, WorldDef};
+use up_physics::{BodyDef, BodyId, JointId, World, WorldDef};
 
+use crate::balloon::gas_fill::{fill_balloon, group_envelope, PermeanceFactors};
 use crate::balloon::{build_balloon, BalloonModel, BalloonSpec, Gas};
 use crate::error::SceneError;
-use crate::gas_fill::{fill_balloon, group_envelope, PermeanceFactors};
-use crate::ribbons::{tie_ribbon, GroupRibbon};
-use crate::room::{box_room, room_from_obj, Ceiling, RoomMesh};
 use crate::scene::{parse_color, BalloonKind, CeilingKind, GasKind, Scene};
+use ribbons::{tie_ribbon, GroupRibbon};
+use room::{box_room, room_from_obj, Ceiling, RoomMesh};
 
-#[path = "build_spawn.rs"]
+pub mod anchor;
+pub mod bench_scene;
+pub mod ribbons;
+pub mod room;
 pub mod spawn;
 
+use anchor::{anchored_region, tie_down};
 use spawn::{place_spheres, Occupancy, SpawnRegion};
 
 /// Most groups a scene may have (the group index lives in 16 bits of `user_data`).
@@ -46,6 +51,10 @@ pub struct BuiltScene {
     pub group_bodies: Vec<Vec<BodyId>>,
     /// Each group's ribbon (None: its balloons have none), in the scene's order.
     pub group_ribbons: Vec<Option<GroupRibbon>>,
+    /// The ropes that tie each group's balloons to its ribbons' anchor
+    /// (`anchor::tie_down`), in the order of `group_bodies`; empty for a
+    /// group without an anchor.
+    pub group_tethers: Vec<Vec<JointId>>,
     /// The envelope each group's balloons were filled with, before each
     /// balloon's own leak factor (`gas_fill`), in the scene's order. None: a
     /// group whose balloons carry no gas model (every group has one now).
@@ -166,6 +175,7 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
     let mut balloon_models = Vec::with_capacity(scene.balloons.len());
     let mut group_bodies = Vec::with_capacity(scene.balloons.len());
     let mut group_ribbons = Vec::with_capacity(scene.balloons.len());
+    let mut group_tethers = Vec::with_capacity(scene.balloons.len());
     let mut envelopes = Vec::with_capacity(scene.balloons.len());
     let mut factors = PermeanceFactors::new(scene.sim.seed);
 
@@ -174,7 +184,8 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
         let envelope = group_envelope(group, &model);
         let shape_id = world.add_shape(model.shape.clone()).map_err(physics)?;
         let root = model.shape.tree.root().sphere();
-        let region = spawn_region(scene, i, &bounds.min, &bounds.max)?;
+        check_anchor_in(scene, i, &bounds)?;
+        let region = spawn_region(scene, i, &model, &bounds.min, &bounds.max)?;
         let count = group.count as usize;
         let centres = place_spheres(
             count,
@@ -193,6 +204,7 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
         }
         let ribbon = group.tied_ribbon().and_then(GroupRibbon::new);
         let mut bodies = Vec::with_capacity(count);
+        let mut tethers = Vec::new();
         for (k, centre) in centres.into_iter().enumerate() {
             let rotation = random_upright(&mut rng, group.tilt_deg, group.yaw_deg);
             // The bounding sphere's centre goes where the layout put it.
@@ -208,12 +220,18 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
                 .map_err(physics)?;
             if let Some(ribbon) = &ribbon {
                 tie_ribbon(&mut world, id, &model, &ribbon.spec).map_err(physics)?;
+                if let Some(tether) =
+                    tie_down(&mut world, id, &model, &ribbon.spec).map_err(physics)?
+                {
+                    tethers.push(tether);
+                }
             }
             bodies.push(id);
         }
         balloon_models.push(model);
         group_bodies.push(bodies);
         group_ribbons.push(ribbon);
+        group_tethers.push(tethers);
         envelopes.push(Some(envelope));
     }
     Ok(BuiltScene {
@@ -224,6 +242,7 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
         color_names,
         group_bodies,
         group_ribbons,
+        group_tethers,
         envelopes,
     })
 }
@@ -266,11 +285,33 @@ fn palette(scene: &Scene) -> Result<Palette, SceneError> {
     Ok((colors, names, per_group))
 }
 
-/// The region group `i` fills: its spawn box, or the whole floor.
-fn spawn_region(scene: &Scene, i: usize, lo: &Vec3, hi: &Vec3) -> Result<SpawnRegion, SceneError> {
+/// The region group `i` (of `model`) fills: its spawn box, else over its
+/// ribbons' anchor, else the whole floor.
+fn spawn_region(
+    scene: &Scene,
+    i: usize,
+    model: &BalloonModel,
+    lo: &Vec3,
+    hi: &Vec3,
+) -> Result<SpawnRegion, SceneError> {
     let margin = Vec3::splat(ROOM_MARGIN);
     let (lo, hi) = (*lo + margin, *hi - margin);
-    let Some(spawn) = &scene.balloons[i].spawn else {
+    let group = &scene.balloons[i];
+    let Some(spawn) = &group.spawn else {
+        if let Some((ribbon, anchor)) = group
+            .tied_ribbon()
+            .and_then(|r| Some((r, Vec3::from_array(r.anchor?))))
+        {
+            let count = group.count as usize;
+            return Ok(anchored_region(
+                anchor,
+                ribbon.length_m,
+                count,
+                model,
+                lo,
+                hi,
+            ));
+        }
         return Ok(SpawnRegion {
             min: lo,
             max: Vec3::new(hi.x, lo.y, hi.z),
@@ -293,6 +334,26 @@ fn spawn_region(scene: &Scene, i: usize, lo: &Vec3, hi: &Vec3) -> Result<SpawnRe
     })
 }
 
+/// Group `i`'s ribbon anchor inside the room's `bounds`: a box room's was
+/// checked in validation, a mesh room's only now that its bounds are known.
+fn check_anchor_in(scene: &Scene, i: usize, bounds: &up_geom::Aabb) -> Result<(), SceneError> {
+    let Some(anchor) = scene.balloons[i].ribbon.as_ref().and_then(|r| r.anchor) else {
+        return Ok(());
+    };
+    let point = Vec3::from_array(anchor);
+    if point.cmplt(bounds.min).any() || point.cmpgt(bounds.max).any() {
+        return Err(SceneError::Invalid {
+            at: scene.locate(&format!("balloons[{i}].ribbon.anchor")),
+            expected: format!(
+                "a point inside the room's bounds, from {} to {} m",
+                bounds.min, bounds.max
+            ),
+            found: format!("{anchor:?}"),
+        });
+    }
+    Ok(())
+}
+
 /// Upright, tilted by up to `tilt_deg` about a random horizontal axis, and
 /// turned by up to ±`yaw_deg` about the vertical.
 fn random_upright(rng: &mut SplitMix64, tilt_deg: f32, yaw_deg: f32) -> Quat {
@@ -305,5 +366,6 @@ fn random_upright(rng: &mut SplitMix64, tilt_deg: f32, yaw_deg: f32) -> Quat {
 }
 
 #[cfg(test)]
-#[path = "build_tests.rs"]
+mod room_tests;
+#[cfg(test)]
 mod tests;

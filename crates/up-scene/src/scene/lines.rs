@@ -15,6 +15,9 @@ use serde::de::{Deserialize, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde_json::value::RawValue;
 use toml::Spanned;
 
+use super::Scene;
+use crate::error::Location;
+
 /// Key paths (`room.width`, `balloons[1].spawn.min`) with the 1-based line
 /// where their value starts.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -200,6 +203,17 @@ impl<'de> Deserialize<'de> for TomlNode {
         // Anything else (a datetime) is no scene value: the scene's own
         // parse refuses it before an index is built.
         deserializer.deserialize_any(NodeVisitor)
+    }
+}
+
+impl Scene {
+    /// Where a key lies, for messages: this scene's file and the key's line.
+    pub fn locate(&self, key: &str) -> Location {
+        Location {
+            file: self.source.name.clone(),
+            key: Some(key.to_string()),
+            line: self.source.lines.line_of(key),
+        }
     }
 }
 

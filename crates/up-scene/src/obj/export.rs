@@ -1,5 +1,5 @@
 //! Writing Wavefront OBJ and MTL: the balloon and room meshes the web app
-//! renders (`up export-obj`). Reading them back is `obj`.
+//! renders (`up export-obj`). Reading them back is `read`.
 //!
 //! Every file goes through `atomic_file`: a reader never sees half a file.
 //! Asset layout (see `export_balloon_assets`): one `balloon.obj` whose faces
@@ -12,10 +12,10 @@ use std::path::{Path, PathBuf};
 
 use glam::Vec3;
 
-use crate::balloon_mesh::BalloonMesh;
+use crate::balloon::mesh::BalloonMesh;
+use crate::build::room::RoomMesh;
 use crate::obj::ObjError;
 use crate::palette::PALETTE;
-use crate::room::RoomMesh;
 
 /// Writes `contents` to `path` whole or not at all (`atomic_file`).
 fn write_atomically(path: &Path, contents: &str) -> Result<(), ObjError> {
@@ -125,7 +125,3 @@ pub fn export_room_obj(dir: &Path, room: &RoomMesh) -> Result<Vec<PathBuf>, ObjE
     write_atomically(&mtl, wall)?;
     Ok(vec![obj, mtl])
 }
-
-#[cfg(test)]
-#[path = "obj_export_tests.rs"]
-mod tests;

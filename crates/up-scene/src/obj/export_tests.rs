@@ -1,6 +1,9 @@
 //! OBJ/MTL writing tests: what is written reads back.
 
-use super::*;
+use std::path::{Path, PathBuf};
+
+use super::export::*;
+use crate::balloon::mesh::BalloonMesh;
 use crate::obj::read_obj_mesh;
 use crate::palette::color_rgb;
 
@@ -41,7 +44,8 @@ fn balloon_round_trips_through_obj() {
 #[test]
 fn room_exports_with_inward_face_normals() {
     let dir = scratch("room");
-    let room = crate::room::box_room(6.0, 6.0, 3.0, crate::room::Ceiling::Flat).unwrap();
+    let room =
+        crate::build::room::box_room(6.0, 6.0, 3.0, crate::build::room::Ceiling::Flat).unwrap();
     let written = export_room_obj(&dir, &room).unwrap();
     assert_eq!(written.len(), 2);
     let back = read_obj_mesh(&written[0]).unwrap();
