@@ -25,5 +25,6 @@ pub mod float_census;
 pub mod gas_fill;
 pub mod ribbons;
 pub mod scene;
+pub mod squash;
 
 pub use float_census::{FloatCensus, FloatState, GroupCensus};
