@@ -5,12 +5,14 @@
 import { beforeAll, describe, expect, it } from "vitest";
 import { loadBuiltEngine } from "../sim/builtEngine";
 import type { Engine, LiveSetting, Scene } from "../sim/engine";
+import { setEngineConstants } from "../scene/sceneSchema";
 import { LIVE_LINES, liveSetting, sliderRange } from "./panel";
 
 let engine: Engine;
 
 beforeAll(async () => {
   engine = await loadBuiltEngine();
+  setEngineConstants(engine.constants, engine.defaultSceneJson());
 });
 
 describe("live lines", () => {
@@ -35,6 +37,7 @@ describe("live lines", () => {
     const scene = JSON.parse(engine.defaultSceneJson()) as Scene;
     const byControl = Object.fromEntries(LIVE_LINES.map((l) => [l.control, l]));
     expect(byControl.gravity.read(scene)).toBeCloseTo(9.81, 5);
+    expect(byControl.gravity.read({}), "a scene without gravity has the engine's").toBeCloseTo(9.81, 5);
     engine.loadDefaultScene();
     expect(byControl.ribbon_length.read(scene)).toBe(engine.ribbonLength());
     for (const line of LIVE_LINES) {

@@ -5,7 +5,7 @@
 
 import GUI from "lil-gui";
 import type { PanelParams } from "../scene/sceneParams";
-import type { Scene } from "../scene/sceneSchema";
+import { filledScene, type Scene } from "../scene/sceneSchema";
 import { TIME_LAPSE_RATES } from "../sim/timeLapse";
 import { formatRate } from "./clock";
 import type { Constants, Finish, LiveSetting } from "../sim/engine";
@@ -28,7 +28,7 @@ export interface LiveLine<C extends LiveControl = LiveControl> {
   step: number;
   /** Largest value the slider offers, when narrower than the engine's range (the usual values, finer to pick). */
   sliderMax?: number;
-  /** The setting's value in `scene` (the engine's, every default written out). */
+  /** The setting's value in `scene` (a missing key read as the engine reads it). */
   read(scene: Scene): number;
 }
 
@@ -39,7 +39,7 @@ export interface LiveLine<C extends LiveControl = LiveControl> {
  */
 export const LIVE_LINES: LiveLine[] = [
   { control: "ribbon_length", folder: "Balloons", name: "ribbon length (m, 0: none)", step: 0.05, sliderMax: 4, read: (s) => s.balloons?.[0]?.ribbon?.length_m ?? 0 },
-  { control: "gravity", folder: "Room", name: "gravity (m/s², Moon 1.62)", step: 0.01, read: (s) => -(s.sim?.gravity?.[1] ?? 0) },
+  { control: "gravity", folder: "Room", name: "gravity (m/s², Moon 1.62)", step: 0.01, read: (s) => -filledScene(s).sim.gravity[1] },
 ];
 
 /** The message a live line sends for `value`. */
