@@ -43,7 +43,7 @@ test("the wasm engine answers bad calls with an error and a message, never a tra
     call("grab", 0, 0, 1, 0);
     call("write_ribbon_points");
     call("write_ribbons");
-    call("set_ribbon_length", 1);
+    call("apply_live", { control: "ribbon_length", value: 1 });
     call("grab_ribbon", 0, 1, 0, 1, 0);
     const beforeWorld = calls.length;
     e.load_default_scene();
@@ -64,9 +64,13 @@ test("the wasm engine answers bad calls with an error and a message, never a tra
     call("add_balloon", 1e30, 1, 0, 0, 0);
     call("set_velocity", 0, 1e6, 0, 0, 0, 0, 0);
     call("step", 1e9);
-    call("set_ribbon_length", NaN);
-    call("set_ribbon_length", -1);
-    call("set_ribbon_length", 1e9);
+    call("apply_live", { control: "ribbon_length", value: NaN });
+    call("apply_live", { control: "ribbon_length", value: -1 });
+    call("apply_live", { control: "ribbon_length", value: 1e9 });
+    call("apply_live", { control: "gravity", value: -1 });
+    call("apply_live", { control: "gravity", value: Infinity });
+    call("apply_live", { control: "wind", value: 1 });
+    call("apply_live", "gravity");
     call("grab_ribbon", e.ribbon_count(), 1, 0, 1, 0);
     call("grab_ribbon", 0, 0, 0, 1, 0);
     call("grab_ribbon", 0, 9999, 0, 1, 0);

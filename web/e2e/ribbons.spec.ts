@@ -50,7 +50,7 @@ test("ribbons are drawn below a pile at the ceiling", async ({ page }, testInfo)
   await page.waitForFunction(() => window.__up!.ribbonParticlesDrawn() === 12 * 17, null, { timeout: 30_000 });
   // The panel's ribbon length re-ties them in the running world; 0 unties them.
   const steps = await page.evaluate(() => window.__up!.steps());
-  const input = page.locator('[data-key="ribbonLength"] input').first();
+  const input = page.locator('[data-key="ribbon_length"] input').first();
   await input.fill("0");
   await input.press("Enter");
   await page.waitForFunction(() => window.__up!.ribbonsDrawn() === 0, null, { timeout: 30_000 });

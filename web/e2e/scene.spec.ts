@@ -1,6 +1,6 @@
 // Scenes from the panel and from shared links, good and malformed.
 
-import { count, DEFAULT_BALLOONS, expect, open, sceneHash, test } from "./fixtures";
+import { count, DEFAULT_BALLOONS, expect, open, pause, sceneHash, test } from "./fixtures";
 
 test("a change in the panel takes effect", async ({ page }) => {
   await open(page);
@@ -34,4 +34,18 @@ test("a malformed shared link shows an error and the default scene", async ({ pa
   await expect(page.locator("#message")).toBeVisible();
   await expect(page.locator("#message")).toHaveText(/room\.width/);
   expect(await count(page)).toBe(DEFAULT_BALLOONS);
+});
+
+test("gravity from the panel changes the running world, and the link says so", async ({ page }) => {
+  await open(page, sceneHash({ balloons: [{ count: 3 }] }));
+  await pause(page);
+  const steps = await page.evaluate(() => window.__up!.steps());
+  const input = page.locator('[data-key="gravity"] input').first();
+  await input.fill("1.62");
+  await input.press("Enter");
+  await page.waitForFunction(() => (JSON.parse(window.__up!.sceneJson()) as { sim: { gravity: number[] } }).sim.gravity[1] === -1.62, null, { timeout: 30_000 });
+  expect(await page.evaluate(() => window.__up!.balloonCount()), "the balloons stay").toBe(3);
+  expect(await page.evaluate(() => window.__up!.steps()), "the world was not rebuilt (paused, its steps kept)").toBe(steps);
+  expect(page.url()).toMatch(/#scene=/);
+  await expect(page.locator("#message")).toBeHidden();
 });

@@ -17,6 +17,7 @@ pub mod balloon;
 pub mod build;
 pub mod obj;
 pub mod scene;
+pub mod squash;
 
 // What the other modules share: errors, colours, reading a running world.
 pub mod error;

@@ -9,11 +9,8 @@ use serde::Serialize;
 use tsify_next::Tsify;
 use up_physics::{BodyId, ForceBreakdown, ForceProbe, World};
 
-use wasm_bindgen::prelude::wasm_bindgen;
-
 use crate::error::WasmError;
-use crate::state::State;
-use crate::Engine;
+use crate::loaded::body_at;
 
 /// Floats per probed body: index, then x, y, z of weight, buoyancy, drag,
 /// contact, ribbon, other (N), centre of mass, centre of buoyancy and knot
@@ -66,60 +63,51 @@ pub struct BodyCard {
     pub gas: BodyGas,
 }
 
-impl State {
-    /// What the next steps record: `PROBE_OFF`, `PROBE_ALL`, or one body's dense index.
-    pub fn set_force_probe(&mut self, which: i32) -> Result<(), WasmError> {
-        let probe = match which {
-            PROBE_OFF => ForceProbe::Off,
-            PROBE_ALL => ForceProbe::All,
-            i if i >= 0 => ForceProbe::One(self.body_at(i as u32)?),
-            _ => {
-                return Err(WasmError::OutOfRange(format!(
-                    "probe {which}: expected {PROBE_OFF} (off), {PROBE_ALL} (all) or a body index"
-                )))
-            }
-        };
-        self.world_mut()?.set_force_probe(probe);
-        Ok(())
-    }
-
-    /// Writes the last step's probed forces (`FORCE_FLOATS` a body, dense
-    /// order) into `forces`; returns how many bodies.
-    pub fn write_forces(&mut self) -> Result<usize, WasmError> {
-        let mut out = std::mem::take(&mut self.forces);
-        out.clear();
-        let Some(loaded) = &self.loaded else {
-            self.forces = out;
-            return Err(WasmError::NoWorld);
-        };
-        let world = &loaded.built.world;
-        let bodies: Box<dyn Iterator<Item = (usize, BodyId)>> = match world.force_probe() {
-            ForceProbe::Off => Box::new(std::iter::empty()),
-            ForceProbe::One(id) => Box::new(
-                world
-                    .body_ids()
-                    .iter()
-                    .position(|&b| b == id)
-                    .map(|i| (i, id))
-                    .into_iter(),
-            ),
-            ForceProbe::All => Box::new(world.body_ids().iter().copied().enumerate()),
-        };
-        for (i, id) in bodies {
-            if let Some(f) = world.probed_forces(id) {
-                pack(i, &f, &mut out);
-            }
+/// What the next steps of `world` record: `PROBE_OFF`, `PROBE_ALL`, or one
+/// body's dense index.
+pub fn set_force_probe(world: &mut World, which: i32) -> Result<(), WasmError> {
+    let probe = match which {
+        PROBE_OFF => ForceProbe::Off,
+        PROBE_ALL => ForceProbe::All,
+        i if i >= 0 => ForceProbe::One(body_at(world, i as u32)?),
+        _ => {
+            return Err(WasmError::OutOfRange(format!(
+                "probe {which}: expected {PROBE_OFF} (off), {PROBE_ALL} (all) or a body index"
+            )))
         }
-        let n = out.len() / FORCE_FLOATS;
-        self.forces = out;
-        Ok(n)
-    }
+    };
+    world.set_force_probe(probe);
+    Ok(())
+}
 
-    /// The card of the balloon at dense index `index`.
-    pub fn body_card(&self, index: u32) -> Result<BodyCard, WasmError> {
-        let id = self.body_at(index)?;
-        card(self.world()?, id, index).ok_or(WasmError::NoWorld)
+/// Writes the last step's probed forces of `world` (`FORCE_FLOATS` a body,
+/// dense order) into `out`; returns how many bodies.
+pub fn write_forces(world: &World, out: &mut Vec<f32>) -> usize {
+    out.clear();
+    let bodies: Box<dyn Iterator<Item = (usize, BodyId)>> = match world.force_probe() {
+        ForceProbe::Off => Box::new(std::iter::empty()),
+        ForceProbe::One(id) => Box::new(
+            world
+                .body_ids()
+                .iter()
+                .position(|&b| b == id)
+                .map(|i| (i, id))
+                .into_iter(),
+        ),
+        ForceProbe::All => Box::new(world.body_ids().iter().copied().enumerate()),
+    };
+    for (i, id) in bodies {
+        if let Some(f) = world.probed_forces(id) {
+            pack(i, &f, out);
+        }
     }
+    out.len() / FORCE_FLOATS
+}
+
+/// The card of the balloon at dense index `index`.
+pub fn body_card(world: &World, index: u32) -> Result<BodyCard, WasmError> {
+    let id = body_at(world, index)?;
+    card(world, id, index).ok_or(WasmError::NoWorld)
 }
 
 /// Appends one body's floats.
@@ -182,31 +170,6 @@ pub fn card(world: &World, id: BodyId, index: u32) -> Option<BodyCard> {
         terminal_speed_m_s: world.terminal_speed(id)?,
         gas,
     })
-}
-
-#[wasm_bindgen]
-impl Engine {
-    /// What the next steps record for `write_forces`: -1 no body (the
-    /// default, at no cost to the step), -2 every body, otherwise one
-    /// body's dense index in the current frame's order.
-    pub fn set_force_probe(&mut self, which: i32) -> Result<(), crate::CallError> {
-        crate::error::named("set_force_probe", self.state.set_force_probe(which))
-    }
-
-    /// Writes the last step's forces on the probed bodies for `forces_ptr`,
-    /// `FORCE_FLOATS` each (`constants().force_floats`); returns how many bodies.
-    pub fn write_forces(&mut self) -> Result<u32, crate::CallError> {
-        crate::error::named("write_forces", self.state.write_forces()).map(|n| n as u32)
-    }
-
-    pub fn forces_ptr(&self) -> *const f32 {
-        self.state.forces.as_ptr()
-    }
-
-    /// The figures of the balloon at dense index `index`, now.
-    pub fn body_card(&self, index: u32) -> Result<BodyCard, crate::CallError> {
-        crate::error::named("body_card", self.state.body_card(index))
-    }
 }
 
 #[cfg(test)]

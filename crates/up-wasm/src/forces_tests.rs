@@ -1,4 +1,5 @@
 use super::*;
+use crate::state::State;
 
 /// The two-gases scene: helium balloons, then air-filled ones.
 const TWO_GASES: &str = include_str!("../../../assets/scenes/two-gases.json");

@@ -1,16 +1,16 @@
-//! The balloons' gas as the page sees it: each body's size now (its shape's
-//! times `World::body_scale`), the simulated clock and the room's air, the
-//! time-lapse (`World::advance`), and where the balloons float
+//! The balloons' gas as the page sees it: the room's air, the time-lapse's
+//! limits and report (`World::advance`), and where the balloons float
 //! (`up_scene::float_census`) for the page's plot. Balloons the page adds
 //! are filled like their group's (`BuiltScene::envelopes`).
 
 use serde::Serialize;
 use tsify_next::Tsify;
-use up_physics::BodyId;
+use up_physics::{Advance, BodyId, World};
 use up_scene::float_census::FloatCensus;
 
 use crate::error::WasmError;
-use crate::state::{State, MAX_STEPS_PER_CALL};
+use crate::limits::MAX_STEPS_PER_CALL;
+use crate::loaded::Loaded;
 
 /// Most simulated seconds one `advance` call covers: an hour (a tick at
 /// ×3 600 asks for a few minutes; a host asking for more has lost track of time).
@@ -55,101 +55,80 @@ pub struct FloatCounts {
     pub groups: Vec<GroupFloat>,
 }
 
-impl State {
-    /// Advances `seconds` of simulated time with `World::advance`: fixed
-    /// steps while anything moves, jumps of the gas alone while everything
-    /// sleeps, at most `max_steps` steps.
-    pub fn advance(&mut self, seconds: f64, max_steps: u32) -> Result<AdvanceReport, WasmError> {
-        if !seconds.is_finite() || !(0.0..=MAX_ADVANCE_S).contains(&seconds) {
-            return Err(WasmError::BadArgument(format!(
-                "{seconds} s at once: expected 0 to {MAX_ADVANCE_S} s"
-            )));
-        }
-        if max_steps == 0 || max_steps > MAX_STEPS_PER_CALL {
-            return Err(WasmError::BadArgument(format!(
-                "at most {max_steps} steps: expected 1 to {MAX_STEPS_PER_CALL}"
-            )));
-        }
-        let world = self.world_mut()?;
-        let done = world.advance(seconds, u64::from(max_steps));
-        if done.steps > 0 {
-            // The stats average per step; the call's last step stands for its steps.
-            self.sum_last_step();
-            self.record_squash();
-        }
-        Ok(AdvanceReport {
+/// `Ok` when `advance` may cover `seconds` in at most `max_steps` steps.
+pub fn check_advance(seconds: f64, max_steps: u32) -> Result<(), WasmError> {
+    if !seconds.is_finite() || !(0.0..=MAX_ADVANCE_S).contains(&seconds) {
+        return Err(WasmError::BadArgument(format!(
+            "{seconds} s at once: expected 0 to {MAX_ADVANCE_S} s"
+        )));
+    }
+    if max_steps == 0 || max_steps > MAX_STEPS_PER_CALL {
+        return Err(WasmError::BadArgument(format!(
+            "at most {max_steps} steps: expected 1 to {MAX_STEPS_PER_CALL}"
+        )));
+    }
+    Ok(())
+}
+
+impl From<Advance> for AdvanceReport {
+    fn from(done: Advance) -> AdvanceReport {
+        AdvanceReport {
             seconds: done.seconds,
             steps: done.steps as f64,
             jumps: done.jumps as f64,
-        })
-    }
-
-    /// Writes every body's size over its shape's (1 without gas), dense order, into `scales`.
-    pub fn write_body_scales(&mut self) -> Result<(), WasmError> {
-        let n = self.body_count();
-        self.scales.resize(n, 1.0);
-        let loaded = self.loaded.as_ref().ok_or(WasmError::NoWorld)?;
-        loaded.built.world.write_body_scales(&mut self.scales);
-        Ok(())
-    }
-
-    /// Simulated seconds since the world was built (jumps included).
-    pub fn sim_time(&self) -> f64 {
-        self.world().map_or(0.0, |w| w.time())
-    }
-
-    /// The room's air temperature now, °C (the scene's schedule applied).
-    pub fn air_temperature_c(&self) -> Result<f32, WasmError> {
-        Ok(self.world()?.air().temperature_k - ZERO_CELSIUS_K)
-    }
-
-    /// Looks at every balloon now (the census keeps how high each has been) and counts where they float.
-    pub fn float_counts(&mut self) -> Result<FloatCounts, WasmError> {
-        let loaded = self.loaded.as_ref().ok_or(WasmError::NoWorld)?;
-        let world = &loaded.built.world;
-        let census = self.census.get_or_insert_with(FloatCensus::new);
-        let groups: Vec<GroupFloat> = census
-            .observe(world)
-            .iter()
-            .map(|g| GroupFloat {
-                ceiling: g.ceiling,
-                hovering: g.hovering,
-                floor: g.floor,
-                mean_lift_fraction: g.mean_lift_fraction,
-            })
-            .collect();
-        let (mut ceiling, mut hovering, mut floor, mut lift) = (0, 0, 0, 0.0f64);
-        for g in &groups {
-            ceiling += g.ceiling;
-            hovering += g.hovering;
-            floor += g.floor;
-            let n = g.ceiling + g.hovering + g.floor;
-            lift += f64::from(g.mean_lift_fraction) * f64::from(n);
         }
-        let total = ceiling + hovering + floor;
-        Ok(FloatCounts {
-            time_s: world.time(),
-            ceiling,
-            hovering,
-            floor,
-            mean_lift_fraction: if total > 0 {
-                (lift / f64::from(total)) as f32
-            } else {
-                0.0
-            },
-            groups,
-        })
     }
+}
 
-    /// Fills an added balloon of group `group` with the gas its group was filled with, fresh (age 0).
-    pub(crate) fn fill_added(&mut self, body: BodyId, group: usize) -> Result<(), WasmError> {
-        let loaded = self.loaded.as_mut().ok_or(WasmError::NoWorld)?;
-        if let Some(Some(envelope)) = loaded.built.envelopes.get(group) {
-            let envelope = *envelope;
-            loaded.built.world.fill(body, &envelope, 0.0)?;
-        }
-        Ok(())
+/// The room's air temperature now, °C (the scene's schedule applied).
+pub fn air_temperature_c(world: &World) -> f32 {
+    world.air().temperature_k - ZERO_CELSIUS_K
+}
+
+/// Looks at every balloon of `world` now (`census` keeps how high each has
+/// been; made on the first look) and counts where they float.
+pub fn float_counts(world: &World, census: &mut Option<FloatCensus>) -> FloatCounts {
+    let census = census.get_or_insert_with(FloatCensus::new);
+    let groups: Vec<GroupFloat> = census
+        .observe(world)
+        .iter()
+        .map(|g| GroupFloat {
+            ceiling: g.ceiling,
+            hovering: g.hovering,
+            floor: g.floor,
+            mean_lift_fraction: g.mean_lift_fraction,
+        })
+        .collect();
+    let (mut ceiling, mut hovering, mut floor, mut lift) = (0, 0, 0, 0.0f64);
+    for g in &groups {
+        ceiling += g.ceiling;
+        hovering += g.hovering;
+        floor += g.floor;
+        let n = g.ceiling + g.hovering + g.floor;
+        lift += f64::from(g.mean_lift_fraction) * f64::from(n);
     }
+    let total = ceiling + hovering + floor;
+    FloatCounts {
+        time_s: world.time(),
+        ceiling,
+        hovering,
+        floor,
+        mean_lift_fraction: if total > 0 {
+            (lift / f64::from(total)) as f32
+        } else {
+            0.0
+        },
+        groups,
+    }
+}
+
+/// Fills an added balloon of group `group` with the gas its group was filled with, fresh (age 0).
+pub fn fill_added(loaded: &mut Loaded, body: BodyId, group: usize) -> Result<(), WasmError> {
+    if let Some(Some(envelope)) = loaded.built.envelopes.get(group) {
+        let envelope = *envelope;
+        loaded.built.world.fill(body, &envelope, 0.0)?;
+    }
+    Ok(())
 }
 
 #[cfg(test)]

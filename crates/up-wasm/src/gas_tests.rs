@@ -1,4 +1,5 @@
 use super::*;
+use crate::state::State;
 use crate::state::POSE_FLOATS;
 
 fn default_state() -> State {

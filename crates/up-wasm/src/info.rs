@@ -12,9 +12,10 @@ use up_scene::scene::{
 use crate::contacts::{CONTACT_FLOATS, MAX_CONTACTS};
 use crate::error::ERROR_KINDS;
 use crate::gas::MAX_ADVANCE_S;
+use crate::limits::{CAPACITY, MAX_SPEED, MAX_SPIN, MAX_STEPS_PER_CALL, POSE_FLOATS, TREE_FLOATS};
+use crate::live::{LiveRange, LiveSetting};
 use crate::model_mesh::MESH_VERTEX_FLOATS;
 use crate::ribbons::{MAX_RIBBON_LENGTH_M, RIBBON_POINT_FLOATS};
-use crate::state::{CAPACITY, MAX_SPEED, MAX_SPIN, MAX_STEPS_PER_CALL, POSE_FLOATS, TREE_FLOATS};
 
 /// A colour a scene may name, with its RGB in 0–1.
 #[derive(Clone, Debug, PartialEq, Serialize, Tsify)]
@@ -83,7 +84,7 @@ pub struct Constants {
     pub ribbon_width_m: f32,
     /// Radius of a weight at a ribbon's free end, m (as it collides).
     pub weight_radius_m: f32,
-    /// Longest ribbon `set_ribbon_length` ties, m.
+    /// Longest ribbon `apply_live` ties, m.
     pub max_ribbon_length_m: f32,
     /// Most balloons the page's world holds.
     pub capacity: u32,
@@ -101,6 +102,8 @@ pub struct Constants {
     /// The `name` of every error a refused call throws.
     pub error_kinds: Vec<String>,
     pub scene: SceneLimits,
+    /// Each live control's accepted values (`Engine::apply_live`).
+    pub live: Vec<LiveRange>,
 }
 
 impl Constants {
@@ -131,6 +134,7 @@ impl Constants {
             max_spin: MAX_SPIN,
             colors,
             error_kinds: strings(&ERROR_KINDS),
+            live: LiveSetting::ranges(),
             scene: SceneLimits {
                 max_total_balloons: limits::MAX_TOTAL_BALLOONS as f64,
                 max_balloon_groups: limits::MAX_BALLOON_GROUPS as u32,

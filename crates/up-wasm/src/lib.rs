@@ -29,6 +29,17 @@
 //!   (memory may grow and move).
 //! - The stage timers of up-physics read `up_now_ms() -> f64` (ms,
 //!   monotonic), which `clock.rs` defines on the host's `performance.now()`.
+//! - A live panel control is one `LiveSetting` (`live.rs`) given to
+//!   `Engine::apply_live`; the page forwards it untouched.
+//!
+//! The files depend one way: `lib.rs` (the exports) → `state.rs` (the world
+//! and the page's buffers; one thin method per call) → the feature files
+//! (`forces`, `gas`, `live`, `model_mesh`, `ribbons`, `squash`, `contacts`,
+//! `stats`), each free functions or a small buffer struct of its own on a
+//! `&World` or `&Loaded` (`loaded.rs`) → up-scene and up-physics. No feature
+//! file knows `State`; the numbers they share live in `limits.rs`. Physics
+//! models (the squash of a balloon) are up-scene's, so that the CLI can use
+//! them; this crate only packs what they give for the page.
 //!
 //! SI units, Y up, origin at the centre of the floor.
 
@@ -39,10 +50,14 @@ mod error;
 mod forces;
 mod gas;
 mod info;
+mod limits;
+mod live;
+mod loaded;
 mod model_mesh;
 mod ribbons;
 mod squash;
 mod state;
+mod stats;
 #[cfg(feature = "threads")]
 mod threads;
 
@@ -54,6 +69,7 @@ pub use error::{CallError, WasmError, ERROR_KINDS};
 pub use forces::{BodyCard, BodyGas, FORCE_FLOATS, PROBE_ALL, PROBE_OFF};
 pub use gas::{AdvanceReport, FloatCounts, GroupFloat, MAX_ADVANCE_S};
 pub use info::{Constants, EngineStats, NamedColor, SceneLimits, WorldSummary};
+pub use live::{LiveRange, LiveSetting, MAX_LIVE_GRAVITY};
 pub use model_mesh::{MeshBuffers, MESH_VERTEX_FLOATS};
 pub use ribbons::{pack_rgb, MAX_RIBBON_LENGTH_M, RIBBON_POINT_FLOATS};
 pub use squash::{MEMBRANE_OVERPRESSURE_PA, SQUASH_FLOATS};
@@ -197,11 +213,11 @@ impl Engine {
     /// how many bodies. Drawing only: the physics stays rigid.
     pub fn write_body_squash(&mut self) -> Result<u32, CallError> {
         named("write_body_squash", self.state.write_body_squash())?;
-        Ok((self.state.squash_out.len() / SQUASH_FLOATS) as u32)
+        Ok((self.state.squash.out.len() / SQUASH_FLOATS) as u32)
     }
 
     pub fn body_squash_ptr(&self) -> *const f32 {
-        self.state.squash_out.as_ptr()
+        self.state.squash.out.as_ptr()
     }
 
     /// Where the balloons float now (at the ceiling, hovering, on the floor),
@@ -270,6 +286,20 @@ impl Engine {
     }
 
     // ---- changing the world ----
+
+    /// Applies a live setting (`{ control, value }`: `LiveSetting`) to the
+    /// running world, and writes it into the scene `scene_json` returns;
+    /// refused outside `constants().live`'s range for it.
+    pub fn apply_live(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "LiveSetting")] setting: JsValue,
+    ) -> Result<(), CallError> {
+        // Read here rather than by tsify's conversion, so that a setting the
+        // engine does not know is refused like any bad argument.
+        let setting = serde_wasm_bindgen::from_value::<LiveSetting>(setting)
+            .map_err(|e| WasmError::BadArgument(format!("live setting: {e}")));
+        named("apply_live", setting.and_then(|s| self.state.apply_live(s)))
+    }
 
     /// Adds an upright balloon of model `model` with its mesh frame at (x, y, z), m.
     pub fn add_balloon(
@@ -387,16 +417,8 @@ impl Engine {
         self.state.ribbons.weights.as_ptr()
     }
 
-    /// Writes `length` m into every group's ribbon (the scene's other ribbon
-    /// keys kept) and re-ties a ribbon of that length on every balloon, and
-    /// on each added later (0: unties them all); at most
-    /// `constants().max_ribbon_length_m`.
-    pub fn set_ribbon_length(&mut self, length: f32) -> Result<(), CallError> {
-        named("set_ribbon_length", self.state.set_ribbon_length(length))
-    }
-
     /// The first group's ribbon length, m (0: none), as the scene or
-    /// `set_ribbon_length` set it.
+    /// `apply_live` set it.
     pub fn ribbon_length(&self) -> f32 {
         self.state.ribbon_length()
     }
@@ -431,6 +453,30 @@ impl Engine {
     /// Lets go of the held body, which keeps its velocity (a throw).
     pub fn release(&mut self) -> Result<(), CallError> {
         named("release", self.state.release())
+    }
+
+    // ---- the force probe (`forces.rs`) ----
+
+    /// What the next steps record for `write_forces`: -1 no body (the
+    /// default, at no cost to the step), -2 every body, otherwise one
+    /// body's dense index in the current frame's order.
+    pub fn set_force_probe(&mut self, which: i32) -> Result<(), CallError> {
+        named("set_force_probe", self.state.set_force_probe(which))
+    }
+
+    /// Writes the last step's forces on the probed bodies for `forces_ptr`,
+    /// `FORCE_FLOATS` each (`constants().force_floats`); returns how many bodies.
+    pub fn write_forces(&mut self) -> Result<u32, CallError> {
+        named("write_forces", self.state.write_forces()).map(|n| n as u32)
+    }
+
+    pub fn forces_ptr(&self) -> *const f32 {
+        self.state.forces.as_ptr()
+    }
+
+    /// The figures of the balloon at dense index `index`, now.
+    pub fn body_card(&self, index: u32) -> Result<BodyCard, CallError> {
+        named("body_card", self.state.body_card(index))
     }
 
     // ---- static data: room and balloon models ----

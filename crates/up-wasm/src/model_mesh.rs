@@ -9,7 +9,7 @@
 //! indices, three per triangle, counter-clockwise seen from outside.
 
 use crate::error::WasmError;
-use crate::state::State;
+use crate::loaded::Loaded;
 
 /// Floats per mesh vertex position (and per normal): x, y, z.
 pub const MESH_VERTEX_FLOATS: usize = 3;
@@ -22,21 +22,20 @@ pub struct MeshBuffers {
     pub indices: Vec<u32>,
 }
 
-impl State {
-    /// Whether each balloon model (one per group, in group order) is foil.
-    pub fn model_foil(&self) -> Result<Vec<bool>, WasmError> {
-        Ok(self
-            .loaded()?
-            .built
-            .balloon_models
-            .iter()
-            .map(|m| m.spec.kind == up_physics::EnvelopeKind::Foil)
-            .collect())
-    }
+/// Whether each balloon model (one per group, in group order) is foil.
+pub fn model_foil(loaded: &Loaded) -> Vec<bool> {
+    loaded
+        .built
+        .balloon_models
+        .iter()
+        .map(|m| m.spec.kind == up_physics::EnvelopeKind::Foil)
+        .collect()
+}
 
-    /// Writes model `model`'s surface into `mesh`; returns the vertex count.
-    pub fn write_model_mesh(&mut self, model: u32) -> Result<usize, WasmError> {
-        let loaded = self.loaded.as_ref().ok_or(WasmError::NoWorld)?;
+impl MeshBuffers {
+    /// Writes model `model`'s surface; returns the vertex count. Refused
+    /// (the last surface kept) for a model the scene lacks.
+    pub fn write(&mut self, loaded: &Loaded, model: u32) -> Result<usize, WasmError> {
         let models = &loaded.built.balloon_models;
         let m = models.get(model as usize).ok_or_else(|| {
             WasmError::OutOfRange(format!(
@@ -44,15 +43,14 @@ impl State {
                 models.len()
             ))
         })?;
-        let out = &mut self.mesh;
-        out.positions.clear();
-        out.normals.clear();
-        out.indices.clear();
-        out.positions
+        self.positions.clear();
+        self.normals.clear();
+        self.indices.clear();
+        self.positions
             .extend(m.mesh.positions.iter().flat_map(|p| p.to_array()));
-        out.normals
+        self.normals
             .extend(m.mesh.normals.iter().flat_map(|n| n.to_array()));
-        out.indices.extend(m.mesh.indices.iter().flatten());
+        self.indices.extend(m.mesh.indices.iter().flatten());
         Ok(m.mesh.positions.len())
     }
 }

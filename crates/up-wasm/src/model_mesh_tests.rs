@@ -1,4 +1,5 @@
 use super::*;
+use crate::state::State;
 
 const TWO_GROUPS: &str = r#"
 [[balloons]]

@@ -14,7 +14,7 @@ use up_scene::ribbons::{ribbon_rgb, tie_ribbon, GroupRibbon};
 use up_scene::scene::RibbonSpec;
 
 use crate::error::{finite, WasmError};
-use crate::state::{Loaded, State};
+use crate::loaded::{group_of, Loaded};
 
 /// Floats per ribbon point: x, y, z.
 pub const RIBBON_POINT_FLOATS: usize = 3;
@@ -73,31 +73,16 @@ fn color_of(loaded: &Loaded, group: usize) -> u32 {
     pack_rgb(rgb)
 }
 
-fn group_of(world: &World, body: BodyId) -> usize {
-    world
-        .user_data(body)
-        .map_or(0, up_scene::build::group_index)
-}
-
-impl State {
-    /// Ribbons in the world (0 without one).
-    pub fn ribbon_count(&self) -> usize {
-        self.world().map_or(0, World::ribbon_count)
-    }
-
+impl RibbonTables {
     /// Every ribbon's points, ribbon after ribbon, `RIBBON_POINT_FLOATS` each.
-    pub fn write_ribbon_points(&mut self) -> Result<(), WasmError> {
-        let loaded = self.loaded.as_ref().ok_or(WasmError::NoWorld)?;
-        let world = &loaded.built.world;
-        let points = &mut self.ribbons.points;
-        points.resize(world.ribbon_point_count() * RIBBON_POINT_FLOATS, 0.0);
-        world.write_ribbon_points(points);
-        Ok(())
+    pub fn write_points(&mut self, world: &World) {
+        self.points
+            .resize(world.ribbon_point_count() * RIBBON_POINT_FLOATS, 0.0);
+        world.write_ribbon_points(&mut self.points);
     }
 
-    /// Each ribbon's first point, balloon, colour and end weight (`RibbonTables`).
-    pub fn write_ribbon_tables(&mut self) -> Result<(), WasmError> {
-        let loaded = self.loaded.as_ref().ok_or(WasmError::NoWorld)?;
+    /// Each ribbon's first point, balloon, colour and end weight.
+    pub fn write_tables(&mut self, loaded: &Loaded) {
         let world = &loaded.built.world;
         let dense: HashMap<BodyId, u32> = world
             .body_ids()
@@ -105,106 +90,103 @@ impl State {
             .enumerate()
             .map(|(i, &id)| (id, i as u32))
             .collect();
-        let t = &mut self.ribbons;
-        t.offsets.clear();
-        t.bodies.clear();
-        t.colors.clear();
-        t.weights.clear();
+        self.offsets.clear();
+        self.bodies.clear();
+        self.colors.clear();
+        self.weights.clear();
         let mut first = 0u32;
         for id in world.ribbon_ids() {
             let body = world.ribbon_body(id);
             let points = world.ribbon_points(id).map_or(0, <[Vec3]>::len);
-            t.offsets.push(first);
+            self.offsets.push(first);
             first += points as u32;
-            t.bodies.push(
+            self.bodies.push(
                 body.and_then(|b| dense.get(&b).copied())
                     .unwrap_or(u32::MAX),
             );
             let group = body.map_or(0, |b| group_of(world, b));
-            t.colors.push(color_of(loaded, group));
-            t.weights.push(weight_of(loaded, group));
+            self.colors.push(color_of(loaded, group));
+            self.weights.push(weight_of(loaded, group));
         }
-        t.offsets.push(first);
-        Ok(())
+        self.offsets.push(first);
     }
+}
 
-    /// The first group's ribbon length, m (0: none): what the page shows.
-    pub fn ribbon_length(&self) -> f32 {
-        self.loaded
-            .as_ref()
-            .and_then(|l| l.scene.balloons.first())
-            .and_then(|g| g.tied_ribbon())
-            .map_or(0.0, |r| r.length_m)
+/// The first group's ribbon length, m (0: none): what the page shows.
+pub fn ribbon_length(loaded: &Loaded) -> f32 {
+    loaded
+        .scene
+        .balloons
+        .first()
+        .and_then(|g| g.tied_ribbon())
+        .map_or(0.0, |r| r.length_m)
+}
+
+/// Writes `length` m (0: none) into every group's ribbon, in the scene (so
+/// that `scene_json` has it) and in the world: unties every ribbon and ties
+/// the new ones; balloons added later get theirs. A group without a ribbon
+/// gets the default ribbon (`RibbonSpec::default`).
+pub fn set_ribbon_length(loaded: &mut Loaded, length: f32) -> Result<(), WasmError> {
+    finite("ribbon length", &[length])?;
+    if !(0.0..=MAX_RIBBON_LENGTH_M).contains(&length) {
+        return Err(WasmError::OutOfRange(format!(
+            "ribbon length {length} m: expected 0 (none) to {MAX_RIBBON_LENGTH_M} m"
+        )));
     }
-
-    /// Writes `length` m (0: none) into every group's ribbon, in the scene
-    /// (so that `scene_json` has it) and in the world: unties every ribbon
-    /// and ties the new ones; balloons added later get theirs. A group
-    /// without a ribbon gets the default ribbon (`RibbonSpec::default`).
-    pub fn set_ribbon_length(&mut self, length: f32) -> Result<(), WasmError> {
-        finite("ribbon length", &[length])?;
-        if !(0.0..=MAX_RIBBON_LENGTH_M).contains(&length) {
-            return Err(WasmError::OutOfRange(format!(
-                "ribbon length {length} m: expected 0 (none) to {MAX_RIBBON_LENGTH_M} m"
-            )));
+    for (group, ribbon) in loaded
+        .scene
+        .balloons
+        .iter_mut()
+        .zip(&mut loaded.built.group_ribbons)
+    {
+        if length > 0.0 || group.ribbon.is_some() {
+            let spec = group.ribbon.get_or_insert_with(RibbonSpec::default);
+            spec.length_m = length;
+            *ribbon = GroupRibbon::new(spec);
         }
-        let loaded = self.loaded.as_mut().ok_or(WasmError::NoWorld)?;
-        for (group, ribbon) in loaded
-            .scene
-            .balloons
-            .iter_mut()
-            .zip(&mut loaded.built.group_ribbons)
-        {
-            if length > 0.0 || group.ribbon.is_some() {
-                let spec = group.ribbon.get_or_insert_with(RibbonSpec::default);
-                spec.length_m = length;
-                *ribbon = GroupRibbon::new(spec);
-            }
-        }
-        let world = &mut loaded.built.world;
-        for id in world.ribbon_ids() {
-            world.remove_ribbon(id)?;
-        }
-        let bodies = loaded.built.world.body_ids().to_vec();
-        for body in bodies {
-            let group = group_of(&loaded.built.world, body);
-            tie(loaded, body, group)?;
-        }
-        Ok(())
     }
-
-    /// Ties its group's ribbon to a balloon just added (none when the group has none).
-    pub(crate) fn tie_added(&mut self, body: BodyId, group: usize) -> Result<(), WasmError> {
-        let loaded = self.loaded.as_mut().ok_or(WasmError::NoWorld)?;
+    let world = &mut loaded.built.world;
+    for id in world.ribbon_ids() {
+        world.remove_ribbon(id)?;
+    }
+    let bodies = loaded.built.world.body_ids().to_vec();
+    for body in bodies {
+        let group = group_of(&loaded.built.world, body);
         tie(loaded, body, group)?;
-        Ok(())
     }
+    Ok(())
+}
 
-    /// The ribbon at `index` in the world's ribbon order.
-    fn ribbon_at(&self, index: u32) -> Result<RibbonId, WasmError> {
-        let ids = self.world()?.ribbon_ids();
-        ids.get(index as usize).copied().ok_or_else(|| {
-            WasmError::OutOfRange(format!("ribbon {index}: there are {} ribbons", ids.len()))
-        })
-    }
+/// Ties its group's ribbon to a balloon just added (none when the group has none).
+pub fn tie_added(loaded: &mut Loaded, body: BodyId, group: usize) -> Result<(), WasmError> {
+    tie(loaded, body, group)?;
+    Ok(())
+}
 
-    /// Holds point `point` of ribbon `index` (its free end is its segment
-    /// count; 0, the knot, is its balloon's) and carries it toward `target`,
-    /// then toward each `drag_to`; its balloon follows on the ribbon.
-    pub fn grab_ribbon(&mut self, index: u32, point: u32, target: Vec3) -> Result<(), WasmError> {
-        finite("grab target", &target.to_array())?;
-        let id = self.ribbon_at(index)?;
-        let world = self.world()?;
-        let points = world.ribbon_points(id).map_or(0, <[Vec3]>::len);
-        if point == 0 || point as usize >= points {
-            return Err(WasmError::OutOfRange(format!(
-                "point {point} of ribbon {index}: expected 1 to {} (0 is the knot)",
-                points.saturating_sub(1)
-            )));
-        }
-        let bounds = self.loaded()?.built.room.bounds();
-        let target = target.clamp(bounds.min, bounds.max);
-        self.world_mut()?.grab_ribbon(id, point as usize, target)?;
-        Ok(())
+/// Holds point `point` of ribbon `index` (world ribbon order; its free end
+/// is its segment count; 0, the knot, is its balloon's) and carries it
+/// toward `target`, then toward each `drag_to`; its balloon follows.
+pub fn grab_ribbon(
+    loaded: &mut Loaded,
+    index: u32,
+    point: u32,
+    target: Vec3,
+) -> Result<(), WasmError> {
+    finite("grab target", &target.to_array())?;
+    let world = &mut loaded.built.world;
+    let ids = world.ribbon_ids();
+    let id = ids.get(index as usize).copied().ok_or_else(|| {
+        WasmError::OutOfRange(format!("ribbon {index}: there are {} ribbons", ids.len()))
+    })?;
+    let points = world.ribbon_points(id).map_or(0, <[Vec3]>::len);
+    if point == 0 || point as usize >= points {
+        return Err(WasmError::OutOfRange(format!(
+            "point {point} of ribbon {index}: expected 1 to {} (0 is the knot)",
+            points.saturating_sub(1)
+        )));
     }
+    let bounds = loaded.built.room.bounds();
+    let target = target.clamp(bounds.min, bounds.max);
+    world.grab_ribbon(id, point as usize, target)?;
+    Ok(())
 }

@@ -1,34 +1,32 @@
-//! The world the exports act on, and everything the page reads from it:
-//! poses, colours, the room, the balloon models' sphere trees, stats. Safe
-//! Rust with `Result`s, tested natively; `lib.rs` only marshals.
+//! The world the exports act on and the buffers the page reads from it:
+//! loading, stepping, adding and holding balloons, and one thin method per
+//! feature, which hands the feature file (`forces.rs`, `gas.rs`,
+//! `ribbons.rs`, `squash.rs`, `live.rs`, ...) the `Loaded` world and its own
+//! buffer. Safe Rust with `Result`s, tested natively; `lib.rs` only marshals.
 
 use glam::{Quat, Vec3};
 use up_geom::Pose;
 use up_physics::{BodyDef, BodyId, ShapeId, World};
-use up_scene::build::{build_world, color_index, group_index, user_data_for, BuiltScene};
+use up_scene::build::{build_world, color_index, group_index, user_data_for};
+use up_scene::float_census::FloatCensus;
 use up_scene::scene::Scene;
 
 use crate::contacts::write_contacts;
 use crate::error::{finite, WasmError};
+use crate::gas::{AdvanceReport, FloatCounts};
 use crate::info::{EngineStats, WorldSummary};
+use crate::live::LiveSetting;
+use crate::loaded::{body_at, Loaded};
 use crate::model_mesh::MeshBuffers;
 use crate::ribbons::RibbonTables;
-use up_scene::float_census::FloatCensus;
+use crate::squash::SquashBuffers;
+use crate::stats::StageSums;
+use crate::{forces, gas, live, model_mesh, ribbons};
 
-/// Most steps one `step` call takes: a host asking for more has lost track of time.
-pub const MAX_STEPS_PER_CALL: u32 = 10_000;
-/// Most balloons a page may hold: what a browser can draw and step (the
-/// engine itself takes millions). Adding past this is `Full`.
-pub const CAPACITY: usize = 50_000;
-/// Floats per pose: x, y, z, qx, qy, qz, qw.
-pub const POSE_FLOATS: usize = 7;
-/// Floats per sphere-tree node for the page: cx, cy, cz, radius, depth, leaf.
-pub const TREE_FLOATS: usize = 6;
-/// Fastest a balloon may be set moving, m/s: far beyond any throw (a hard
-/// throw is 10 to 30 m/s) yet small enough that one step cannot tunnel far.
-pub const MAX_SPEED: f32 = 100.0;
-/// Fastest a balloon may be set spinning, rad/s (a flicked balloon: about 20).
-pub const MAX_SPIN: f32 = 500.0;
+pub use crate::limits::{
+    CAPACITY, MAX_SPEED, MAX_SPIN, MAX_STEPS_PER_CALL, POSE_FLOATS, TREE_FLOATS,
+};
+
 /// How far from a balloon's bounding sphere a grab point may lie, as a
 /// fraction of its radius: the picked point is on the surface, give or take.
 const GRAB_SLACK: f32 = 0.5;
@@ -36,14 +34,6 @@ const GRAB_SLACK: f32 = 0.5;
 const FLOOR_GAP: f32 = 0.005;
 /// Name of scenes that come from the page.
 const WEB_SOURCE: &str = "scene";
-
-/// A built world plus what the page needs to draw it.
-pub struct Loaded {
-    pub scene: Scene,
-    pub built: BuiltScene,
-    /// Shape of each balloon model (one per group), in group order.
-    pub shapes: Vec<ShapeId>,
-}
 
 /// Everything that lives between calls.
 #[derive(Default)]
@@ -59,13 +49,11 @@ pub struct State {
     pub contacts: Vec<f32>,
     /// How many contacts the last step had, written or not.
     pub contact_total: usize,
-    /// Stage milliseconds summed over the steps since the last `stats_json`:
-    /// browsers coarsen `performance.now()`, so one step's timings are noisy.
-    stage_sums: Vec<(&'static str, f64)>,
-    steps_summed: u32,
+    /// Stage milliseconds over the steps since the last `stats` (`stats.rs`).
+    stage_sums: StageSums,
     /// The ribbons' points and tables for the page (`ribbons.rs`).
     pub ribbons: RibbonTables,
-    /// Each body's size over its shape's, dense order (`gas.rs`).
+    /// Each body's size over its shape's, dense order.
     pub scales: Vec<f32>,
     /// How high each balloon has been, for where it floats (`gas.rs`); made afresh with each world.
     pub census: Option<FloatCensus>,
@@ -74,8 +62,7 @@ pub struct State {
     /// The probed forces `write_forces` wrote last (`forces.rs`).
     pub forces: Vec<f32>,
     /// Each body's deepest dent since the page last read it, and what it read (`squash.rs`).
-    pub squash: crate::squash::SquashTable,
-    pub squash_out: Vec<f32>,
+    pub squash: SquashBuffers,
 }
 
 /// `Ok` when a velocity stays within `MAX_SPEED` and `MAX_SPIN`, else why not.
@@ -108,7 +95,7 @@ impl State {
         Ok(&self.loaded()?.built.world)
     }
 
-    pub(crate) fn world_mut(&mut self) -> Result<&mut World, WasmError> {
+    fn world_mut(&mut self) -> Result<&mut World, WasmError> {
         Ok(&mut self.loaded_mut()?.built.world)
     }
 
@@ -159,29 +146,28 @@ impl State {
                 "{n} steps at once: expected at most {MAX_STEPS_PER_CALL}"
             )));
         }
-        self.world()?;
+        let loaded = self.loaded.as_mut().ok_or(WasmError::NoWorld)?;
         for _ in 0..n {
-            self.world_mut()?.step();
-            self.sum_last_step();
-            self.record_squash();
+            loaded.built.world.step();
+            self.stage_sums.add(&loaded.built.world);
+            self.squash.record(loaded);
         }
         Ok(())
     }
 
-    /// Adds the last step's stage times to the sums `stats` averages.
-    pub(crate) fn sum_last_step(&mut self) {
-        let Some(loaded) = self.loaded.as_ref() else {
-            return;
-        };
-        let stages = loaded.built.world.counters().stages();
-        if self.stage_sums.len() != stages.len() {
-            self.stage_sums = stages.iter().map(|&(name, _)| (name, 0.0)).collect();
-            self.steps_summed = 0;
+    /// Advances `seconds` of simulated time with `World::advance`: fixed
+    /// steps while anything moves, jumps of the gas alone while everything
+    /// sleeps, at most `max_steps` steps.
+    pub fn advance(&mut self, seconds: f64, max_steps: u32) -> Result<AdvanceReport, WasmError> {
+        gas::check_advance(seconds, max_steps)?;
+        let loaded = self.loaded.as_mut().ok_or(WasmError::NoWorld)?;
+        let done = loaded.built.world.advance(seconds, u64::from(max_steps));
+        if done.steps > 0 {
+            // The stats average per step; the call's last step stands for its steps.
+            self.stage_sums.add(&loaded.built.world);
+            self.squash.record(loaded);
         }
-        for (sum, (_, ms)) in self.stage_sums.iter_mut().zip(&stages) {
-            sum.1 += ms;
-        }
-        self.steps_summed += 1;
+        Ok(done.into())
     }
 
     pub fn body_count(&self) -> usize {
@@ -190,14 +176,8 @@ impl State {
             .map_or(0, |l| l.built.world.body_count())
     }
 
-    pub(crate) fn body_at(&self, index: u32) -> Result<BodyId, WasmError> {
-        let ids = self.world()?.body_ids();
-        ids.get(index as usize).copied().ok_or_else(|| {
-            WasmError::OutOfRange(format!(
-                "body index {index}: there are {} bodies",
-                ids.len()
-            ))
-        })
+    fn body_at(&self, index: u32) -> Result<BodyId, WasmError> {
+        body_at(self.world()?, index)
     }
 
     pub fn write_poses(&mut self) -> Result<(), WasmError> {
@@ -261,10 +241,11 @@ impl State {
         def.user_data = user_data_for(model as usize, color as usize);
         let body = loaded.built.world.add_body(&def)?;
         // Filled before its ribbon is tied: the ribbon hangs from the balloon as its gas makes it.
-        let filled = self.fill_added(body, model as usize);
-        if let Err(e) = filled.and_then(|()| self.tie_added(body, model as usize)) {
+        let group = model as usize;
+        let filled = gas::fill_added(loaded, body, group);
+        if let Err(e) = filled.and_then(|()| ribbons::tie_added(loaded, body, group)) {
             // A balloon the page cannot fill or give its ribbon is not added.
-            let _ = self.world_mut()?.remove_body(body);
+            let _ = loaded.built.world.remove_body(body);
             return Err(e);
         }
         Ok(())
@@ -441,35 +422,103 @@ impl State {
     /// Per-stage milliseconds per step, averaged over the steps since the last
     /// call (the last step's when none), and the last step's counts.
     pub fn stats(&mut self) -> Result<EngineStats, WasmError> {
-        let last = *self.world()?.counters();
-        let stages = if self.steps_summed > 0 {
-            let n = f64::from(self.steps_summed);
-            self.stage_sums
-                .iter()
-                .map(|&(name, sum)| (name.to_string(), sum / n))
-                .collect()
-        } else {
-            last.stages()
-                .iter()
-                .map(|&(name, ms)| (name.to_string(), ms))
-                .collect()
-        };
-        for sum in &mut self.stage_sums {
-            sum.1 = 0.0;
-        }
-        self.steps_summed = 0;
-        let world = self.world()?;
-        let s = world.stats();
-        Ok(EngineStats {
-            stages,
-            bodies: world.body_count() as u32,
-            awake: s.awake_count,
-            pairs: s.pair_count,
-            contacts: s.contact_count,
-            max_penetration: s.max_penetration,
-            ribbons: world.ribbon_count() as u32,
-            ribbon_max_stretch: world.ribbon_max_stretch(),
-        })
+        let world = &self.loaded.as_ref().ok_or(WasmError::NoWorld)?.built.world;
+        Ok(self.stage_sums.take(world))
+    }
+
+    // ---- the features, each in its own file ----
+
+    /// Applies a live setting to the running world (`live.rs`).
+    pub fn apply_live(&mut self, setting: LiveSetting) -> Result<(), WasmError> {
+        live::apply(self.loaded_mut()?, setting)
+    }
+
+    /// Writes every body's size over its shape's (1 without gas), dense order, into `scales`.
+    pub fn write_body_scales(&mut self) -> Result<(), WasmError> {
+        let n = self.body_count();
+        self.scales.resize(n, 1.0);
+        let world = &self.loaded.as_ref().ok_or(WasmError::NoWorld)?.built.world;
+        world.write_body_scales(&mut self.scales);
+        Ok(())
+    }
+
+    /// Simulated seconds since the world was built (jumps included).
+    pub fn sim_time(&self) -> f64 {
+        self.world().map_or(0.0, |w| w.time())
+    }
+
+    /// The room's air temperature now, °C (the scene's schedule applied).
+    pub fn air_temperature_c(&self) -> Result<f32, WasmError> {
+        Ok(gas::air_temperature_c(self.world()?))
+    }
+
+    /// Looks at every balloon now (the census keeps how high each has been) and counts where they float.
+    pub fn float_counts(&mut self) -> Result<FloatCounts, WasmError> {
+        let world = &self.loaded.as_ref().ok_or(WasmError::NoWorld)?.built.world;
+        Ok(gas::float_counts(world, &mut self.census))
+    }
+
+    /// What the next steps record: `PROBE_OFF`, `PROBE_ALL`, or one body's dense index.
+    pub fn set_force_probe(&mut self, which: i32) -> Result<(), WasmError> {
+        forces::set_force_probe(self.world_mut()?, which)
+    }
+
+    /// Writes the last step's probed forces into `forces`; returns how many bodies.
+    pub fn write_forces(&mut self) -> Result<usize, WasmError> {
+        let world = &self.loaded.as_ref().ok_or(WasmError::NoWorld)?.built.world;
+        Ok(forces::write_forces(world, &mut self.forces))
+    }
+
+    /// The card of the balloon at dense index `index`.
+    pub fn body_card(&self, index: u32) -> Result<forces::BodyCard, WasmError> {
+        forces::body_card(self.world()?, index)
+    }
+
+    /// Each body's deepest dent since the last call into `squash.out`, then forgotten.
+    pub fn write_body_squash(&mut self) -> Result<(), WasmError> {
+        let count = self.world()?.body_count();
+        self.squash.write(count);
+        Ok(())
+    }
+
+    /// Ribbons in the world (0 without one).
+    pub fn ribbon_count(&self) -> usize {
+        self.world().map_or(0, World::ribbon_count)
+    }
+
+    /// Every ribbon's points into `ribbons.points`.
+    pub fn write_ribbon_points(&mut self) -> Result<(), WasmError> {
+        let world = &self.loaded.as_ref().ok_or(WasmError::NoWorld)?.built.world;
+        self.ribbons.write_points(world);
+        Ok(())
+    }
+
+    /// Each ribbon's first point, balloon, colour and end weight into `ribbons`.
+    pub fn write_ribbon_tables(&mut self) -> Result<(), WasmError> {
+        let loaded = self.loaded.as_ref().ok_or(WasmError::NoWorld)?;
+        self.ribbons.write_tables(loaded);
+        Ok(())
+    }
+
+    /// The first group's ribbon length, m (0: none, or no world).
+    pub fn ribbon_length(&self) -> f32 {
+        self.loaded.as_ref().map_or(0.0, ribbons::ribbon_length)
+    }
+
+    /// Holds point `point` of ribbon `index` and carries it toward `target`.
+    pub fn grab_ribbon(&mut self, index: u32, point: u32, target: Vec3) -> Result<(), WasmError> {
+        ribbons::grab_ribbon(self.loaded_mut()?, index, point, target)
+    }
+
+    /// Whether each balloon model (one per group, in group order) is foil.
+    pub fn model_foil(&self) -> Result<Vec<bool>, WasmError> {
+        Ok(model_mesh::model_foil(self.loaded()?))
+    }
+
+    /// Writes model `model`'s surface into `mesh`; returns the vertex count.
+    pub fn write_model_mesh(&mut self, model: u32) -> Result<usize, WasmError> {
+        let loaded = self.loaded.as_ref().ok_or(WasmError::NoWorld)?;
+        self.mesh.write(loaded, model)
     }
 }
 

@@ -204,7 +204,7 @@ fn stage_times_are_averaged_over_the_steps_since_the_last_read() {
     s.step(5).unwrap();
     let first = s.stats().unwrap();
     assert!(first.stages.iter().any(|st| st.0 == "solve"), "{first:?}");
-    assert_eq!(s.steps_summed, 0, "reading resets the sums");
+    assert_eq!(s.stage_sums.steps(), 0, "reading resets the sums");
     // No step since: the last step's own times are reported.
     let again = s.stats().unwrap();
     assert_eq!(again.bodies, 50);
@@ -215,7 +215,7 @@ fn stage_times_are_averaged_over_the_steps_since_the_last_read() {
 fn a_ribbon_length_ties_one_ribbon_to_every_balloon_and_to_those_added() {
     let mut s = default_state();
     let n = s.body_count();
-    s.set_ribbon_length(1.5).unwrap();
+    s.apply_live(LiveSetting::RibbonLength(1.5)).unwrap();
     assert_eq!(s.ribbon_count(), n);
     assert_eq!(s.ribbon_length(), 1.5);
     s.write_ribbon_tables().unwrap();
@@ -262,7 +262,7 @@ fn a_ribbon_length_ties_one_ribbon_to_every_balloon_and_to_those_added() {
     let stretch = s.world().unwrap().ribbon_max_stretch();
     assert_eq!(stats.ribbon_max_stretch, stretch);
     assert!(stretch.is_finite() && stretch >= 0.0, "{stretch}");
-    s.set_ribbon_length(0.0).unwrap();
+    s.apply_live(LiveSetting::RibbonLength(0.0)).unwrap();
     assert_eq!(s.ribbon_count(), 0);
     s.add_balloon_on_floor(-0.5, 0.5, 0).unwrap();
     assert_eq!(s.ribbon_count(), 0, "length 0: no ribbon");
@@ -271,10 +271,13 @@ fn a_ribbon_length_ties_one_ribbon_to_every_balloon_and_to_those_added() {
 #[test]
 fn a_bad_ribbon_length_or_grab_is_refused_and_changes_nothing() {
     let mut s = default_state();
-    s.set_ribbon_length(1.0).unwrap();
+    s.apply_live(LiveSetting::RibbonLength(1.0)).unwrap();
     let hash = s.world().unwrap().state_hash();
     for bad in [f32::NAN, -1.0, crate::ribbons::MAX_RIBBON_LENGTH_M + 1.0] {
-        assert!(s.set_ribbon_length(bad).is_err(), "{bad}");
+        assert!(
+            s.apply_live(LiveSetting::RibbonLength(bad)).is_err(),
+            "{bad}"
+        );
     }
     let ribbons = s.ribbon_count() as u32;
     assert_eq!(
@@ -301,7 +304,7 @@ fn a_bad_ribbon_length_or_grab_is_refused_and_changes_nothing() {
 fn pulling_a_ribbon_end_down_brings_its_balloon_down() {
     let mut s = default_state();
     s.step(600).unwrap(); // the balloons reach the ceiling
-    s.set_ribbon_length(1.0).unwrap();
+    s.apply_live(LiveSetting::RibbonLength(1.0)).unwrap();
     s.step(60).unwrap();
     s.write_ribbon_tables().unwrap();
     let body = s.ribbons.bodies[0] as usize;
@@ -326,7 +329,7 @@ fn pulling_a_ribbon_end_down_brings_its_balloon_down() {
 #[test]
 fn popping_a_balloon_takes_its_ribbon_and_the_tables_follow() {
     let mut s = default_state();
-    s.set_ribbon_length(0.5).unwrap();
+    s.apply_live(LiveSetting::RibbonLength(0.5)).unwrap();
     let n = s.body_count();
     s.remove(0).unwrap();
     assert_eq!(s.ribbon_count(), n - 1);
@@ -354,7 +357,7 @@ fn the_scene_ties_its_ribbons_and_the_page_length_is_written_into_the_scene() {
     s.add_balloon(Vec3::new(0.5, 1.0, 0.0), 0, 1).unwrap();
     assert_eq!(s.ribbon_count(), 4, "the second group has none");
 
-    s.set_ribbon_length(1.25).unwrap();
+    s.apply_live(LiveSetting::RibbonLength(1.25)).unwrap();
     assert_eq!(s.ribbon_count(), s.body_count(), "every group gets one");
     let scene = Scene::from_json_str(&s.scene_json().unwrap(), "t").unwrap();
     let ribbons: Vec<_> = scene
@@ -372,7 +375,7 @@ fn the_scene_ties_its_ribbons_and_the_page_length_is_written_into_the_scene() {
     t.load_json(&again).unwrap();
     assert_eq!(t.ribbon_count(), t.body_count());
 
-    s.set_ribbon_length(0.0).unwrap();
+    s.apply_live(LiveSetting::RibbonLength(0.0)).unwrap();
     assert_eq!(s.ribbon_count(), 0);
     let scene = Scene::from_json_str(&s.scene_json().unwrap(), "t").unwrap();
     assert_eq!(scene.balloons[0].ribbon.as_ref().unwrap().length_m, 0.0);

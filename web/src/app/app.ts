@@ -16,7 +16,8 @@ import { FloatPlot } from "../ui/floatPlot";
 import { Messages } from "../ui/messages";
 import { Panel, type PanelActions } from "../ui/panel";
 import type { KeyAction } from "../ui/input";
-import { applyParams, paramsFromScene, withRibbonLength, type PanelParams } from "../scene/sceneParams";
+import { applyParams, paramsFromScene, type PanelParams } from "../scene/sceneParams";
+import type { Scene } from "../scene/sceneSchema";
 import { ShareLink } from "./shareLink";
 import { PhysicsView } from "./physicsView";
 import { FrameMeter } from "./frameMeter";
@@ -50,8 +51,8 @@ export class App {
   readonly recorder: ClipRecorder;
   /** The engine's description of the world shown (null until the first is ready). */
   info: WorldInfo | null = null;
-  /** The scene shown, as the engine read it (every default written out). */
-  scene: Record<string, unknown> = {};
+  /** The scene shown, as the engine read it (every default written out); its live settings as the engine last took them. */
+  scene: Scene = {};
   /** The worker's last stats and its steps per second. */
   lastStats: { stats: EngineStats; stepsPerSecond: number } | null = null;
   /** Frames drawn with balloons, and main-thread ms spent in renderer.render over them (measurements). */
@@ -87,6 +88,11 @@ export class App {
       },
       census: (sample) => this.plot.push(sample),
       error: (message, fatal) => this.engineError(message, fatal),
+      scene: (json) => {
+        // A live setting taken: the scene (and its link) say so.
+        this.scene = JSON.parse(json) as Scene;
+        this.link.set(JSON.stringify(this.scene));
+      },
     });
     this.physics = new PhysicsView(this.stage.scene, document.body, this.bridge, this.stage.camera);
     this.controls = new Controls(this.stage.camera, this.stage.renderer.domElement, this.bridge, {
@@ -120,7 +126,9 @@ export class App {
     this.info = info;
     this.plot.clear();
     this.link.pending = false;
-    this.scene = JSON.parse(info.sceneJson) as Record<string, unknown>;
+    // The engine's own JSON of a `Scene`; the caption reads it as plain JSON.
+    const sceneJson = JSON.parse(info.sceneJson) as Record<string, unknown>;
+    this.scene = sceneJson as Scene;
     const params = paramsFromScene(this.scene);
     const box = { halfWidth: params.width / 2, halfDepth: params.depth / 2, top: roomTop(params) };
     const roomChanged = this.world.setWorld(info);
@@ -128,15 +136,15 @@ export class App {
     this.controls.setWorld(box, info.trees, this.firstWorld || roomChanged);
     this.firstWorld = false;
     if (!this.panel) {
-      this.panel = new Panel(params, this.panelActions, Math.min(PANEL_MAX_BALLOONS, info.capacity));
+      this.panel = new Panel(params, this.scene, info.constants, this.panelActions, Math.min(PANEL_MAX_BALLOONS, info.capacity));
       const assets = new URL("assets/", document.baseURI).href;
       this.physics.addMenu(this.panel.gui, assets, () => this.messages.clear()).catch((e: Error) => this.messages.error(`The teaching scenes failed to load: ${e.message}`));
       // Threads only where memory can be shared; a new count restarts the engine on the scene shown.
       if (info.isolated) this.panel.addThreads(info.threads, Math.max(info.threads, Math.min(MAX_THREADS, navigator.hardwareConcurrency || 1)), (n) => this.bridge.restart(JSON.stringify(this.scene), n));
-    } else this.panel.set(params);
+    } else this.panel.set(params, this.scene);
     this.hud.setThreads(info.threads, info.isolated);
     // A teaching scene's address is the scene the engine read from its file.
-    if (this.physics.worldReady(info, this.scene)) this.link.set(info.sceneJson);
+    if (this.physics.worldReady(info, sceneJson)) this.link.set(info.sceneJson);
     this.page.loading.hidden = true;
   }
 
@@ -189,7 +197,7 @@ export class App {
       void this.bridge.validate(json).then((error) => {
         if (error) {
           this.messages.error(`This scene is not valid: ${error}`);
-          this.panel?.set(paramsFromScene(this.scene));
+          this.panel?.set(paramsFromScene(this.scene), this.scene);
           return;
         }
         this.messages.clear();
@@ -197,12 +205,8 @@ export class App {
         this.link.set(json);
       });
     },
-    ribbonLength: (params) => {
-      // Re-tied in the running world: the balloons stay where they are.
-      this.scene = withRibbonLength(this.scene, params.ribbonLength);
-      this.bridge.setRibbonLength(params.ribbonLength);
-      this.link.set(JSON.stringify(this.scene));
-    },
+    // The running world takes it; the engine's scene comes back (`scene` above).
+    live: (setting) => this.bridge.live(setting),
     reset: () => {
       this.messages.clear();
       this.bridge.load(null);

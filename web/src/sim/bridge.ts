@@ -2,7 +2,7 @@
 // frame of poses, hands the previous buffer back (ping-pong), and tells how
 // far between the two steps of a frame the display is (interpolation).
 
-import type { EngineStats, RibbonTables } from "./engine";
+import type { EngineStats, LiveSetting, RibbonTables } from "./engine";
 import type { CensusSample, Frame, FromWorker, ToWorker, Vec3Tuple, WorldInfo } from "./protocol";
 import { frameViews } from "./frameLayout";
 import type { ForcesPayload } from "./forcesFrame";
@@ -16,6 +16,8 @@ export interface BridgeEvents {
   /** A look at where the balloons float (for the plot). */
   census(sample: CensusSample): void;
   error(message: string, fatal: boolean): void;
+  /** The engine's scene after a live setting, as JSON. */
+  scene(sceneJson: string): void;
 }
 
 export class SimBridge {
@@ -71,7 +73,7 @@ export class SimBridge {
   private receive(msg: FromWorker): void {
     switch (msg.type) {
       case "ready":
-        setEngineConstants(msg.info.constants);
+        setEngineConstants(msg.info.constants, msg.info.defaultSceneJson);
         this.info = msg.info;
         if (this.restore) {
           if (this.restore.paused) this.setPaused(true);
@@ -109,6 +111,9 @@ export class SimBridge {
         break;
       case "error":
         this.events.error(msg.message, msg.fatal);
+        break;
+      case "scene":
+        this.events.scene(msg.sceneJson);
         break;
       case "validated":
         this.validations.get(msg.id)?.(msg.error);
@@ -239,9 +244,9 @@ export class SimBridge {
     if (this.current) this.send({ type: "grabRibbon", ribbon, point, version: this.current.version, target });
   }
 
-  /** Re-ties ribbons of `length` m on every balloon (0: none). */
-  setRibbonLength(length: number): void {
-    this.send({ type: "ribbonLength", length });
+  /** A live setting for the running world, forwarded as it is (`Engine.applyLive`). */
+  live(setting: LiveSetting): void {
+    this.send({ type: "live", setting });
   }
 
   dragTo(point: Vec3Tuple): void {

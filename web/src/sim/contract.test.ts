@@ -8,14 +8,15 @@ import { decodeSceneParam, toBase64Url } from "../scene/sceneLink";
 import { applyParams, paramsFromScene } from "../scene/sceneParams";
 import { engineConstants, setEngineConstants } from "../scene/sceneSchema";
 import { loadBuiltEngine } from "./builtEngine";
-import { Engine, EngineError } from "./engine";
+import { Engine, EngineError, type LiveSetting, type Scene } from "./engine";
+import { LIVE_LINES } from "../ui/panel";
 import { CONTACT_STRIDE, RIBBON_POINT_STRIDE, SQUASH_STRIDE, checkLayout, frameFloats } from "./frameLayout";
 
 let engine: Engine;
 
 beforeAll(async () => {
   engine = await loadBuiltEngine();
-  setEngineConstants(engine.constants);
+  setEngineConstants(engine.constants, engine.defaultSceneJson());
 });
 
 const b64 = (text: string) => toBase64Url(new TextEncoder().encode(text));
@@ -53,6 +54,9 @@ describe("strides", () => {
   });
 });
 
+/** The panel's ribbon length line, as the engine takes it. */
+const ribbonLength = (value: number) => engine.applyLive({ control: "ribbon_length", value });
+
 describe("ribbons", () => {
   /** Ribbon r's points as [x, y, z] triples. */
   const pointsOf = (r: number) => {
@@ -65,7 +69,7 @@ describe("ribbons", () => {
 
   it("come in one array of points, with each ribbon's first point, balloon and colour", () => {
     engine.loadDefaultScene();
-    engine.setRibbonLength(1.5);
+    ribbonLength(1.5);
     const n = engine.bodyCount();
     expect(engine.ribbonLength()).toBe(1.5);
     expect(engine.ribbonCount()).toBe(n);
@@ -98,13 +102,13 @@ describe("ribbons", () => {
 
   it("are tied to balloons added later, and untied by a length of 0", () => {
     engine.loadDefaultScene();
-    engine.setRibbonLength(0.8);
+    ribbonLength(0.8);
     const n = engine.bodyCount();
     engine.addBalloonOnFloor(0.5, 0.5, 0);
     expect(engine.ribbonCount()).toBe(n + 1);
     engine.remove(0);
     expect(engine.ribbonCount(), "a popped balloon takes its ribbon").toBe(n);
-    engine.setRibbonLength(0);
+    ribbonLength(0);
     expect(engine.ribbonCount()).toBe(0);
     expect(engine.ribbonPoints().length).toBe(0);
     engine.addBalloonOnFloor(-0.5, 0.5, 0);
@@ -114,7 +118,7 @@ describe("ribbons", () => {
   it("a ribbon's free end pulled down brings its balloon down", () => {
     engine.loadDefaultScene();
     engine.step(600); // to the ceiling
-    engine.setRibbonLength(1);
+    ribbonLength(1);
     engine.step(30);
     const { bodies } = engine.ribbons();
     const ribbon = pointsOf(0);
@@ -131,13 +135,13 @@ describe("ribbons", () => {
 
   it("refuses a bad length or grab, naming it, and keeps the world", () => {
     engine.loadDefaultScene();
-    engine.setRibbonLength(1);
+    ribbonLength(1);
     const hash = engine.stateHash();
     const ribbons = engine.ribbonCount();
     const calls: [() => void, string][] = [
-      [() => engine.setRibbonLength(engine.constants.max_ribbon_length_m + 1), "OutOfRange"],
-      [() => engine.setRibbonLength(-1), "OutOfRange"],
-      [() => engine.setRibbonLength(NaN), "BadArgument"],
+      [() => ribbonLength(engine.constants.max_ribbon_length_m + 1), "OutOfRange"],
+      [() => ribbonLength(-1), "OutOfRange"],
+      [() => ribbonLength(NaN), "BadArgument"],
       [() => engine.grabRibbon(ribbons, 1, 0, 1, 0), "OutOfRange"],
       [() => engine.grabRibbon(0, 0, 0, 1, 0), "OutOfRange"],
       [() => engine.grabRibbon(0, 1, 0, NaN, 0), "BadArgument"],
@@ -151,10 +155,55 @@ describe("ribbons", () => {
       }
       expect(thrown).toBeInstanceOf(EngineError);
       expect((thrown as EngineError).kind).toBe(kind);
-      expect((thrown as EngineError).message).toMatch(/^(set_ribbon_length|grab_ribbon): /);
+      expect((thrown as EngineError).message).toMatch(/^(apply_live|grab_ribbon): /);
     }
     expect(engine.stateHash()).toBe(hash);
     expect(engine.ribbonLength()).toBe(1);
+  });
+});
+
+describe("live settings", () => {
+  it("the page's LiveSetting type and the engine's enum name the same controls, each with a range", () => {
+    // Exhaustive over the generated union: a control added in Rust fails to compile here until named.
+    const named: Record<LiveSetting["control"], true> = { ribbon_length: true, gravity: true };
+    const ranges = engine.constants.live;
+    expect(ranges.map((r) => r.control).sort()).toEqual(Object.keys(named).sort());
+    for (const r of ranges) expect(r.min).toBeLessThan(r.max);
+    expect(ranges.find((r) => r.control === "ribbon_length")?.max).toBe(engine.constants.max_ribbon_length_m);
+    // Every live control has its panel line.
+    expect(LIVE_LINES.map((l) => l.control).sort()).toEqual(Object.keys(named).sort());
+  });
+
+  it("gravity is taken by the running world: a moon room's net lift is a sixth of Earth's, and the scene says so", () => {
+    engine.loadDefaultScene();
+    engine.step(1);
+    const earth = engine.bodyCard(0);
+    const before = engine.bodyCount();
+    engine.applyLive({ control: "gravity", value: 1.62 });
+    expect(engine.bodyCount(), "the world is not rebuilt").toBe(before);
+    const moon = engine.bodyCard(0);
+    expect(moon.net_lift_n / earth.net_lift_n).toBeCloseTo(1.62 / 9.81, 3);
+    expect(moon.net_lift_g).toBeCloseTo(earth.net_lift_g, 3);
+    const scene = JSON.parse(engine.sceneJson()) as Scene;
+    expect(scene.sim?.gravity).toEqual([0, -1.62, 0]);
+    for (const [value, kind] of [[-1, "OutOfRange"], [NaN, "BadArgument"]] as const) {
+      expect(() => engine.applyLive({ control: "gravity", value })).toThrow(EngineError);
+      try {
+        engine.applyLive({ control: "gravity", value });
+      } catch (e) {
+        expect((e as EngineError).kind).toBe(kind);
+      }
+    }
+    // Not a control of the engine: refused as a bad argument, and the engine goes on.
+    let unknown: unknown = null;
+    try {
+      engine.applyLive({ control: "wind", value: 1 } as unknown as LiveSetting);
+    } catch (e) {
+      unknown = e;
+    }
+    expect((unknown as EngineError).kind).toBe("BadArgument");
+    expect((unknown as EngineError).message).toMatch(/^apply_live: /);
+    engine.step(1);
   });
 });
 
@@ -293,7 +342,7 @@ describe("scene validation is the engine's", () => {
   it("accepts the empty scene, the default scene, and what the panel writes", () => {
     expect(pageVerdict({})).toBeNull();
     expect(engine.validateScene(engine.defaultSceneJson())).toBeNull();
-    const base = JSON.parse(engine.defaultSceneJson()) as Record<string, unknown>;
+    const base = JSON.parse(engine.defaultSceneJson()) as Scene;
     const p = { ...paramsFromScene(base), count: 7, sizeIn: 16, helium: false, ceiling: "flat" as const, friction: 0.2 };
     expect(pageVerdict(applyParams(base, p))).toBeNull();
   });

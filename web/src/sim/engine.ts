@@ -9,7 +9,7 @@
 import type * as Glue from "../../public/wasm/up_wasm";
 import { SQUASH_STRIDE } from "./frameLayout";
 
-export type { AdvanceReport, BodyCard, Constants, EngineStats, Finish, FloatCounts, NamedColor, Scene, SceneLimits, WorldSummary } from "../../public/wasm/up_wasm";
+export type { AdvanceReport, BodyCard, Constants, EngineStats, Finish, FloatCounts, LiveRange, LiveSetting, NamedColor, Scene, SceneLimits, WorldSummary } from "../../public/wasm/up_wasm";
 
 /** The glue module as `import()` returns it. */
 export type GlueModule = typeof Glue;
@@ -298,12 +298,16 @@ export class Engine {
     };
   }
 
-  /** Re-ties a ribbon of `length` m on every balloon and on those added later (0: none). */
-  setRibbonLength(length: number): void {
-    this.call(() => this.e.set_ribbon_length(length));
+  /**
+   * Applies a live setting (a panel control that changes the running world:
+   * the ribbon length, gravity, …) and writes it into the scene `sceneJson`
+   * returns; refused outside `constants.live`'s range for it.
+   */
+  applyLive(setting: Glue.LiveSetting): void {
+    this.call(() => this.e.apply_live(setting));
   }
 
-  /** The ribbon length last set, m (0 before `setRibbonLength`). */
+  /** The first group's ribbon length, m (0: none), as the scene or `applyLive` set it. */
   ribbonLength(): number {
     return this.e.ribbon_length();
   }

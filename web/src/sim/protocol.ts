@@ -4,7 +4,7 @@
 // transfers it; the main thread keeps the newest frame and hands the previous
 // buffer back. No typed array is allocated per frame on either side.
 
-import type { Constants, EngineStats, Finish, ModelMesh, RibbonTables, RoomMesh, TreeNode } from "./engine";
+import type { Constants, EngineStats, Finish, LiveSetting, ModelMesh, RibbonTables, RoomMesh, TreeNode } from "./engine";
 import type { FloatSample } from "../ui/floatPlot";
 import type { ForcesPayload } from "./forcesFrame";
 import type { StepsMeasured } from "./stepMeter";
@@ -32,8 +32,8 @@ export type ToWorker =
   | { type: "grab"; index: number; version: number; point: Vec3Tuple }
   /** Holds point `point` of ribbon `ribbon` (ribbon order of frame `version`) and pulls it toward `target`. */
   | { type: "grabRibbon"; ribbon: number; point: number; version: number; target: Vec3Tuple }
-  /** Re-ties ribbons of `length` m on every balloon (0: none). */
-  | { type: "ribbonLength"; length: number }
+  /** A live setting for the running world (`Engine.applyLive`), as the panel made it; answered by `scene`. */
+  | { type: "live"; setting: LiveSetting }
   | { type: "dragTo"; point: Vec3Tuple }
   | { type: "release" }
   | { type: "return"; buffer: ArrayBuffer }
@@ -118,6 +118,8 @@ export type FromWorker =
   /** A look at where the balloons float, every simulated second to minute (`censusInterval`). */
   | { type: "census"; sample: CensusSample }
   | { type: "error"; message: string; fatal: boolean }
+  /** The scene as the engine holds it after a live setting (every default written out). */
+  | { type: "scene"; sceneJson: string }
   /** The engine's message when it refuses the scene of `validate` request `id`, else null. */
   | { type: "validated"; id: number; error: string | null }
   | ({ type: "stepsMeasured" } & StepsMeasured)

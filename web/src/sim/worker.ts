@@ -467,10 +467,14 @@ function handle(msg: ToWorker): void {
       case "grabRibbon":
         if (msg.version === state.version) state.engine.grabRibbon(msg.ribbon, msg.point, ...msg.target);
         break;
-      case "ribbonLength":
-        state.engine.setRibbonLength(msg.length);
+      case "live":
+        state.engine.applyLive(msg.setting);
+        // A setting may tie or untie ribbons: the page reads the tables afresh.
         state.version++;
         state.dirty = true;
+        // The world's scene now: a restart after a trap rebuilds it with the setting.
+        state.currentSceneJson = state.engine.sceneJson();
+        post({ type: "scene", sceneJson: state.currentSceneJson });
         break;
       case "dragTo":
         state.engine.dragTo(...msg.point);

@@ -1,13 +1,14 @@
-// The lil-gui panel: the scene's parameters (any change rebuilds the world
-// from the edited scene, but the ribbon length, which re-ties the ribbons in
-// the running world), reset, pause / single step, the time-lapse, the debug
-// view, a screenshot and the share link.
+// The lil-gui panel: the scene's parameters (a change rebuilds the world
+// from the edited scene), the live settings (a change is one `LiveSetting`
+// the engine applies to the running world: `LIVE_LINES`), reset, pause /
+// single step, the time-lapse, the debug view, a screenshot and the share link.
 
 import GUI from "lil-gui";
 import type { PanelParams } from "../scene/sceneParams";
+import { filledScene, type Scene } from "../scene/sceneSchema";
 import { TIME_LAPSE_RATES } from "../sim/timeLapse";
 import { formatRate } from "./clock";
-import type { Finish } from "../sim/engine";
+import type { Constants, Finish, LiveSetting } from "../sim/engine";
 
 /** The finish menu: every latex balloon drawn in one finish, or each group in its scene's. */
 export const FINISH_OPTIONS: Record<string, Finish | "scene"> = { "as the scene says": "scene", latex: "latex", pearl: "pearl", "foil (chrome)": "foil" };
@@ -15,14 +16,49 @@ export const FINISH_OPTIONS: Record<string, Finish | "scene"> = { "as the scene 
 /** The time-lapse menu: each rate's name ("real time", "×60", …) to its value. */
 export const TIME_LAPSE_OPTIONS: Record<string, number> = Object.fromEntries(TIME_LAPSE_RATES.map((r) => [formatRate(r), r]));
 
-/** Longest ribbon the panel's slider offers, m (a scene may tie longer ones). */
-const PANEL_MAX_RIBBON_M = 4;
+/** A live control's name: `control` of a `LiveSetting`. */
+export type LiveControl = LiveSetting["control"];
+
+/** A panel line for a live setting: where it sits, its label, and how it reads the scene. */
+export interface LiveLine<C extends LiveControl = LiveControl> {
+  control: C;
+  folder: "Balloons" | "Physics" | "Room";
+  name: string;
+  /** Slider step. */
+  step: number;
+  /** Largest value the slider offers, when narrower than the engine's range (the usual values, finer to pick). */
+  sliderMax?: number;
+  /** The setting's value in `scene` (a missing key read as the engine reads it). */
+  read(scene: Scene): number;
+}
+
+/**
+ * The live settings, one line each. A new live control is a line here and
+ * its `LiveSetting` variant in crates/up-wasm/src/live.rs: its range comes
+ * from the engine (`constants.live`).
+ */
+export const LIVE_LINES: LiveLine[] = [
+  { control: "ribbon_length", folder: "Balloons", name: "ribbon length (m, 0: none)", step: 0.05, sliderMax: 4, read: (s) => s.balloons?.[0]?.ribbon?.length_m ?? 0 },
+  { control: "gravity", folder: "Room", name: "gravity (m/s², Moon 1.62)", step: 0.01, read: (s) => -filledScene(s).sim.gravity[1] },
+];
+
+/** The message a live line sends for `value`. */
+export function liveSetting<C extends LiveControl>(control: C, value: number): Extract<LiveSetting, { control: C }> {
+  return { control, value } as Extract<LiveSetting, { control: C }>;
+}
+
+/** The engine's range for `control` (`constants.live`), clamped to the line's slider. */
+export function sliderRange(line: LiveLine, constants: Constants): { min: number; max: number } {
+  const range = constants.live.find((r) => r.control === line.control);
+  if (!range) throw new Error(`the engine has no live setting "${line.control}"`);
+  return { min: range.min, max: Math.min(range.max, line.sliderMax ?? range.max) };
+}
 
 export interface PanelActions {
   /** A scene parameter changed (on finish: release of a slider, Enter in a box). */
   change(params: PanelParams): void;
-  /** The ribbon length changed (`params.ribbonLength`, m; 0: none). */
-  ribbonLength(params: PanelParams): void;
+  /** A live setting changed: the running world takes it. */
+  live(setting: LiveSetting): void;
   reset(): void;
   togglePause(): void;
   step(): void;
@@ -44,6 +80,8 @@ export interface PanelActions {
 export class Panel {
   readonly gui: GUI;
   private readonly params: PanelParams;
+  /** The live lines' values, by control. */
+  private readonly liveValues: Record<string, number> = {};
   private readonly view = { trees: false, timeLapse: 1, finish: "scene" as Finish | "scene" };
   private readonly pauseButton: ReturnType<GUI["add"]>;
   private readonly sim: GUI;
@@ -63,10 +101,13 @@ export class Panel {
 
   constructor(
     initial: PanelParams,
+    scene: Scene,
+    constants: Constants,
     private readonly actions: PanelActions,
     maxBalloons: number,
   ) {
     this.params = { ...initial };
+    for (const line of LIVE_LINES) this.liveValues[line.control] = line.read(scene);
     this.gui = new GUI({ title: "UP — scene" });
     const p = this.params;
     const changed = () => actions.change({ ...p });
@@ -80,9 +121,6 @@ export class Panel {
     tag(balloons.add(p, "count", 0, maxBalloons, 1), "count").name("balloons").onFinishChange(changed);
     balloons.add(p, "sizeIn", 5, 36, 0.5).name("size (inches)").onFinishChange(changed);
     balloons.add(p, "helium").name("helium (else air)").onFinishChange(changed);
-    tag(balloons.add(p, "ribbonLength", 0, PANEL_MAX_RIBBON_M, 0.05), "ribbonLength")
-      .name("ribbon length (m, 0: none)")
-      .onFinishChange(() => actions.ribbonLength({ ...p }));
     tag(balloons.add(this.view, "finish", FINISH_OPTIONS), "finish").onChange((f: Finish | "scene") => actions.finish(f === "scene" ? null : f));
 
     const physics = this.gui.addFolder("Physics");
@@ -97,6 +135,14 @@ export class Panel {
     room.add(p, "wallHeight", 1, 20, 0.1).name("wall height (m)").onFinishChange(changed);
     room.add(p, "ceiling", ["pyramid", "flat"]).onFinishChange(changed);
     room.add(p, "apexHeight", 0.1, 10, 0.1).name("apex height (m)").onFinishChange(changed);
+
+    const folders = { Balloons: balloons, Physics: physics, Room: room };
+    for (const line of LIVE_LINES) {
+      const { min, max } = sliderRange(line, constants);
+      tag(folders[line.folder].add(this.liveValues, line.control, min, max, line.step), line.control)
+        .name(line.name)
+        .onFinishChange((value: number) => actions.live(liveSetting(line.control, value)));
+    }
 
     const sim = (this.sim = this.gui.addFolder("Simulation"));
     this.pauseButton = sim.add(this.buttons, "pause").name("pause (space)");
@@ -124,9 +170,10 @@ export class Panel {
     this.recordButton.name(on ? "stop recording (R)" : "record (R)");
   }
 
-  /** Shows `params` (after a reset or a loaded link) without firing changes. */
-  set(params: PanelParams): void {
+  /** Shows `params` and `scene`'s live settings (after a reset or a loaded link) without firing changes. */
+  set(params: PanelParams, scene: Scene): void {
     Object.assign(this.params, params);
+    for (const line of LIVE_LINES) this.liveValues[line.control] = line.read(scene);
     for (const c of this.gui.controllersRecursive()) c.updateDisplay();
   }
 

@@ -1,4 +1,5 @@
-//! What a user does to bodies: wake, push, set moving, grab and throw.
+//! What a user does to bodies: wake, push, set moving, grab and throw; and
+//! to the room: its gravity.
 
 use glam::Vec3;
 
@@ -115,6 +116,17 @@ impl World {
 
     pub fn grabbed(&self) -> Option<BodyId> {
         self.grab.map(|g| g.body)
+    }
+
+    /// Sets gravity, m/s² (a room on the Moon: (0, −1.62, 0)), and wakes
+    /// every body: each step reads it afresh, so the next one feels it.
+    pub fn set_gravity(&mut self, gravity: Vec3) -> Result<(), PhysicsError> {
+        if !gravity.is_finite() {
+            return Err(PhysicsError::NonFinite { what: "gravity" });
+        }
+        self.def.gravity = gravity;
+        self.wake_all();
+        Ok(())
     }
 
     /// Wakes every sleeping body.
