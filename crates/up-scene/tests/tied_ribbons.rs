@@ -38,19 +38,20 @@ fn a_balloon_tied_to_a_point_floats_its_ribbons_length_above_it_pulling_with_its
         knot.distance(above)
     );
 
-    // Taut, pulling with the balloon's free lift less the weight of the
-    // ribbon hanging from its knot.
+    // Taut: the rope and the ribbon (its end tied to the same point) hold
+    // the balloon down together against its free lift; a free ribbon would
+    // hang its own weight from the knot instead, the same law.
     let body = built.group_bodies[0][0];
     let g = world.def().gravity.length();
     let lift = world.free_lift(body).unwrap() * g;
     let ribbon = world.ribbon_of(body).unwrap();
-    let (_, ribbon_mass) = world.ribbon_length_and_mass(ribbon).unwrap();
-    let net = lift - ribbon_mass * g;
+    let pull = -world.ribbon_pull(ribbon).unwrap().y;
     let tension = world.joint_tension(rope).unwrap();
     assert!(tension > 0.0, "slack: {tension} N");
+    assert!(pull > 0.0, "the ribbon pushes the knot up: {pull} N");
     assert!(
-        (tension - net).abs() <= 0.03 * net,
-        "tension {tension} N, net lift {net} N"
+        (tension + pull - lift).abs() <= 0.03 * lift,
+        "rope {tension} N + ribbon {pull} N, free lift {lift} N"
     );
 }
 

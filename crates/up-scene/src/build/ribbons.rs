@@ -52,14 +52,17 @@ pub fn ribbon_def(body: BodyId, model: &BalloonModel, spec: &RibbonSpec) -> Ribb
         mass_per_length: spec.mass_per_m_g * 1e-3,
         segments: spec.segments,
         end_mass: spec.weight_g * 1e-3,
-        anchor: None,
+        anchor: spec.anchor.map(Vec3::from_array),
     }
 }
 
 /// Ties `spec`'s ribbon to `body` (added with `model`'s shape) at its knot,
-/// hanging straight down from it; None when `spec` has no ribbon
-/// (`length_m = 0`). The engine refuses, saying why, a body that does not
-/// exist or has a ribbon already, and values out of its ranges.
+/// hanging straight down from it, or sagging to its anchor where the group
+/// ties its ribbons down; None when `spec` has no ribbon (`length_m = 0`).
+/// A balloon whose knot is beyond its ribbon's reach of the anchor (one the
+/// page adds elsewhere in the room) gets a free ribbon: it was never tied
+/// there. The engine refuses, saying why, a body that does not exist or has
+/// a ribbon already, and values out of its ranges.
 pub fn tie_ribbon(
     world: &mut World,
     body: BodyId,
@@ -69,7 +72,13 @@ pub fn tie_ribbon(
     if spec.length_m == 0.0 {
         return Ok(None);
     }
-    world.add_ribbon(&ribbon_def(body, model, spec)).map(Some)
+    let mut def = ribbon_def(body, model, spec);
+    if let (Some(anchor), Some(pose)) = (def.anchor, world.pose(body)) {
+        if pose.transform_point(def.knot).distance(anchor) > def.length {
+            def.anchor = None;
+        }
+    }
+    world.add_ribbon(&def).map(Some)
 }
 
 #[cfg(test)]
