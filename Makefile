@@ -141,8 +141,10 @@ test-web: setup-web $(WASM_OUT)
 test-e2e: setup-browser build
 	cd web && npx tsc --noEmit -p e2e && npx playwright test
 
-# The WebAssembly build, run in Node, must end a small scene with the native run's state hash.
+# The WebAssembly build, run in Node, must end a small scene with the native run's state hash,
+# and agree with it body by body at every step (where not, it names the first step and body).
 test-determinism: build
+	node --test web/determinism/bodyHashes.test.mjs
 	node web/determinism/check.mjs
 
 test: lint test-rust test-web test-e2e test-determinism
