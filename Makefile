@@ -125,10 +125,11 @@ test-rust: test-fuzz-corpus
 # The fuzz targets cannot rot unseen: their bodies are fuzz/'s library
 # (fuzz/src, one `check(bytes)` a target; the cargo-fuzz binaries only call
 # them), which builds on stable, and its tests run every committed input of
-# fuzz/corpus/ through them: a regression suite of what the fuzzer found
-# (a minute or so). The lint above checks the binaries too; only libFuzzer's
-# instrumented build needs the nightly (`make fuzz`). fuzz/ is a workspace of
-# its own (cargo-fuzz's layout); it shares target/ with the main one.
+# fuzz/corpus/ through them: a regression suite of what the fuzzer found, so
+# more than a compile check (≈ 10 s, after a first build of ≈ 2 min). The
+# lint above checks the binaries too; only libFuzzer's instrumented build
+# needs the nightly (`make fuzz`). fuzz/ is a workspace of its own
+# (cargo-fuzz's layout); it shares target/ with the main one.
 test-fuzz-corpus:
 	$(CARGO) test --manifest-path fuzz/Cargo.toml --target-dir target --release --lib
 
