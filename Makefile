@@ -7,7 +7,8 @@
 #               writes the ribbons' table at the end of docs/benchmarks.md (half an hour or more)
 #   make measure  the web app in headless Chromium at BALLOONS (10000) on each of THREADS (1,2):
 #               physics per step, the main thread's frame work, input, state hash (one JSON line)
-#   make fuzz   run every cargo-fuzz target for FUZZ_SECONDS each (nightly + cargo-fuzz)
+#   make fuzz   run every cargo-fuzz target for FUZZ_SECONDS each (pinned nightly + cargo-fuzz);
+#               `make test` runs the targets over their committed corpus on stable
 #   make soak   the long run of issue 7: 10,000 balloons for an hour of simulated time
 # Every target installs what it needs, idempotently.
 
@@ -32,7 +33,7 @@ RUST_SOURCES := $(shell find crates -name '*.rs' -o -name Cargo.toml) Cargo.toml
 export PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD := 1
 WEB_SOURCES := $(shell find web/src web/index.html web/vite.config.* web/tsconfig*.json web/scripts -type f 2>/dev/null) $(shell find assets -type f 2>/dev/null)
 
-.PHONY: run build test lint test-rust test-web test-e2e test-determinism bench bench-ribbons measure fuzz soak setup setup-rust setup-wasm-threads setup-web setup-browser setup-bench serve clean
+.PHONY: run build test lint test-rust test-fuzz-corpus test-web test-e2e test-determinism bench bench-ribbons measure fuzz soak setup setup-rust setup-wasm-threads setup-web setup-browser setup-bench serve clean
 
 run: build
 	@echo "UP is being served on http://localhost:$(PORT)  (Ctrl-C stops it)"
@@ -115,9 +116,22 @@ serve:
 lint: setup-rust
 	$(CARGO) fmt --all -- --check
 	$(CARGO) clippy --workspace --all-targets --release -- -D warnings
+	$(CARGO) fmt --manifest-path fuzz/Cargo.toml --all -- --check
+	$(CARGO) clippy --manifest-path fuzz/Cargo.toml --target-dir target --all-targets --release -- -D warnings
 
-test-rust:
+test-rust: test-fuzz-corpus
 	$(CARGO) test --workspace --release
+
+# The fuzz targets cannot rot unseen: their bodies are fuzz/'s library
+# (fuzz/src, one `check(bytes)` a target; the cargo-fuzz binaries only call
+# them), which builds on stable, and its tests run every committed input of
+# fuzz/corpus/ through them: a regression suite of what the fuzzer found, so
+# more than a compile check (≈ 10 s, after a first build of ≈ 2 min). The
+# lint above checks the binaries too; only libFuzzer's instrumented build
+# needs the nightly (`make fuzz`). fuzz/ is a workspace of its own
+# (cargo-fuzz's layout); it shares target/ with the main one.
+test-fuzz-corpus:
+	$(CARGO) test --manifest-path fuzz/Cargo.toml --target-dir target --release --lib
 
 # The web tests load the built module (the contract test checks both sides agree).
 test-web: setup-web $(WASM_OUT)
@@ -128,8 +142,10 @@ test-web: setup-web $(WASM_OUT)
 test-e2e: setup-browser build
 	cd web && npx tsc --noEmit -p e2e && npx playwright test
 
-# The WebAssembly build, run in Node, must end a small scene with the native run's state hash.
+# The WebAssembly build, run in Node, must end a small scene with the native run's state hash,
+# and agree with it body by body at every step (where not, it names the first step and body).
 test-determinism: build
+	node --test web/determinism/bodyHashes.test.mjs
 	node web/determinism/check.mjs
 
 test: lint test-rust test-web test-e2e test-determinism
@@ -164,10 +180,10 @@ MEASURE_STEPS ?= 300
 measure: setup-browser build
 	cd web && node e2e/measure.mjs --balloons $(BALLOONS) --threads $(THREADS) --steps $(MEASURE_STEPS) --seconds 10
 
-fuzz:
-	@rustup toolchain list | grep -q nightly || rustup toolchain install nightly --profile minimal
-	@cargo +nightly fuzz --version >/dev/null 2>&1 || cargo install cargo-fuzz --locked
-	fuzz/run.sh $(FUZZ_SECONDS)
+# cargo-fuzz on the pinned nightly (the threaded wasm build's); fuzz/run.sh says what it runs.
+fuzz: setup-wasm-threads
+	@cargo +$(WASM_THREADS_TOOLCHAIN) fuzz --version >/dev/null 2>&1 || cargo install cargo-fuzz --locked
+	UP_NIGHTLY=$(WASM_THREADS_TOOLCHAIN) fuzz/run.sh $(FUZZ_SECONDS)
 
 soak: setup-rust
 	$(CARGO) run --release -p up-cli -- soak $(SOAK_ARGS)

@@ -14,6 +14,11 @@
 // Then the same with the threaded module (web/public/wasm/threads) on 1, 2
 // and 4 threads (UP_CHECK_THREADS=1,2,4), each in a process of its own (a
 // process holds one pool; web/sim-node/loadEngine.mjs loads it).
+// Beside the end hashes, every step is compared body by body: the native run
+// writes its body hash lines (`up run --body-hashes`, one a step), each wasm
+// run steps one step at a time and compares its `body_hash_line()` with the
+// native line of that step, so that where the builds part the check names the
+// first step and body, and which of the body's fields (bodyHashes.mjs).
 // Exit 0: equal; 1: they differ; 2: something needed is missing or failed.
 // UP_WASM=path.wasm checks that module instead of the web app's copy (its
 // glue, the same name ending in .js, lies next to it); UP_CHECK_THREADS=""
@@ -22,9 +27,11 @@
 // and `make web/public/wasm/threads/up_wasm.wasm`.
 
 import { execFileSync, spawnSync } from "node:child_process";
-import { existsSync, readFileSync, statSync } from "node:fs";
+import { existsSync, mkdtempSync, readFileSync, rmSync, statSync } from "node:fs";
+import { tmpdir } from "node:os";
 import { dirname, extname, join, resolve } from "node:path";
 import { fileURLToPath, pathToFileURL } from "node:url";
+import { describeParting, fieldsOf, firstParting } from "./bodyHashes.mjs";
 
 const here = dirname(fileURLToPath(import.meta.url));
 const root = resolve(here, "..", "..");
@@ -74,22 +81,37 @@ const call = (what, f) => {
   }
 };
 
-/** The world of the scene in `glue`'s module after `steps` steps: its counts and state hash. */
-function runWasm(glue, steps) {
+/** The native run's body hash file: its field names and its lines, one a step from step 0. */
+function readBodyHashes(path) {
+  const [header, ...lines] = readFileSync(path, "utf8").trimEnd().split("\n");
+  return { fields: fieldsOf(header), lines };
+}
+
+/**
+ * The world of the scene in `glue`'s module after `steps` steps: its counts,
+ * its state hash, and where it first parted from the native lines `native`
+ * (readBodyHashes; compared after every step; null if it never did).
+ */
+function runWasm(glue, steps, native) {
   const engine = new glue.Engine();
   call(`loading ${scenePath} in wasm`, () =>
     format === ".toml" ? engine.load_scene_toml(text) : engine.load_scene_json(text),
   );
-  // The module says how many steps one call takes.
-  const { max_steps_per_call } = glue.constants();
-  for (let done = 0; done < steps; ) {
-    const n = Math.min(max_steps_per_call, steps - done);
-    call(`step(${n})`, () => engine.step(n));
-    done += n;
+  let parting = null;
+  for (let done = 0; ; done++) {
+    const line = call("body_hash_line()", () => engine.body_hash_line());
+    parting = firstParting(native.lines[done] ?? "(no native line)", line, native.fields);
+    if (parting !== null || done === steps) break;
+    call("step(1)", () => engine.step(1));
   }
   // u64 comes back as a BigInt: print it as the CLI does (16 hex digits).
   const hash = BigInt.asUintN(64, engine.state_hash()).toString(16).padStart(16, "0");
-  return { bodies: engine.body_count(), ribbons: engine.ribbon_count(), hash };
+  return {
+    bodies: engine.body_count(),
+    ribbons: engine.ribbon_count(),
+    hash,
+    parting: parting && describeParting(parting),
+  };
 }
 
 // ---- the threaded module, in a child process of its own ----
@@ -101,18 +123,25 @@ if (child) {
   } catch (e) {
     fail(2, `the threaded module on ${child.threads} thread(s): ${e.message}`);
   }
-  console.log(JSON.stringify({ threads: loaded.threads, ...runWasm(loaded.glue, child.steps) }));
+  const hashes = readBodyHashes(child.bodyHashes);
+  console.log(JSON.stringify({ threads: loaded.threads, ...runWasm(loaded.glue, child.steps, hashes) }));
   process.exit(0);
 }
 
 // ---- native ----
 let native;
+const scratch = mkdtempSync(join(tmpdir(), "up-determinism-"));
+process.on("exit", () => rmSync(scratch, { recursive: true, force: true }));
+const bodyHashesPath = join(scratch, "body-hashes.txt");
 try {
-  const out = execFileSync(upBinary, ["run", scenePath, "--json"], { encoding: "utf8" });
+  const out = execFileSync(upBinary, ["run", scenePath, "--json", "--body-hashes", bodyHashesPath], {
+    encoding: "utf8",
+  });
   native = JSON.parse(out.trim().split("\n").pop());
 } catch (e) {
   fail(2, `up run ${scenePath} failed: ${e.stderr ?? e.message}`);
 }
+const nativeHashes = call(`reading ${bodyHashesPath}`, () => readBodyHashes(bodyHashesPath));
 const steps = native.steps;
 if (!Number.isInteger(steps) || steps < 1) fail(2, `up run gave no step count: ${JSON.stringify(native)}`);
 
@@ -125,27 +154,31 @@ function compare(what, wasm, built) {
     fail(1, `${what}: ribbon counts differ: native ${native.ribbons}, wasm ${wasm.ribbons}`);
   }
   const summary = `${scenePath}: ${native.balloons} balloons, ${wasm.ribbons} ribbons, ${steps} steps`;
-  if (wasm.hash !== native.state_hash) {
+  if (wasm.parting !== null || wasm.hash !== native.state_hash) {
     const age = (p) => statSync(p).mtime.toISOString();
+    const how =
+      wasm.parting === null
+        ? `state_hash differs: native ${native.state_hash}, wasm ${wasm.hash}`
+        : `native and wasm differ, ${wasm.parting}`;
     fail(
       1,
-      `${summary}: ${what}: state_hash differs: native ${native.state_hash}, wasm ${wasm.hash}\n` +
+      `${summary}: ${what}: ${how}\n` +
         `  (built: up ${age(upBinary)}, ${built} ${age(built)}; a stale build differs too: rebuild both)`,
     );
   }
-  console.log(`determinism: ${summary}: native and ${what} agree, state_hash ${wasm.hash}`);
+  console.log(`determinism: ${summary}: native and ${what} agree at every step, state_hash ${wasm.hash}`);
 }
 
 // ---- WebAssembly, one thread ----
 const glue = await import(pathToFileURL(gluePath).href);
 glue.initSync({ module: readFileSync(wasmPath) });
-compare("wasm", runWasm(glue, steps), wasmPath);
+compare("wasm", runWasm(glue, steps, nativeHashes), wasmPath);
 
 // ---- WebAssembly, threaded ----
 for (const threads of threadCounts) {
   const run = spawnSync(process.execPath, [fileURLToPath(import.meta.url), scenePath], {
     encoding: "utf8",
-    env: { ...process.env, UP_CHECK_CHILD: JSON.stringify({ threads, steps }) },
+    env: { ...process.env, UP_CHECK_CHILD: JSON.stringify({ threads, steps, bodyHashes: bodyHashesPath }) },
     timeout: 600_000,
   });
   if (run.status !== 0) fail(2, `the threaded module on ${threads} thread(s) failed (exit ${run.status ?? run.signal}): ${run.stderr.trim()}`);

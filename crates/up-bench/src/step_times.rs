@@ -1,11 +1,9 @@
 //! `--step-times FILE.csv`: every step's wall time for each engine, so the
 //! distribution behind the median can be looked at (`step,<engine>,...` in
-//! ms). The file is written whole or not at all: to a temporary file beside
-//! it, then renamed over it.
+//! ms). The file is written whole or not at all, by up-scene's atomic writer.
 
 use std::fmt::Write as _;
-use std::fs;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use anyhow::{bail, Context, Result};
 
@@ -62,21 +60,17 @@ pub fn write(path: &Path, engines: &[&str], times: &[Vec<f64>]) -> Result<()> {
         .with_context(|| format!("--step-times: writing {}", path.display()))
 }
 
-/// Writes `text` to a temporary file beside `path`, then renames it over
-/// `path`: a reader finds the old file or the new one, never a part.
+/// Writes `text` to `path` whole or not at all (`up_scene::atomic_file`):
+/// a reader finds the old file or the new one, never a part.
 pub fn write_whole(path: &Path, text: &str) -> std::io::Result<()> {
-    let mut temporary = PathBuf::from(path);
-    temporary.as_mut_os_string().push(".partial");
-    fs::write(&temporary, text)
-        .and_then(|()| fs::rename(&temporary, path))
-        .inspect_err(|_| {
-            let _ = fs::remove_file(&temporary);
-        })
+    up_scene::atomic_file::write_atomically(path, text.as_bytes())
+        .map_err(up_scene::atomic_file::WriteError::into_io_error)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::fs;
 
     #[test]
     fn a_header_then_a_row_per_step() {
@@ -92,7 +86,11 @@ mod tests {
         check_target(&path).unwrap();
         write(&path, &["up"], &[vec![3.0]]).unwrap();
         assert_eq!(fs::read_to_string(&path).unwrap(), "step,up\n1,3.0000\n");
-        assert!(!dir.join("t.csv.partial").exists());
+        let names: Vec<_> = fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(names, ["t.csv"], "nothing but the file is left beside it");
         fs::remove_dir_all(&dir).unwrap();
     }
 

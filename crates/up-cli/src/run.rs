@@ -7,6 +7,7 @@ use std::time::Instant;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use up_physics::divergence::{body_hash_header, body_hash_line};
 use up_physics::World;
 use up_scene::build::{build_world, BuiltScene};
 use up_scene::scene::Scene;
@@ -63,6 +64,12 @@ pub struct RunArgs {
     /// spawn (the scene still gives the room for the summary).
     #[arg(long, value_name = "FILE")]
     pub load_state: Option<PathBuf>,
+    /// Write every body's state hashes at the start and after each step
+    /// (`up_physics::divergence::body_hash_line`: a line a step, after a
+    /// header): two runs whose end hashes differ compare these to find the
+    /// first step and body where they part (web/determinism/check.mjs does).
+    #[arg(long, value_name = "FILE", conflicts_with = "hours")]
+    pub body_hashes: Option<PathBuf>,
     #[command(flatten)]
     pub probe: crate::probe::ProbeArgs,
 }
@@ -134,6 +141,14 @@ pub fn run(args: &RunArgs) -> Result<()> {
         "t,balloon,point,x,y,z",
         write_ribbon_rows,
     )?;
+    let mut body_hashes = CsvOut::create(
+        args.body_hashes.as_deref(),
+        &body_hash_header(),
+        write_body_hash_line,
+    )?;
+    if let Some(out) = &mut body_hashes {
+        out.write(world)?;
+    }
     if let Some(path) = &args.save_state {
         // Probe the directory now rather than after a long run.
         AtomicFile::create(path)?;
@@ -150,13 +165,18 @@ pub fn run(args: &RunArgs) -> Result<()> {
     let started = Instant::now();
     let ran = match length {
         Length::Steps(steps) => {
-            let mut each_step = |world: &World| probe.as_mut().map_or(Ok(()), |p| p.write(world));
+            let mut each_step = |world: &World| -> Result<()> {
+                if let Some(p) = &mut probe {
+                    p.write(world)?;
+                }
+                body_hashes.as_mut().map_or(Ok(()), |out| out.write(world))
+            };
             step_every_frame(world, steps, args.every, &mut write_rows, &mut each_step)?
         }
         Length::Lapse { seconds } => time_lapse(world, seconds, args.every, &mut write_rows)?,
     };
     let wall = started.elapsed().as_secs_f64();
-    for out in [csv, ribbons_csv].into_iter().flatten() {
+    for out in [csv, ribbons_csv, body_hashes].into_iter().flatten() {
         out.commit()?;
     }
     if let Some(probe) = probe {
@@ -309,7 +329,7 @@ pub fn mean_lift_fraction(world: &World) -> Option<f64> {
     (n > 0).then(|| sum / n as f64)
 }
 
-/// A CSV file being written, whole or not at all, and how its rows are made.
+/// A CSV (or other line) file being written, whole or not at all, and how its rows are made.
 struct CsvOut<'a> {
     file: AtomicFile,
     path: &'a Path,
@@ -355,6 +375,11 @@ fn write_pose_rows(world: &World, out: &mut AtomicFile) -> std::io::Result<()> {
         )?;
     }
     Ok(())
+}
+
+/// The world's `body_hash_line`: the step, the state hash, each body's field hashes.
+fn write_body_hash_line(world: &World, out: &mut AtomicFile) -> std::io::Result<()> {
+    writeln!(out, "{}", body_hash_line(world))
 }
 
 /// One row per ribbon point: time, its balloon's handle index (as in the

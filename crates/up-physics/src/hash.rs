@@ -38,6 +38,21 @@ impl Fnv1a {
     }
 }
 
+/// FNV-1a of a few floats, as the state hash writes them (their bits, in
+/// order): one field of a body's state (`crate::divergence`).
+pub(crate) fn hash_f32s(xs: impl IntoIterator<Item = f32>) -> u64 {
+    let mut h = Fnv1a::new();
+    for x in xs {
+        h.write_f32(x);
+    }
+    h.finish()
+}
+
+/// A 64-bit hash folded to 32 bits, for hashes printed many to a line.
+pub(crate) fn fold32(h: u64) -> u32 {
+    (h ^ (h >> 32)) as u32
+}
+
 /// A quick, deterministic mix of a 64-bit key, for open-addressing tables.
 #[inline]
 pub(crate) fn mix64(mut x: u64) -> u64 {

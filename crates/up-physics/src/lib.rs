@@ -14,6 +14,7 @@ mod broad_phase;
 mod contact;
 mod continuous;
 mod counters;
+pub mod divergence;
 pub mod forces;
 pub mod gas;
 mod grab;

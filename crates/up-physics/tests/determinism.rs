@@ -4,6 +4,8 @@ mod common;
 
 use common::*;
 use glam::{Quat, Vec3};
+#[cfg(feature = "parallel")]
+use up_physics::divergence::lockstep_with;
 use up_physics::{SnapshotError, World, WorldDef};
 
 fn scene() -> World {
@@ -103,7 +105,9 @@ fn bodies_added_and_removed_while_running() {
 /// of the solve and the body passes run on rayon's threads (on one thread the
 /// constraints go straight to their slots); a crowd large enough to split into many tasks,
 /// with sleepers among its awake bodies, must end bit for bit the same on 1, 2 and 4 threads,
-/// and when stepped from a thread outside any pool.
+/// and when stepped from a thread outside any pool; stepped beside one thread
+/// and compared body by body every step, so that a failure names the step and
+/// the body where they part.
 #[cfg(feature = "parallel")]
 #[test]
 fn the_state_hash_does_not_depend_on_the_thread_count() {
@@ -129,41 +133,56 @@ fn the_state_hash_does_not_depend_on_the_thread_count() {
         }
         world
     };
-    let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
+    let pool = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
-            .expect("a thread pool");
-        pool.install(|| {
-            let mut world = crowd();
-            let mut most_contacts = 0;
-            let mut fewest_awake = u32::MAX;
-            for _ in 0..150 {
-                world.step();
-                most_contacts = most_contacts.max(world.stats().contact_count);
-                fewest_awake = fewest_awake.min(world.stats().awake_count);
-            }
-            assert!(
-                (1..=600).contains(&fewest_awake),
-                "no step with both sleepers and awake bodies: {fewest_awake} awake at the fewest"
-            );
-            assert!(
-                most_contacts > 3 * 1024, // four tasks of preparation, at the busiest
-                "too few contacts to split: {most_contacts}"
-            );
-            world.state_hash()
-        })
+            .expect("a thread pool")
     };
-    let one = run(1);
-    assert_eq!(run(2), one);
-    assert_eq!(run(4), one);
+    let one = pool(1);
+    // Each thread count stepped beside one thread, compared body by body
+    // after every step: a difference names its step and body.
+    for threads in [2, 4] {
+        let many = pool(threads);
+        let (mut a, mut b) = (one.install(crowd), many.install(crowd));
+        let mut most_contacts = 0;
+        let mut fewest_awake = u32::MAX;
+        let parted = lockstep_with(
+            &mut a,
+            &mut b,
+            150,
+            |w| {
+                one.install(|| w.step());
+                most_contacts = most_contacts.max(w.stats().contact_count);
+                fewest_awake = fewest_awake.min(w.stats().awake_count);
+            },
+            |w| many.install(|| w.step()),
+        );
+        if let Some(parted) = parted {
+            panic!("{threads} threads against one: {parted}");
+        }
+        assert!(
+            (1..=600).contains(&fewest_awake),
+            "no step with both sleepers and awake bodies: {fewest_awake} awake at the fewest"
+        );
+        assert!(
+            most_contacts > 3 * 1024, // four tasks of preparation, at the busiest
+            "too few contacts to split: {most_contacts}"
+        );
+    }
     // Stepped from outside any pool (as the CLI does): `step` moves onto
     // the global pool's threads.
-    let mut world = crowd();
-    for _ in 0..150 {
-        world.step();
+    let (mut a, mut b) = (one.install(crowd), crowd());
+    let parted = lockstep_with(
+        &mut a,
+        &mut b,
+        150,
+        |w| one.install(|| w.step()),
+        World::step,
+    );
+    if let Some(parted) = parted {
+        panic!("the global pool against one thread: {parted}");
     }
-    assert_eq!(world.state_hash(), one);
 }
 
 #[test]

@@ -9,6 +9,7 @@ use std::sync::Arc;
 
 use common::*;
 use glam::{Quat, Vec3};
+use up_physics::divergence::lockstep_with;
 use up_physics::forces::buoyancy::buoyancy_force;
 use up_physics::forces::drag::drag_factor;
 use up_physics::forces::gravity::gravity_force;
@@ -295,36 +296,45 @@ fn ribbons_never_leave_the_room() {
 
 #[test]
 fn ribbons_are_deterministic_on_any_number_of_threads_and_kept_by_snapshots() {
-    let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
+    let build = || {
+        let def = WorldDef {
+            room: Some(room(4.0, 4.0, 3.0, None)),
+            ..WorldDef::default()
+        };
+        let (mut world, shape) = world_with(def);
+        for k in 0..300 {
+            let p = Vec3::new(
+                -1.7 + 0.34 * (k % 11) as f32,
+                0.3 + 0.4 * (k / 121) as f32,
+                -1.7 + 0.34 * ((k / 11) % 11) as f32,
+            );
+            let id = add(&mut world, shape, p, Quat::from_rotation_z(0.3));
+            world
+                .add_ribbon(&RibbonDef::new(id, KNOT, 1.2, 12))
+                .unwrap();
+        }
+        world
+    };
+    let pool = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
-            .unwrap();
-        pool.install(|| {
-            let def = WorldDef {
-                room: Some(room(4.0, 4.0, 3.0, None)),
-                ..WorldDef::default()
-            };
-            let (mut world, shape) = world_with(def);
-            for k in 0..300 {
-                let p = Vec3::new(
-                    -1.7 + 0.34 * (k % 11) as f32,
-                    0.3 + 0.4 * (k / 121) as f32,
-                    -1.7 + 0.34 * ((k / 11) % 11) as f32,
-                );
-                let id = add(&mut world, shape, p, Quat::from_rotation_z(0.3));
-                world
-                    .add_ribbon(&RibbonDef::new(id, KNOT, 1.2, 12))
-                    .unwrap();
-            }
-            for _ in 0..120 {
-                world.step();
-            }
-            world
-        })
+            .unwrap()
     };
-    let one = run(1);
-    let three = run(3);
+    let (one_thread, three_threads) = (pool(1), pool(3));
+    let (mut one, mut three) = (one_thread.install(build), three_threads.install(build));
+    // Compared body by body (and ribbon by ribbon) after every step: a
+    // difference names its step and balloon.
+    let parted = lockstep_with(
+        &mut one,
+        &mut three,
+        120,
+        |w| one_thread.install(|| w.step()),
+        |w| three_threads.install(|| w.step()),
+    );
+    if let Some(parted) = parted {
+        panic!("three threads against one: {parted}");
+    }
     assert_eq!(one.state_hash(), three.state_hash());
     let mut restored = World::restore(&one.snapshot()).unwrap();
     let mut original = one;

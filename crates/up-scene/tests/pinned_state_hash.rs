@@ -10,6 +10,7 @@
 mod common;
 use common::asset;
 
+use up_physics::divergence::lockstep_with;
 use up_scene::build::build_world;
 use up_scene::scene::Scene;
 
@@ -36,18 +37,16 @@ const BOUQUET_STEPS: u32 = 180;
 /// `World::state_hash()` of `BOUQUET` after `BOUQUET_STEPS` steps.
 const BOUQUET_HASH: u64 = 0x5e0c_729c_8424_cb8f;
 
-/// The scene file built and stepped `steps` times on a pool of `threads` threads.
-fn hash_after(name: &str, steps: u32, threads: usize) -> u64 {
-    let scene = Scene::from_path(asset(name)).unwrap_or_else(|e| panic!("{e}"));
-    scene_hash_after(&scene, steps, threads)
-}
-
-fn scene_hash_after(scene: &Scene, steps: u32, threads: usize) -> u64 {
-    let pool = rayon::ThreadPoolBuilder::new()
+fn pool(threads: usize) -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
-        .expect("a thread pool");
-    pool.install(|| {
+        .expect("a thread pool")
+}
+
+/// The scene built and stepped `steps` times on a pool of `threads` threads.
+fn scene_hash_after(scene: &Scene, steps: u32, threads: usize) -> u64 {
+    pool(threads).install(|| {
         let mut built = build_world(scene).unwrap_or_else(|e| panic!("{e}"));
         for _ in 0..steps {
             built.world.step();
@@ -56,67 +55,107 @@ fn scene_hash_after(scene: &Scene, steps: u32, threads: usize) -> u64 {
     })
 }
 
+/// Where the scene on `threads` threads parts from it on one, stepped side
+/// by side, in words: what a failing pinned hash on several threads says
+/// beside the hashes.
+fn parting_from_one_thread(scene: &Scene, steps: u32, threads: usize) -> String {
+    let (one, many) = (pool(1), pool(threads));
+    let build = || build_world(scene).unwrap_or_else(|e| panic!("{e}")).world;
+    let (mut a, mut b) = (one.install(build), many.install(build));
+    let parted = lockstep_with(
+        &mut a,
+        &mut b,
+        u64::from(steps),
+        |w| one.install(|| w.step()),
+        |w| many.install(|| w.step()),
+    );
+    match parted {
+        Some(parted) => format!("on {threads} threads against one, {parted}"),
+        None => format!("{threads} threads and one agree at every step"),
+    }
+}
+
+/// The scene's hash after `steps` steps on `threads` threads is `pinned`;
+/// where not, on several threads, the message says where they part from one.
+fn assert_pinned(name: &str, scene: &Scene, steps: u32, threads: usize, pinned: u64) {
+    let hash = scene_hash_after(scene, steps, threads);
+    if hash != pinned {
+        let parting = if threads > 1 {
+            parting_from_one_thread(scene, steps, threads)
+        } else {
+            String::from("one thread")
+        };
+        panic!("{name}: state hash {hash:#018x}, pinned {pinned:#018x}: the results changed ({parting})");
+    }
+}
+
+fn load(name: &str) -> Scene {
+    Scene::from_path(asset(name)).unwrap_or_else(|e| panic!("{e}"))
+}
+
 #[test]
 fn default_scene_after_four_seconds_on_one_thread() {
-    let hash = hash_after(DEFAULT_SCENE, STEPS, 1);
-    assert_eq!(
-        hash, DEFAULT_SCENE_HASH,
-        "state hash {hash:#018x}, pinned {DEFAULT_SCENE_HASH:#018x}: the results changed"
+    assert_pinned(
+        DEFAULT_SCENE,
+        &load(DEFAULT_SCENE),
+        STEPS,
+        1,
+        DEFAULT_SCENE_HASH,
     );
 }
 
 #[test]
 fn default_scene_after_four_seconds_on_three_threads() {
-    let hash = hash_after(DEFAULT_SCENE, STEPS, 3);
-    assert_eq!(
-        hash, DEFAULT_SCENE_HASH,
-        "state hash {hash:#018x}, pinned {DEFAULT_SCENE_HASH:#018x}: the results changed"
+    assert_pinned(
+        DEFAULT_SCENE,
+        &load(DEFAULT_SCENE),
+        STEPS,
+        3,
+        DEFAULT_SCENE_HASH,
     );
 }
 
 #[test]
 fn default_scene_without_ribbons() {
-    let mut scene = Scene::from_path(asset(DEFAULT_SCENE)).unwrap_or_else(|e| panic!("{e}"));
+    let mut scene = load(DEFAULT_SCENE);
     assert!(scene.balloons[0].ribbon.take().is_some());
-    let hash = scene_hash_after(&scene, STEPS, 3);
-    assert_eq!(
-        hash, DEFAULT_SCENE_WITHOUT_RIBBONS_HASH,
-        "state hash {hash:#018x}, pinned {DEFAULT_SCENE_WITHOUT_RIBBONS_HASH:#018x}: the results changed"
+    assert_pinned(
+        "the default scene without ribbons",
+        &scene,
+        STEPS,
+        3,
+        DEFAULT_SCENE_WITHOUT_RIBBONS_HASH,
     );
 }
 
 #[test]
 fn party_hall_after_three_seconds_on_one_thread() {
-    let hash = hash_after(PARTY_HALL, PARTY_HALL_STEPS, 1);
-    assert_eq!(
-        hash, PARTY_HALL_HASH,
-        "state hash {hash:#018x}, pinned {PARTY_HALL_HASH:#018x}: the results changed"
+    assert_pinned(
+        PARTY_HALL,
+        &load(PARTY_HALL),
+        PARTY_HALL_STEPS,
+        1,
+        PARTY_HALL_HASH,
     );
 }
 
 #[test]
 fn party_hall_after_three_seconds_on_three_threads() {
-    let hash = hash_after(PARTY_HALL, PARTY_HALL_STEPS, 3);
-    assert_eq!(
-        hash, PARTY_HALL_HASH,
-        "state hash {hash:#018x}, pinned {PARTY_HALL_HASH:#018x}: the results changed"
+    assert_pinned(
+        PARTY_HALL,
+        &load(PARTY_HALL),
+        PARTY_HALL_STEPS,
+        3,
+        PARTY_HALL_HASH,
     );
 }
 
 #[test]
 fn bouquet_after_three_seconds_on_one_thread() {
-    let hash = hash_after(BOUQUET, BOUQUET_STEPS, 1);
-    assert_eq!(
-        hash, BOUQUET_HASH,
-        "state hash {hash:#018x}, pinned {BOUQUET_HASH:#018x}: the results changed"
-    );
+    assert_pinned(BOUQUET, &load(BOUQUET), BOUQUET_STEPS, 1, BOUQUET_HASH);
 }
 
 #[test]
 fn bouquet_after_three_seconds_on_three_threads() {
-    let hash = hash_after(BOUQUET, BOUQUET_STEPS, 3);
-    assert_eq!(
-        hash, BOUQUET_HASH,
-        "state hash {hash:#018x}, pinned {BOUQUET_HASH:#018x}: the results changed"
-    );
+    assert_pinned(BOUQUET, &load(BOUQUET), BOUQUET_STEPS, 3, BOUQUET_HASH);
 }

@@ -43,6 +43,7 @@
 //!
 //! SI units, Y up, origin at the centre of the floor.
 
+mod body_hashes;
 #[cfg(target_arch = "wasm32")]
 mod clock;
 mod contacts;

@@ -139,14 +139,21 @@ fn an_interrupted_run_leaves_no_file_under_the_requested_name() {
     while !temp_has_rows() && started.elapsed().as_secs() < 60 {
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
+    // The run must be cut while writing: rows in its temporary file, not done.
+    let wrote = temp_has_rows();
+    let running = child.try_wait().unwrap().is_none();
     child.kill().unwrap();
     child.wait().unwrap();
+    assert!(
+        wrote,
+        "no rows in a temporary file within 60 s: {:?}",
+        dir.files()
+    );
+    assert!(running, "the run ended before it was interrupted");
     let files = dir.files();
     assert!(!files.contains(&"traj.csv".to_string()), "{files:?}");
     assert!(
-        files
-            .iter()
-            .all(|f| f.starts_with(".traj.csv.") && f.ends_with(".tmp")),
-        "only the temporary file may remain: {files:?}"
+        files.len() == 1 && files[0].starts_with(".traj.csv.") && files[0].ends_with(".tmp"),
+        "the temporary file, and only it, remains: {files:?}"
     );
 }
