@@ -32,7 +32,8 @@ export function createStage(container: HTMLElement): Stage {
   renderer.toneMapping = THREE.ACESFilmicToneMapping;
   renderer.toneMappingExposure = 1.0;
   renderer.shadowMap.enabled = true;
-  renderer.shadowMap.type = THREE.PCFSoftShadowMap;
+  // PCF filtered over the key light's shadow radius: soft edges (three.js dropped PCFSoftShadowMap for this).
+  renderer.shadowMap.type = THREE.PCFShadowMap;
   renderer.domElement.id = "view";
   container.appendChild(renderer.domElement);
 
