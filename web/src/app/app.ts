@@ -22,7 +22,7 @@ import { ShareLink } from "./shareLink";
 import { PhysicsView } from "./physicsView";
 import { FrameMeter } from "./frameMeter";
 import { PhotoMode } from "../render/photo/photoMode";
-import { photoHost } from "../render/photo/appPhoto";
+import { photoHost } from "./photoHost";
 import { ClipRecorder } from "../ui/recorder";
 import type { PageElements } from "./page";
 

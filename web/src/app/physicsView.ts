@@ -48,7 +48,8 @@ export class PhysicsView {
   ) {
     scene.add(this.arrows.group, this.outline.mesh);
     this.card = new BalloonCard(parent, () => this.select(-1), document.getElementById("hud"));
-    this.legend = new ForceLegend(parent);
+    // Stacked above the help line in the band between the left column and the panel (index.html).
+    this.legend = new ForceLegend(document.getElementById("bottom-band") ?? parent);
     this.plot = new MotionPlot(parent);
     this.caption = new SceneCaption(parent);
     this.viewVector = camera.position.clone();

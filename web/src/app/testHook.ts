@@ -6,10 +6,10 @@
 // neither downloads it nor exposes the hook.
 
 import * as THREE from "three";
-import { POSE_STRIDE } from "../render/poseMath";
+import { POSE_STRIDE } from "../sim/poseLayout";
 import { PLOT_COLORS } from "../ui/floatPlot";
 import type { App } from "./app";
-import { photoTestHook } from "../render/photo/photoTestHook";
+import { photoTestHook } from "./photoTestHook";
 
 export function createTestHook(app: App) {
   const { bridge, controls, messages, world } = app;

@@ -2,7 +2,10 @@
 // matrices, interpolated between two steps. Written straight into
 // `InstancedMesh.instanceMatrix.array`: no object per balloon, no allocation.
 
-export const POSE_STRIDE = 7;
+import { POSE_STRIDE } from "../sim/poseLayout";
+
+// The pose layout is the engine's (sim/): kept reachable from here for the renderer's modules.
+export { POSE_STRIDE, transformPoint } from "../sim/poseLayout";
 
 /**
  * Writes `count` matrices into `out` (16 floats each), blending poses
@@ -85,19 +88,4 @@ export function composeMatrix(
   out[o + 13] = y;
   out[o + 14] = z;
   out[o + 15] = 1;
-}
-
-/** Rotates body-frame point (lx, ly, lz) by quaternion q and adds position p: the world point. */
-export function transformPoint(pose: Float32Array, o: number, lx: number, ly: number, lz: number, out: number[]): void {
-  const qx = pose[o + 3];
-  const qy = pose[o + 4];
-  const qz = pose[o + 5];
-  const qw = pose[o + 6];
-  // v' = v + 2w(q×v) + 2q×(q×v)
-  const tx = 2 * (qy * lz - qz * ly);
-  const ty = 2 * (qz * lx - qx * lz);
-  const tz = 2 * (qx * ly - qy * lx);
-  out[0] = lx + qw * tx + (qy * tz - qz * ty) + pose[o];
-  out[1] = ly + qw * ty + (qz * tx - qx * tz) + pose[o + 1];
-  out[2] = lz + qw * tz + (qx * ty - qy * tx) + pose[o + 2];
 }

@@ -1,7 +1,9 @@
-// The three.js stage: renderer, camera, lights, environment map and shadows.
+// The three.js stage: renderer, camera, environment map and shadows; the
+// lights themselves are the room's (roomLights.ts, shared with the photo).
 
 import * as THREE from "three";
 import { RoomEnvironment } from "three/examples/jsm/environments/RoomEnvironment.js";
+import { addLiveLights, BACKGROUND_COLOR, ENVIRONMENT_INTENSITY } from "./roomLights";
 
 export interface Stage {
   renderer: THREE.WebGLRenderer;
@@ -30,53 +32,28 @@ export function createStage(container: HTMLElement): Stage {
   renderer.toneMapping = THREE.ACESFilmicToneMapping;
   renderer.toneMappingExposure = 1.0;
   renderer.shadowMap.enabled = true;
-  renderer.shadowMap.type = THREE.PCFSoftShadowMap;
+  // PCF filtered over the key light's shadow radius: soft edges (three.js dropped PCFSoftShadowMap for this).
+  renderer.shadowMap.type = THREE.PCFShadowMap;
   renderer.domElement.id = "view";
   container.appendChild(renderer.domElement);
 
   const scene = new THREE.Scene();
-  scene.background = new THREE.Color(0x1d2230);
+  scene.background = new THREE.Color(BACKGROUND_COLOR);
 
   // Image-based lighting for the latex's reflections and clearcoat.
   const pmrem = new THREE.PMREMGenerator(renderer);
   const environment = new RoomEnvironment();
   scene.environment = pmrem.fromScene(environment, 0.04).texture;
-  scene.environmentIntensity = 0.55;
+  scene.environmentIntensity = ENVIRONMENT_INTENSITY;
   environment.dispose();
   pmrem.dispose();
 
   const camera = new THREE.PerspectiveCamera(45, 1, 0.05, 500);
 
-  scene.add(new THREE.HemisphereLight(0xfff6e8, 0x40362c, 0.6));
-
-  // The "sun" stands for the ceiling lamps: one soft-shadowed key light from above.
-  const sun = new THREE.DirectionalLight(0xfff1dc, 2.2);
-  sun.castShadow = true;
-  sun.shadow.mapSize.set(2048, 2048);
-  sun.shadow.radius = 6;
-  sun.shadow.blurSamples = 16;
-  sun.shadow.bias = -0.0004;
-  sun.shadow.normalBias = 0.02;
-  scene.add(sun, sun.target);
-
-  const fill = new THREE.PointLight(0xffe2c0, 6, 0, 1.6);
-  scene.add(fill);
+  const lights = addLiveLights(scene);
 
   function fitToRoom(halfWidth: number, halfDepth: number, height: number): void {
-    const reach = Math.hypot(halfWidth, halfDepth, height) * 1.2;
-    sun.position.set(halfWidth * 0.6, height * 2.2, halfDepth * 0.9);
-    sun.target.position.set(0, 0, 0);
-    const cam = sun.shadow.camera;
-    cam.left = -reach;
-    cam.right = reach;
-    cam.top = reach;
-    cam.bottom = -reach;
-    cam.near = 0.1;
-    cam.far = height * 4 + reach * 2;
-    cam.updateProjectionMatrix();
-    fill.position.set(-halfWidth * 0.4, height * 0.8, -halfDepth * 0.3);
-    fill.distance = 0;
-    fill.intensity = 2 * Math.max(1, (halfWidth * halfDepth) / 9);
+    lights.fit({ halfWidth, halfDepth, top: height });
   }
 
   function resize(): void {
@@ -88,5 +65,5 @@ export function createStage(container: HTMLElement): Stage {
   }
 
   resize();
-  return { renderer, scene, camera, sun, fitToRoom, resize };
+  return { renderer, scene, camera, sun: lights.sun, fitToRoom, resize };
 }

@@ -6,7 +6,7 @@
 //   [ previous poses | current poses | contacts          | previous ribbons | current ribbons | scales ]
 //     count × 7        count × 7       contactCount × 8    ribbonFloats       ribbonFloats      count     floats
 
-import { POSE_STRIDE } from "../render/poseMath";
+import { POSE_STRIDE } from "./poseLayout";
 import type { ContactStride, PoseStride, RibbonPointStride, SquashStride } from "../../public/wasm/up_wasm";
 import type { Constants } from "./engine";
 

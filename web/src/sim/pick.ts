@@ -2,7 +2,7 @@
 // sphere, then against the leaves of those it passes through (the same sphere
 // tree the engine collides with). Pure maths over the pose array.
 
-import { POSE_STRIDE, transformPoint } from "../render/poseMath";
+import { POSE_STRIDE, transformPoint } from "./poseLayout";
 
 export interface Ray {
   origin: [number, number, number];

@@ -39,6 +39,11 @@ describe("the balloon card", () => {
     expect(gasText({ gas: "mixed", helium_mol: 0.3, air_mol: 0.1 })).toBe("mixed: 0.300 mol helium, 0.100 mol air");
   });
 
+  it("leaves the grams out where there is no gravity to weigh the lift by", () => {
+    const rows = Object.fromEntries(cardRows({ ...card, net_lift_n: 0, net_lift_g: Number.NaN }));
+    expect(rows["net lift"]).toBe("0.000 N: floats");
+  });
+
   it("writes no sign on a zero, and forces to three places", () => {
     expect(signed(-0.0001, 2)).toBe("0.00");
     expect(signed(0.5, 1)).toBe("+0.5");

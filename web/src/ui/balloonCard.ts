@@ -28,11 +28,13 @@ export function gasText(card: Pick<BodyCard, "gas" | "helium_mol" | "air_mol">):
 export function cardRows(card: BodyCard): [string, string][] {
   const lift = card.net_lift_n;
   const liftWord = lift > 0 ? "rises" : lift < 0 ? "sinks" : "floats";
+  // Grams of lift need gravity: a room without it has none to weigh them by.
+  const grams = Number.isFinite(card.net_lift_g) ? ` (${signed(card.net_lift_g, 1)} g)` : "";
   return [
     ["mass", `${(card.mass_kg * 1000).toFixed(2)} g`],
     ["volume", `${(card.volume_m3 * 1000).toFixed(2)} L`],
     ["gas", gasText(card)],
-    ["net lift", `${signed(lift, 3)} N (${signed(card.net_lift_g, 1)} g): ${liftWord}`],
+    ["net lift", `${signed(lift, 3)} N${grams}: ${liftWord}`],
     ["speed", `${card.speed_m_s.toFixed(2)} m/s (vertical ${signed(card.vertical_speed_m_s, 2)})`],
     ["terminal speed", `${card.terminal_speed_m_s.toFixed(2)} m/s`],
     ["height, tilt", `${card.height_m.toFixed(2)} m, ${card.tilt_deg.toFixed(0)}°`],

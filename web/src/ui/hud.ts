@@ -46,7 +46,7 @@ export class Hud {
       <div id="hud-fps">FPS: –</div>
       <div id="hud-physics">Physics: – ms/step</div>
       <div id="hud-threads"></div>
-      <table id="hud-stages"></table>
+      <div id="hud-stages"></div>
       <div id="hud-mode"></div>
       <div id="hud-photo" hidden></div>`;
     this.count = root.querySelector("#hud-count")!;
@@ -83,10 +83,11 @@ export class Hud {
 
   setStats(stats: EngineStats, stepsPerSecond: number): void {
     const total = stats.stages.find(([name]) => name === "total")?.[1] ?? 0;
-    this.physics.textContent = `Physics: ${total.toFixed(2)} ms/step · ${stepsPerSecond.toFixed(0)} steps/s · ${stats.contacts} contacts${stats.ribbons > 0 ? ` · ${stats.ribbons} ribbons` : ""}`;
+    // Two lines (style.css keeps the break): the step's cost, then what it handled.
+    this.physics.textContent = `Physics: ${total.toFixed(2)} ms/step · ${stepsPerSecond.toFixed(0)} steps/s\n${stats.contacts} contacts${stats.ribbons > 0 ? ` · ${stats.ribbons} ribbons` : ""}`;
     const rows = stats.stages
       .filter(([name]) => name !== "total")
-      .map(([name, ms]) => `<tr><td>${name}</td><td>${ms.toFixed(2)}</td></tr>`)
+      .map(([name, ms]) => `<div><span>${name}</span><span>${ms.toFixed(2)}</span></div>`)
       .join("");
     this.stages.innerHTML = rows;
   }

@@ -51,7 +51,8 @@ export class ClipRecorder {
     this.indicator.hidden = true;
     this.indicator.innerHTML = `<span class="rec-dot"></span><span class="rec-time">0:00</span>`;
     this.time = this.indicator.querySelector(".rec-time")!;
-    document.body.appendChild(this.indicator);
+    // Stacked above the help line (index.html's band), clear of the plots and the panel.
+    (document.getElementById("bottom-band") ?? document.body).appendChild(this.indicator);
   }
 
   get recording(): boolean {

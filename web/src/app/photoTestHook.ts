@@ -3,8 +3,8 @@
 // under a name in the page, so that two pictures are compared there rather
 // than shipped to the test as arrays.
 
-import type { App } from "../../app/app";
-import { brightness, meanAbsDifference } from "./pixels";
+import type { App } from "./app";
+import { brightness, meanAbsDifference } from "../render/photo/pixels";
 
 export function photoTestHook(app: App) {
   const kept = new Map<string, Uint8Array>();

@@ -2,11 +2,11 @@
 // bakes, the room its lamp is fitted to, the ribbons' points now, the pause,
 // and where its state is shown (the HUD's line, the panel's buttons).
 
-import { writeRibbonTexels } from "../ribbons";
-import { RIBBON_POINT_STRIDE } from "../../sim/frameLayout";
-import type { App } from "../../app/app";
-import type { PhotoHost } from "./photoMode";
-import type { RibbonSource } from "./bake";
+import { writeRibbonTexels } from "../render/ribbons";
+import { RIBBON_POINT_STRIDE } from "../sim/frameLayout";
+import type { App } from "./app";
+import type { PhotoHost } from "../render/photo/photoMode";
+import type { RibbonSource } from "../render/photo/bake";
 
 export function photoHost(app: App): PhotoHost {
   const { renderer, scene, camera } = app.stage;
