@@ -3,7 +3,7 @@
 // scene valid?" all come from the built module. Needs the wasm build.
 
 import { beforeAll, describe, expect, it } from "vitest";
-import { POSE_STRIDE } from "../render/poseMath";
+import { POSE_STRIDE } from "./poseLayout";
 import { decodeSceneParam, toBase64Url } from "../scene/sceneLink";
 import { applyParams, paramsFromScene } from "../scene/sceneParams";
 import { engineConstants, setEngineConstants } from "../scene/sceneSchema";
