@@ -6,26 +6,14 @@ use common::*;
 use glam::{Quat, Vec3};
 #[cfg(feature = "parallel")]
 use up_physics::divergence::lockstep_with;
-use up_physics::{SnapshotError, World, WorldDef};
-
-fn scene() -> World {
-    let def = WorldDef {
-        room: Some(room(3.0, 3.0, 2.5, Some(1.0))),
-        ..WorldDef::default()
-    };
-    let (mut world, shape) = world_with(def);
-    for i in 0..60 {
-        let (x, z) = ((i % 8) as f32 * 0.33 - 1.2, (i / 8) as f32 * 0.33 - 1.2);
-        let q = Quat::from_rotation_y(i as f32) * Quat::from_rotation_x(0.05 * (i % 5) as f32);
-        add(&mut world, shape, Vec3::new(x, 0.3, z), q);
-    }
-    world
-}
+#[cfg(feature = "parallel")]
+use up_physics::WorldDef;
+use up_physics::{SnapshotError, World};
 
 #[test]
 fn two_runs_give_the_same_state_hash() {
-    let mut a = scene();
-    let mut b = scene();
+    let mut a = sixty_released();
+    let mut b = sixty_released();
     for _ in 0..300 {
         a.step();
         b.step();
@@ -35,7 +23,7 @@ fn two_runs_give_the_same_state_hash() {
 
 #[test]
 fn restored_snapshot_steps_to_the_same_hash() {
-    let mut world = scene();
+    let mut world = sixty_released();
     for _ in 0..200 {
         world.step();
     }
@@ -51,7 +39,7 @@ fn restored_snapshot_steps_to_the_same_hash() {
 
 #[test]
 fn corrupted_or_truncated_snapshots_are_rejected() {
-    let world = scene();
+    let world = sixty_released();
     let bytes = world.snapshot();
     assert_eq!(
         World::restore(&bytes[..bytes.len() - 3]).unwrap_err(),
@@ -78,7 +66,7 @@ fn corrupted_or_truncated_snapshots_are_rejected() {
 
 #[test]
 fn bodies_added_and_removed_while_running() {
-    let mut world = scene();
+    let mut world = sixty_released();
     let shape = world.shape_of(world.body_ids()[0]).unwrap();
     for _ in 0..100 {
         world.step();
@@ -187,7 +175,7 @@ fn the_state_hash_does_not_depend_on_the_thread_count() {
 
 #[test]
 fn a_body_driven_to_infinity_is_quarantined_and_the_rest_goes_on() {
-    let mut world = scene();
+    let mut world = sixty_released();
     for _ in 0..120 {
         world.step();
     }

@@ -4,26 +4,11 @@
 mod common;
 
 use common::*;
-use glam::{Quat, Vec3};
+use glam::Vec3;
 use up_physics::divergence::{
     body_hash_header, body_hash_line, compare, lockstep, lockstep_with, Divergence, Field,
 };
-use up_physics::{BodyId, World, WorldDef};
-
-/// 60 balloons released in a room with a pyramid ceiling, each its own user data.
-fn scene() -> World {
-    let def = WorldDef {
-        room: Some(room(3.0, 3.0, 2.5, Some(1.0))),
-        ..WorldDef::default()
-    };
-    let (mut world, shape) = world_with(def);
-    for i in 0..60 {
-        let (x, z) = ((i % 8) as f32 * 0.33 - 1.2, (i / 8) as f32 * 0.33 - 1.2);
-        let q = Quat::from_rotation_y(i as f32) * Quat::from_rotation_x(0.05 * (i % 5) as f32);
-        add(&mut world, shape, Vec3::new(x, 0.3, z), q);
-    }
-    world
-}
+use up_physics::{BodyId, World};
 
 /// The next float after `x`: the smallest change there is.
 fn next_up(x: f32) -> f32 {
@@ -42,7 +27,7 @@ fn nudge(world: &mut World, id: BodyId) {
 #[test]
 fn a_nudge_at_step_k_is_named_at_step_k_and_its_body() {
     const K: u64 = 40;
-    let (mut a, mut b) = (scene(), scene());
+    let (mut a, mut b) = (sixty_released(), sixty_released());
     let victim = a.body_ids()[17];
     let parted = lockstep_with(&mut a, &mut b, 100, World::step, |w| {
         w.step();
@@ -71,14 +56,14 @@ fn a_nudge_at_step_k_is_named_at_step_k_and_its_body() {
 
 #[test]
 fn the_same_world_stepped_twice_does_not_part() {
-    let (mut a, mut b) = (scene(), scene());
+    let (mut a, mut b) = (sixty_released(), sixty_released());
     assert_eq!(lockstep(&mut a, &mut b, 120), None);
     assert_eq!(a.state_hash(), b.state_hash());
 }
 
 #[test]
 fn a_missing_body_is_named() {
-    let (a, mut b) = (scene(), scene());
+    let (a, mut b) = (sixty_released(), sixty_released());
     let gone = a.body_ids()[5];
     b.remove_body(gone).unwrap();
     let parted = compare(&a, &b).expect("one body less");
@@ -88,7 +73,7 @@ fn a_missing_body_is_named() {
 
 #[test]
 fn the_lines_of_two_runs_part_at_the_nudged_body_and_field() {
-    let (mut a, mut b) = (scene(), scene());
+    let (mut a, mut b) = (sixty_released(), sixty_released());
     for _ in 0..30 {
         a.step();
         b.step();

@@ -128,3 +128,18 @@ pub fn tilt_degrees(world: &World, id: BodyId) -> f32 {
     let up = world.pose(id).expect("live body").rotation * Vec3::Y;
     up.dot(Vec3::Y).clamp(-1.0, 1.0).acos().to_degrees()
 }
+
+/// 60 balloons released in a room with a pyramid ceiling, each its own user data.
+pub fn sixty_released() -> World {
+    let def = WorldDef {
+        room: Some(room(3.0, 3.0, 2.5, Some(1.0))),
+        ..WorldDef::default()
+    };
+    let (mut world, shape) = world_with(def);
+    for i in 0..60 {
+        let (x, z) = ((i % 8) as f32 * 0.33 - 1.2, (i / 8) as f32 * 0.33 - 1.2);
+        let q = Quat::from_rotation_y(i as f32) * Quat::from_rotation_x(0.05 * (i % 5) as f32);
+        add(&mut world, shape, Vec3::new(x, 0.3, z), q);
+    }
+    world
+}
