@@ -126,9 +126,8 @@ export class App {
     this.info = info;
     this.plot.clear();
     this.link.pending = false;
-    // The engine's own JSON of a `Scene`; the caption reads it as plain JSON.
-    const sceneJson = JSON.parse(info.sceneJson) as Record<string, unknown>;
-    this.scene = sceneJson as Scene;
+    // The engine's own JSON of a `Scene`.
+    this.scene = JSON.parse(info.sceneJson) as Scene;
     const params = paramsFromScene(this.scene);
     const box = { halfWidth: params.width / 2, halfDepth: params.depth / 2, top: roomTop(params) };
     const roomChanged = this.world.setWorld(info);
@@ -144,7 +143,7 @@ export class App {
     } else this.panel.set(params, this.scene);
     this.hud.setThreads(info.threads, info.isolated);
     // A teaching scene's address is the scene the engine read from its file.
-    if (this.physics.worldReady(info, sceneJson)) this.link.set(info.sceneJson);
+    if (this.physics.worldReady(info, this.scene)) this.link.set(info.sceneJson);
     this.page.loading.hidden = true;
   }
 

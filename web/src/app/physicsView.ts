@@ -9,6 +9,7 @@ import { SelectionOutline } from "../render/selectionOutline";
 import type { BalloonAssets } from "../render/balloons";
 import type { SimBridge } from "../sim/bridge";
 import type { WorldInfo } from "../sim/protocol";
+import type { Scene } from "../scene/sceneSchema";
 import { findForceRow, type Vec3 } from "../sim/forcesFrame";
 import { BalloonCard, ForceLegend } from "../ui/balloonCard";
 import { MotionPlot, WINDOW_S } from "../ui/motionPlot";
@@ -88,7 +89,7 @@ export class PhysicsView {
    * A new world: the selection is gone (the worker dropped it), its caption
    * shows. Returns whether it is the teaching scene asked for.
    */
-  worldReady(info: WorldInfo, scene: Record<string, unknown>): boolean {
+  worldReady(info: WorldInfo, scene: Scene): boolean {
     this.info = info;
     this.outlineReady = false;
     this.plot.reset();

@@ -8,7 +8,7 @@
 
 import type { AirSpec, BalloonGroup, Constants, RoomSpec, Scene, SimSpec } from "../../public/wasm/up_wasm";
 
-export type { AirSpec, BalloonGroup, CeilingKind, GasKind, RoomSpec, Scene, SceneLimits, SimSpec, SpawnBox } from "../../public/wasm/up_wasm";
+export type { AboutSpec, AirSpec, BalloonGroup, CeilingKind, GasKind, RoomSpec, Scene, SceneLimits, SimSpec, SpawnBox } from "../../public/wasm/up_wasm";
 
 /**
  * A scene with every section's keys present, as the engine fills them in

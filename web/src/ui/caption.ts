@@ -2,19 +2,16 @@
 // paragraph saying what to watch, shown over the room until dismissed, and
 // again whenever a scene with a caption is loaded.
 
-/** A scene's `about`, as the engine writes it into the scene's JSON. */
-export interface About {
-  title: string;
-  caption: string;
-}
+import type { AboutSpec, Scene } from "../scene/sceneSchema";
+
+/** A scene's `about`: its title and caption (the engine's `AboutSpec`). */
+export type About = AboutSpec;
 
 /** The scene's caption, or null when it has none (or an empty one). */
-export function aboutOfScene(scene: Record<string, unknown>): About | null {
-  const about = scene.about as Record<string, unknown> | null | undefined;
-  if (!about || typeof about !== "object") return null;
-  const caption = typeof about.caption === "string" ? about.caption.trim() : "";
+export function aboutOfScene(scene: Scene): About | null {
+  const caption = scene.about?.caption.trim() ?? "";
   if (!caption) return null;
-  return { title: typeof about.title === "string" ? about.title : "", caption };
+  return { title: scene.about?.title ?? "", caption };
 }
 
 export class SceneCaption {
