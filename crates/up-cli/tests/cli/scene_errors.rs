@@ -121,6 +121,7 @@ fn validate_accepts_every_example_and_rejects_bad_files() {
         "party-hall.toml",
         "thrown.toml",
         "two-gases.json",
+        "mixed-room.toml",
     ] {
         let text = up_ok(&["validate", &asset(name)]);
         assert!(text.contains("valid"), "{name}: {text}");

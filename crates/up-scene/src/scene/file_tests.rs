@@ -53,6 +53,7 @@ fn example_scenes_parse_and_validate() {
         "two-gases.json",
         "evening.toml",
         "tied.toml",
+        "mixed-room.toml",
     ];
     for name in names {
         let scene = Scene::from_path(asset(name)).unwrap_or_else(|e| panic!("{e}"));
