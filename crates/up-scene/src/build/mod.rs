@@ -195,9 +195,7 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
         let model = &balloon_models[i];
         let root = model.shape.tree.root().sphere();
         let mut region = spawn_region(scene, i, model, &bounds.min, &bounds.max)?;
-        let on_floor =
-            group.spawn.is_none() && group.tied_ribbon().is_none_or(|r| r.anchor.is_none());
-        let hung = group.tied_ribbon().filter(|_| on_floor && weighted(group));
+        let hung = group.tied_ribbon().filter(|_| hangs_weights(group));
         let knot = ribbons::knot_point(model);
         if let Some(ribbon) = hung {
             // One layer, its knots a ribbon's length and a gap above the
@@ -301,8 +299,8 @@ fn reserve_column(occupied: &mut Occupancy, knot: Vec3, floor: f32) {
     }
 }
 
-/// The order groups are laid in: groups whose ribbons end in a weight
-/// first, then the rest, each in the scene's order. A weight hangs at its
+/// The order groups are laid in: groups that hang weights over the floor
+/// (`hangs_weights`) first, then the rest, each in the scene's order. A weight hangs at its
 /// ribbon's length under its balloon's knot; laid above other balloons, it
 /// would hang among them, and its pull (tens of grams, where a balloon
 /// weighs a few) drives them into each other from the first step (101 mm of
@@ -314,7 +312,7 @@ fn reserve_column(occupied: &mut Occupancy, knot: Vec3, floor: f32) {
 /// other balloon's neck, pressed between the two: 8 to 17 mm of overlap.)
 fn placement_order(scene: &Scene) -> Vec<usize> {
     let all = 0..scene.balloons.len();
-    let weighted_at = |i: &usize| weighted(&scene.balloons[*i]);
+    let weighted_at = |i: &usize| hangs_weights(&scene.balloons[*i]);
     all.clone()
         .filter(weighted_at)
         .chain(all.filter(|i| !weighted_at(i)))
@@ -322,8 +320,15 @@ fn placement_order(scene: &Scene) -> Vec<usize> {
 }
 
 /// Whether the group's ribbons end in a weight.
-fn weighted(group: &BalloonGroup) -> bool {
-    group.tied_ribbon().is_some_and(|r| r.weight_g > 0.0)
+/// Whether the builder lays `group` as weights hanging over the floor: its
+/// ribbons end in a weight and nothing else says where it starts (a spawn
+/// box, an anchor). Other groups keep the scene's order, so their layouts
+/// (and the state hashes pinned on them) are as they were.
+fn hangs_weights(group: &BalloonGroup) -> bool {
+    group.spawn.is_none()
+        && group
+            .tied_ribbon()
+            .is_some_and(|r| r.weight_g > 0.0 && r.anchor.is_none())
 }
 
 /// Distinct colours over the scene, and each group's colours as palette indices.
