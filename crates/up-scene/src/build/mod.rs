@@ -12,7 +12,6 @@
 use glam::{Quat, Vec3};
 use up_geom::{Pose, SplitMix64};
 use up_physics::gas::{EnvelopeDef, EnvelopeKind};
-use up_physics::ribbon::WEIGHT_RADIUS;
 use up_physics::{BodyDef, BodyId, JointId, World, WorldDef};
 
 use crate::balloon::gas_fill::{fill_balloon, group_envelope, PermeanceFactors};
@@ -24,11 +23,13 @@ use room::{box_room, room_from_obj, Ceiling, RoomMesh};
 
 pub mod anchor;
 pub mod bench_scene;
+mod hang;
 pub mod ribbons;
 pub mod room;
 pub mod spawn;
 
 use anchor::{anchored_region, tie_down};
+use hang::{lay_hanging, reserve_column, Hanging, HangingLayout};
 use spawn::{place_spheres, Occupancy, SpawnRegion};
 
 /// Most groups a scene may have (the group index lives in 16 bits of `user_data`).
@@ -194,35 +195,49 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
         let group = &scene.balloons[i];
         let model = &balloon_models[i];
         let root = model.shape.tree.root().sphere();
-        let mut region = spawn_region(scene, i, model, &bounds.min, &bounds.max)?;
+        let region = spawn_region(scene, i, model, &bounds.min, &bounds.max)?;
         let hung = group.tied_ribbon().filter(|_| hangs_weights(group));
         let knot = ribbons::knot_point(model);
-        if let Some(ribbon) = hung {
-            // One layer, its knots a ribbon's length and a gap above the
-            // floor: each weight hangs just clear of the floor.
-            let cell = spawn::cell_size(root.radius);
-            let knot_y = bounds.min.y + ribbon.length_m + WEIGHT_HANG_GAP;
-            let bottom = knot_y + (root.center.y - knot.y) - 0.5 * cell;
-            region.min.y = region.min.y.max(bottom);
-            region.max.y = region.min.y;
-            region.top = region.top.min(region.min.y + 1.5 * cell);
-        }
         let count = group.count as usize;
-        let centres = place_spheres(
-            count,
-            root.radius,
-            &region,
-            &inside,
-            &mut occupied,
-            &mut rng,
-        );
-        if centres.len() < count {
-            return Err(SceneError::DoesNotFit {
-                at: scene.locate(&format!("balloons[{i}].count")),
-                requested: group.count,
-                placed: centres.len() as u64,
-            });
-        }
+        let centres = if let Some(ribbon) = hung {
+            let hanging = Hanging {
+                radius: root.radius,
+                knot: knot - root.center,
+                ribbon_length: ribbon.length_m,
+                tilt_deg: group.tilt_deg,
+            };
+            let floor = bounds.min.y;
+            let layout = lay_hanging(
+                count,
+                &hanging,
+                &region,
+                floor,
+                &inside,
+                &mut occupied,
+                &mut rng,
+            );
+            if layout.centres.len() < count {
+                return Err(too_many_to_hang(scene, i, &layout, &bounds));
+            }
+            layout.centres
+        } else {
+            let centres = place_spheres(
+                count,
+                root.radius,
+                &region,
+                &inside,
+                &mut occupied,
+                &mut rng,
+            );
+            if centres.len() < count {
+                return Err(SceneError::DoesNotFit {
+                    at: scene.locate(&format!("balloons[{i}].count")),
+                    requested: group.count,
+                    placed: centres.len() as u64,
+                });
+            }
+            centres
+        };
         layouts[i] = centres
             .into_iter()
             .map(|centre| {
@@ -284,18 +299,29 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
     })
 }
 
-/// How far a weight hangs above the floor when its group is laid, m: it
-/// drops onto the floor when released.
-const WEIGHT_HANG_GAP: f32 = WEIGHT_RADIUS + 0.01;
-
-/// Reserves the column a ribbon and its weight hang in, from `knot` down to
-/// `floor`, as a stack of spheres a weight's width and a gap across.
-fn reserve_column(occupied: &mut Occupancy, knot: Vec3, floor: f32) {
-    let radius = WEIGHT_RADIUS + 0.01;
-    let mut at = knot;
-    while at.y > floor {
-        occupied.insert(at, radius);
-        at.y -= radius;
+/// A hanging group's count more than the room holds: how many it holds,
+/// in how many layers, and the room's size.
+fn too_many_to_hang(
+    scene: &Scene,
+    i: usize,
+    layout: &HangingLayout,
+    bounds: &up_geom::Aabb,
+) -> SceneError {
+    let group = &scene.balloons[i];
+    let size = bounds.max - bounds.min;
+    let length = group.tied_ribbon().map_or(0.0, |r| r.length_m);
+    SceneError::Invalid {
+        at: scene.locate(&format!("balloons[{i}].count")),
+        expected: format!(
+            "at most {} balloons: a room {:.2} m × {:.2} m and {:.2} m high holds that many \
+             of these hanging their weights on {length} m ribbons, in {} staggered layers",
+            layout.centres.len(),
+            size.x,
+            size.z,
+            size.y,
+            layout.layers
+        ),
+        found: group.count.to_string(),
     }
 }
 
@@ -305,9 +331,10 @@ fn reserve_column(occupied: &mut Occupancy, knot: Vec3, floor: f32) {
 /// would hang among them, and its pull (tens of grams, where a balloon
 /// weighs a few) drives them into each other from the first step (101 mm of
 /// overlap in a 10 m room of 1,500 free balloons laid first and 200 weighted
-/// above them). Laid first, the weighted balloons take one layer, each at
-/// its ribbon's length above the floor, its ribbon and weight hanging
-/// straight down in a column every later balloon keeps out of. (Laid on the
+/// above them). Laid first (`hang::lay_hanging`), the weighted balloons
+/// start at their ribbon's length above the floor, in one layer or in
+/// staggered ones, each ribbon and weight hanging straight down in a column
+/// every later balloon keeps out of. (Laid on the
 /// floor instead, each ribbon runs along it and its weight ends under some
 /// other balloon's neck, pressed between the two: 8 to 17 mm of overlap.)
 fn placement_order(scene: &Scene) -> Vec<usize> {
@@ -319,7 +346,6 @@ fn placement_order(scene: &Scene) -> Vec<usize> {
         .collect()
 }
 
-/// Whether the group's ribbons end in a weight.
 /// Whether the builder lays `group` as weights hanging over the floor: its
 /// ribbons end in a weight and nothing else says where it starts (a spawn
 /// box, an anchor). Other groups keep the scene's order, so their layouts
@@ -449,6 +475,8 @@ fn random_upright(rng: &mut SplitMix64, tilt_deg: f32, yaw_deg: f32) -> Quat {
     (Quat::from_axis_angle(axis, tilt) * Quat::from_rotation_y(yaw)).normalize()
 }
 
+#[cfg(test)]
+mod hang_tests;
 #[cfg(test)]
 mod room_tests;
 #[cfg(test)]

@@ -61,6 +61,48 @@ impl Occupancy {
         }
     }
 
+    /// Whether a sphere of `radius` at `center` comes within `radius` of any
+    /// placed sphere (their true distance, not their boxes).
+    pub(crate) fn overlaps_sphere(&self, center: Vec3, radius: f32) -> bool {
+        let reach = Vec3::splat(radius);
+        self.any_near(center - reach, center + reach, |c, r| {
+            c.distance_squared(center) < (r + radius) * (r + radius)
+        })
+    }
+
+    /// Whether a vertical cylinder of `radius` about `x`–`z`, from `y_lo` to
+    /// `y_hi`, comes within `radius` of any placed sphere.
+    pub(crate) fn overlaps_column(
+        &self,
+        x: f32,
+        z: f32,
+        y_lo: f32,
+        y_hi: f32,
+        radius: f32,
+    ) -> bool {
+        let min = Vec3::new(x - radius, y_lo, z - radius);
+        let max = Vec3::new(x + radius, y_hi, z + radius);
+        self.any_near(min, max, |c, r| {
+            let (dx, dz) = (c.x - x, c.z - z);
+            c.y + r > y_lo && c.y - r < y_hi && dx * dx + dz * dz < (r + radius) * (r + radius)
+        })
+    }
+
+    /// Whether `hit` holds for any placed sphere (centre, radius) that
+    /// reaches into the box from `min` to `max`.
+    fn any_near(&self, min: Vec3, max: Vec3, hit: impl Fn(Vec3, f32) -> bool) -> bool {
+        // A sphere is in every bucket its box touches, so one that reaches
+        // the query's box is in one of its buckets; one in several is tested again.
+        bucket_range(min, max).any(|key| {
+            self.buckets.get(&key).is_some_and(|list| {
+                list.iter().any(|&i| {
+                    let (c, r) = self.spheres[i as usize];
+                    hit(c, r)
+                })
+            })
+        })
+    }
+
     /// Whether the box overlaps any placed sphere's bounding box.
     fn overlaps_box(&self, min: Vec3, max: Vec3) -> bool {
         bucket_range(min, max).any(|key| {
@@ -76,11 +118,11 @@ impl Occupancy {
 
 /// A grid over the footprint: `nx × nz` cells of `cell_x × cell_z`.
 #[derive(Clone, Copy, Debug)]
-struct Grid {
-    nx: usize,
-    nz: usize,
-    cell_x: f32,
-    cell_z: f32,
+pub(crate) struct Grid {
+    pub nx: usize,
+    pub nz: usize,
+    pub cell_x: f32,
+    pub cell_z: f32,
 }
 
 /// Places up to `count` bounding spheres of `radius`; returns their centres
@@ -156,7 +198,7 @@ pub fn place_spheres(
 }
 
 /// Grids that hold at least `target` cells, coarsest (largest cells) first.
-fn coarse_grids(target: usize, width: f32, depth: f32, c: f32) -> Vec<Grid> {
+pub(crate) fn coarse_grids(target: usize, width: f32, depth: f32, c: f32) -> Vec<Grid> {
     let max_nx = (width / c).floor() as usize;
     let max_nz = (depth / c).floor() as usize;
     let mut grids: Vec<Grid> = (1..=max_nx)

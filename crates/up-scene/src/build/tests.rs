@@ -172,7 +172,7 @@ fn example_scenes_build() {
         ("two-gases.json", 18, 0),
         ("evening.toml", 43, 43),
         ("tied.toml", 6, 6),
-        ("mixed-room.toml", 370, 340),
+        ("mixed-room.toml", 2000, 1700),
     ];
     for (name, count, ribbons) in expected {
         let scene = Scene::from_path(dir.join(name)).unwrap();
@@ -323,84 +323,4 @@ fn the_temperature_schedule_reaches_the_world() {
     built.world.advance(3.0 * 3600.0, 10_000_000);
     let air = built.world.air();
     assert!((air.temperature_k - 295.15).abs() < 1e-3, "{air:?}");
-}
-
-/// The example room of every kind of balloon: 300 free balloons on ribbons
-/// that stack three layers deep, 40 on ribbons to 35 g weights, 30 foil.
-fn mixed_room() -> Scene {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/scenes");
-    Scene::from_path(dir.join("mixed-room.toml")).unwrap()
-}
-
-#[test]
-fn a_room_of_every_kind_of_balloon_starts_clean_and_stays_clean() {
-    // Laid in the scene's order, the weighted balloons went above the free
-    // ones, and their weights hung 1.2 m down among them: 95 mm of overlap
-    // in the first steps. The bound is `up soak`'s: 1 % of the smallest
-    // balloon's radius.
-    let scene = mixed_room();
-    let radius = scene
-        .balloons
-        .iter()
-        .map(|g| g.diameter() / 2.0)
-        .fold(f32::INFINITY, f32::min);
-    let bound = 0.01 * radius;
-    let mut built = build_world(&scene).unwrap();
-    let world = &mut built.world;
-    assert_eq!(world.max_penetration_now(), 0.0, "overlap at spawn");
-    let mut worst = 0.0f32;
-    for _ in 0..60 {
-        world.step();
-        worst = worst.max(world.stats().max_penetration);
-    }
-    assert!(
-        worst < bound,
-        "worst overlap {:.2} mm over the first second, bound {:.2} mm",
-        worst * 1e3,
-        bound * 1e3
-    );
-}
-
-#[test]
-fn weighted_balloons_hang_their_weights_clear_of_every_balloon() {
-    let built = build_world(&mixed_room()).unwrap();
-    let world = &built.world;
-    let weight_radius = up_physics::ribbon::WEIGHT_RADIUS;
-    // Every balloon's bounding sphere, in the world.
-    let spheres: Vec<(Vec3, f32)> = (0..built.group_bodies.len())
-        .flat_map(|group| {
-            let root = built.balloon_models[group].shape.tree.root().sphere();
-            built.group_bodies[group].iter().map(move |&b| {
-                let pose = world.pose(b).unwrap();
-                (pose.transform_point(root.center), root.radius)
-            })
-        })
-        .collect();
-    let knot = super::ribbons::knot_point(&built.balloon_models[1]);
-    let mut knots = Vec::new();
-    for &b in &built.group_bodies[1] {
-        let points = world.ribbon_points(world.ribbon_of(b).unwrap()).unwrap();
-        // Straight down, to just above the floor.
-        let weight = *points.last().unwrap();
-        assert!(
-            weight.y > weight_radius && weight.y < 1.2 / 16.0,
-            "a weight hangs at {weight} m"
-        );
-        assert!((points[0].x - weight.x).abs() < 1e-4, "{points:?}");
-        for p in points {
-            for &(centre, radius) in &spheres {
-                let inside_own = centre.distance(points[0]) < radius + 0.05;
-                if !inside_own {
-                    assert!(
-                        p.distance(centre) > radius + weight_radius,
-                        "ribbon point {p} inside a balloon at {centre}"
-                    );
-                }
-            }
-        }
-        knots.push(world.pose(b).unwrap().transform_point(knot).y);
-    }
-    let spread = knots.iter().fold(0.0f32, |m, y| m.max(*y))
-        - knots.iter().fold(f32::INFINITY, |m, y| m.min(*y));
-    assert!(spread < 0.05, "one layer: knots {spread} m apart in height");
 }
