@@ -348,6 +348,23 @@ mod tests {
     }
 
     #[test]
+    fn sphere_and_column_queries_measure_true_distance() {
+        let mut occ = Occupancy::default();
+        occ.insert(Vec3::new(0.0, 1.0, 0.0), 0.2);
+        // Inside the placed sphere's box but 0.43 m from its centre: clear.
+        assert!(!occ.overlaps_sphere(Vec3::new(0.25, 1.25, 0.25), 0.1));
+        assert!(occ.overlaps_sphere(Vec3::new(0.25, 1.0, 0.0), 0.1));
+        // A column beside it, one through its edge, one that stops below it.
+        assert!(!occ.overlaps_column(0.3, 0.0, 0.0, 2.0, 0.05));
+        assert!(occ.overlaps_column(0.2, 0.0, 0.0, 2.0, 0.05));
+        assert!(!occ.overlaps_column(0.0, 0.0, 0.0, 0.7, 0.05));
+        // A sphere across a bucket's edge is found from the next bucket.
+        occ.insert(Vec3::new(0.99, 0.5, 0.0), 0.05);
+        assert!(occ.overlaps_sphere(Vec3::new(1.05, 0.5, 0.0), 0.02));
+        assert!(!occ.overlaps_sphere(Vec3::new(1.08, 0.5, 0.0), 0.02));
+    }
+
+    #[test]
     fn region_narrower_than_a_balloon_places_nothing() {
         let inside = box_inside(Vec3::new(3.0, 0.0, 3.0), 3.0);
         let region = SpawnRegion {
