@@ -25,6 +25,9 @@
 
 pub(crate) mod chain;
 pub(crate) mod collide;
+mod lane_group;
+mod lane_pushes;
+mod lane_substep;
 pub(crate) mod nearby;
 pub(crate) mod solve;
 
