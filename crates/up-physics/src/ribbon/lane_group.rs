@@ -17,7 +17,7 @@ use up_geom::Sphere;
 
 use super::chain::ChainRows;
 use super::collide::NearBalloon;
-use super::lane_pushes::NearSlot;
+use super::lane_pushes::{Bound, NearSlot};
 use super::solve::ActiveRibbon;
 use super::MAX_SEGMENTS;
 use crate::solver::lanes::{set, F4, LANES, M4, V4};
@@ -133,7 +133,12 @@ impl LaneGroup {
 
     /// Fills the spare lanes with copies of the first, and sets `live_mask`.
     fn pad(&mut self) {
+        let all = F4::splat(f32::from_bits(!0));
         let live = self.live;
+        if live == LANES {
+            self.live_mask = all;
+            return;
+        }
         let first = |x: F4| F4::splat(x.as_array()[0]);
         let keep = |x: F4, spare: F4| {
             let mut out = x;
@@ -158,7 +163,6 @@ impl LaneGroup {
             .chain(&mut self.drag_end)
             .for_each(fill);
         fill(&mut self.end_radius);
-        let all = F4::splat(f32::from_bits(!0));
         self.live_mask = keep(all, F4::ZERO);
         for lane in &mut self.lanes[self.live..] {
             lane.grab = None;
@@ -197,6 +201,8 @@ pub(crate) struct RibbonLanes {
     pub order: Vec<(u32, u32)>,
     /// Per segment count: the group being filled (`u32::MAX`: none).
     filling: Vec<u32>,
+    /// Every body's bounding sphere at the substep's pose.
+    pub bounds: Vec<Bound>,
 }
 
 impl RibbonLanes {

@@ -13,6 +13,7 @@ use super::solve::SubstepInput;
 use super::{BALLOON_FRICTION, RIBBON_RADIUS, ROOM_FRICTION};
 use crate::solver::body_state::BodyState;
 use crate::solver::lanes::{set, F4, V4};
+use crate::threading::tasks::fill_chunks;
 
 /// The `k`th near balloon of each lane: its bounding sphere, and the lanes
 /// that have a `k`th (bit `l` for lane `l`).
@@ -21,6 +22,44 @@ pub(crate) struct NearSlot {
     center: V4,
     radius: F4,
     lanes: u32,
+}
+
+/// A body's bounding sphere (its tree's root) at this substep's pose.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Bound {
+    pub center: Vec3,
+    pub radius: f32,
+}
+
+/// Every body's `Bound` at this substep's pose, from `states`: placed once a
+/// substep for all the ribbons that look for balloons near them.
+pub(crate) fn place_bounds(bounds: &mut Vec<Bound>, input: &SubstepInput, states: &[BodyState]) {
+    // The bodies (the states may hold more: the solver keeps its buffers).
+    bounds.resize(input.centers.len(), Bound::default());
+    fill_chunks(bounds, BOUND_CHUNK, |first, run| {
+        for (k, bound) in run.iter_mut().enumerate() {
+            let b = first + k;
+            let s = &states[b];
+            let tree = &input.shapes[input.shape_of[b] as usize].tree;
+            let center = input.centers[b] + s.dp;
+            let (root, scale) = (tree.root(), input.size[b].scale);
+            *bound = Bound {
+                center: center + s.q * (root.center * scale),
+                radius: root.radius * scale,
+            };
+        }
+    });
+}
+
+/// Bodies one task places.
+const BOUND_CHUNK: usize = 4096;
+
+/// What the pushes out of balloons read.
+#[derive(Clone, Copy)]
+pub(crate) struct NearInput<'a> {
+    pub input: &'a SubstepInput<'a>,
+    pub states: &'a [BodyState],
+    pub bounds: &'a [Bound],
 }
 
 impl LaneGroup {
@@ -36,7 +75,8 @@ impl LaneGroup {
     /// Pushes each ribbon's points (as they fell) out of the balloons near
     /// it, at this substep's poses; keeps the pushes back and the touched
     /// points' normals.
-    pub(super) fn push_out_of_balloons(&mut self, input: &SubstepInput, states: &[BodyState]) {
+    pub(super) fn push_out_of_balloons(&mut self, near: &NearInput) {
+        let input = near.input;
         self.spheres.clear();
         self.touched = false;
         let (mut lo, mut hi) = (self.points[1], self.points[1]);
@@ -46,7 +86,7 @@ impl LaneGroup {
         }
         let mut most = 0;
         for l in 0..self.live {
-            self.find_near(l, (lo.lane(l), hi.lane(l)), input, states);
+            self.find_near(l, (lo.lane(l), hi.lane(l)), near);
             self.lanes[l].reactions.clear();
             most = most.max(self.lanes[l].near.len());
         }
@@ -124,13 +164,12 @@ impl LaneGroup {
     /// Lane `l`'s near balloons: those of its candidates whose roots reach
     /// its points' box `(lo, hi)` (the knot's left out), at this substep's
     /// poses (their leaves are placed when a point comes near).
-    fn find_near(
-        &mut self,
-        l: usize,
-        (lo, hi): (Vec3, Vec3),
-        input: &SubstepInput,
-        states: &[BodyState],
-    ) {
+    fn find_near(&mut self, l: usize, (lo, hi): (Vec3, Vec3), near: &NearInput) {
+        let NearInput {
+            input,
+            states,
+            bounds,
+        } = *near;
         let lane = &mut self.lanes[l];
         lane.near.clear();
         let bodies = &input.bodies[lane.bodies.start as usize..lane.bodies.end as usize];
@@ -139,21 +178,20 @@ impl LaneGroup {
         }
         let reach = RIBBON_RADIUS.max(self.end_radius.as_array()[l]);
         for &b in bodies {
-            let s = &states[b as usize];
-            let tree = &input.shapes[input.shape_of[b as usize] as usize].tree;
-            let center = input.centers[b as usize] + s.dp;
-            let (root, scale) = (tree.root(), input.size[b as usize].scale);
-            let root_center = center + s.q * (root.center * scale);
-            let root_radius = root.radius * scale;
+            let Bound {
+                center: root_center,
+                radius: root_radius,
+            } = bounds[b as usize];
             let closest = root_center.clamp(lo, hi);
             if closest.distance_squared(root_center) > (root_radius + reach).powi(2) {
                 continue;
             }
+            let s = &states[b as usize];
             lane.near.push(NearBalloon {
                 state: b,
                 bound: Sphere::new(root_center, root_radius),
                 moved: s.v * input.h,
-                center,
+                center: input.centers[b as usize] + s.dp,
                 rotation: s.q,
                 tree: input.shape_of[b as usize],
                 leaves: (0, 0),

@@ -8,6 +8,7 @@ use glam::Vec3;
 
 use super::chain::{div, norm, solve_chains, Knots};
 use super::lane_group::{set_matrix, LaneGroup};
+use super::lane_pushes::NearInput;
 use super::solve::{SubstepInput, CHAIN_ITERATIONS, CHAIN_TOLERANCE};
 use crate::forces::field::PointSample;
 use crate::solver::body_state::BodyState;
@@ -18,13 +19,14 @@ const NO_DIRECTION: f32 = 1e-9;
 
 impl LaneGroup {
     /// One substep of the group's ribbons, reading the balloons' `states`.
-    pub(crate) fn substep(&mut self, input: &SubstepInput, states: &[BodyState]) {
+    pub(crate) fn substep(&mut self, near: &NearInput) {
+        let (input, states) = (near.input, near.states);
         let h = input.h;
         let knots = self.place_knots(states);
         self.start.copy_from_slice(&self.points);
         self.fall(input, h);
         self.carry_grabbed(h);
-        self.push_out_of_balloons(input, states);
+        self.push_out_of_balloons(near);
         self.push_out_of_room(input.triangles);
         let unconverged = self.solve_chains(&knots);
         if unconverged.any() {

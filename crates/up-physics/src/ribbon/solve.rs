@@ -31,6 +31,7 @@ use glam::Vec3;
 
 use super::collide::NearTriangle;
 use super::lane_group::RibbonLanes;
+use super::lane_pushes::{place_bounds, NearInput};
 use super::nearby::NearbyBodies;
 use super::{
     Ribbon, AIR_VISCOSITY, NORMAL_DRAG_COEFFICIENT, RIBBON_WIDTH, TANGENT_DRAG_COEFFICIENT,
@@ -220,9 +221,15 @@ impl SubstepPart for RibbonSubsteps<'_> {
 /// balloons, in the ribbons' order.
 fn substep(lanes: &mut RibbonLanes, input: &SubstepInput, states: &mut [BodyState]) {
     let read: &[BodyState] = states;
+    place_bounds(&mut lanes.bounds, input, read);
+    let near = NearInput {
+        input,
+        states: read,
+        bounds: &lanes.bounds,
+    };
     fill_chunks(&mut lanes.groups[..lanes.used], GROUP_CHUNK, |_, groups| {
         for g in groups {
-            g.substep(input, read);
+            g.substep(&near);
         }
     });
     let inv_h = 1.0 / input.h;
