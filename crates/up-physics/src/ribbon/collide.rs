@@ -86,31 +86,24 @@ pub(crate) struct NearBalloon {
     pub center: Vec3,
     pub rotation: Quat,
     pub tree: u32,
-    /// Where its placed leaves are in the list beside it; empty until placed.
+    /// Where its placed leaves are in the list of placed leaves; empty until
+    /// placed.
     pub leaves: (u32, u32),
 }
 
 /// Pushes `point` (which was at `start` when the substep began), found
-/// within `b`'s bounding sphere, out of its leaf spheres, with friction `mu`
-/// against the balloon's move; places the balloon's leaves (`place`) the
-/// first time a point needs them. Returns the point's move, if it moved (the
-/// balloon takes the push back).
+/// within `b`'s bounding sphere, out of `spheres` (its leaves, placed), with
+/// friction `mu` against the balloon's move. Returns the point's move, if
+/// it moved (the balloon takes the push back).
 pub(crate) fn push_out_of_balloon(
     point: &mut Vec3,
     start: Vec3,
     radius: f32,
     mu: f32,
-    b: &mut NearBalloon,
-    leaves: &mut Vec<Sphere>,
-    place: impl Fn(&NearBalloon, &mut Vec<Sphere>),
+    b: &NearBalloon,
+    spheres: &[Sphere],
 ) -> Option<Vec3> {
-    if b.leaves.0 == b.leaves.1 {
-        let first = leaves.len() as u32;
-        place(b, leaves);
-        b.leaves = (first, leaves.len() as u32);
-    }
     let before = *point;
-    let spheres = &leaves[b.leaves.0 as usize..b.leaves.1 as usize];
     push_out_of_spheres(point, radius, spheres);
     take_back_slide(point, *point - start - b.moved, *point - before, mu);
     (*point != before).then_some(*point - before)

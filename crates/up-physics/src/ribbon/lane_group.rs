@@ -15,9 +15,10 @@ use std::ops::Range;
 use glam::{Mat3, Vec3};
 use up_geom::Sphere;
 
+use super::body_spheres::BodySpheres;
 use super::chain::ChainRows;
 use super::collide::NearBalloon;
-use super::lane_pushes::{Bound, NearSlot};
+use super::lane_pushes::NearSlot;
 use super::solve::ActiveRibbon;
 use super::MAX_SEGMENTS;
 use crate::solver::lanes::{set, F4, LANES, M4, V4};
@@ -80,8 +81,8 @@ pub(crate) struct LaneGroup {
     /// The step's substeps so far and their length, s.
     pub substeps: u32,
     pub h: f32,
-    /// The near balloons' leaf spheres, placed when a point comes near, and
-    /// their bounds lined up across the lanes.
+    /// The near balloons' leaf spheres, placed when a point comes near (when
+    /// not placed for all bodies), and their bounds lined up across the lanes.
     pub spheres: Vec<Sphere>,
     pub near_slots: Vec<NearSlot>,
     pub rows: ChainRows,
@@ -201,8 +202,8 @@ pub(crate) struct RibbonLanes {
     pub order: Vec<(u32, u32)>,
     /// Per segment count: the group being filled (`u32::MAX`: none).
     filling: Vec<u32>,
-    /// Every body's bounding sphere at the substep's pose.
-    pub bounds: Vec<Bound>,
+    /// The bodies' spheres at the substep's pose.
+    pub bodies: BodySpheres,
 }
 
 impl RibbonLanes {

@@ -7,13 +7,13 @@
 use glam::Vec3;
 use up_geom::Sphere;
 
+use super::body_spheres::{place_leaves, BodySpheres, Bound};
 use super::collide::{push_out_of_balloon, push_out_of_room, NearBalloon, NearTriangle};
 use super::lane_group::LaneGroup;
 use super::solve::SubstepInput;
 use super::{BALLOON_FRICTION, RIBBON_RADIUS, ROOM_FRICTION};
 use crate::solver::body_state::BodyState;
 use crate::solver::lanes::{set, F4, V4};
-use crate::threading::tasks::fill_chunks;
 
 /// The `k`th near balloon of each lane: its bounding sphere, and the lanes
 /// that have a `k`th (bit `l` for lane `l`).
@@ -24,42 +24,12 @@ pub(crate) struct NearSlot {
     lanes: u32,
 }
 
-/// A body's bounding sphere (its tree's root) at this substep's pose.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct Bound {
-    pub center: Vec3,
-    pub radius: f32,
-}
-
-/// Every body's `Bound` at this substep's pose, from `states`: placed once a
-/// substep for all the ribbons that look for balloons near them.
-pub(crate) fn place_bounds(bounds: &mut Vec<Bound>, input: &SubstepInput, states: &[BodyState]) {
-    // The bodies (the states may hold more: the solver keeps its buffers).
-    bounds.resize(input.centers.len(), Bound::default());
-    fill_chunks(bounds, BOUND_CHUNK, |first, run| {
-        for (k, bound) in run.iter_mut().enumerate() {
-            let b = first + k;
-            let s = &states[b];
-            let tree = &input.shapes[input.shape_of[b] as usize].tree;
-            let center = input.centers[b] + s.dp;
-            let (root, scale) = (tree.root(), input.size[b].scale);
-            *bound = Bound {
-                center: center + s.q * (root.center * scale),
-                radius: root.radius * scale,
-            };
-        }
-    });
-}
-
-/// Bodies one task places.
-const BOUND_CHUNK: usize = 4096;
-
 /// What the pushes out of balloons read.
 #[derive(Clone, Copy)]
 pub(crate) struct NearInput<'a> {
     pub input: &'a SubstepInput<'a>,
     pub states: &'a [BodyState],
-    pub bounds: &'a [Bound],
+    pub bodies: &'a BodySpheres,
 }
 
 impl LaneGroup {
@@ -76,7 +46,6 @@ impl LaneGroup {
     /// it, at this substep's poses; keeps the pushes back and the touched
     /// points' normals.
     pub(super) fn push_out_of_balloons(&mut self, near: &NearInput) {
-        let input = near.input;
         self.spheres.clear();
         self.touched = false;
         let (mut lo, mut hi) = (self.points[1], self.points[1]);
@@ -120,7 +89,7 @@ impl LaneGroup {
                 while within != 0 {
                     let l = within.trailing_zeros() as usize;
                     within &= within - 1;
-                    self.push_point_out(l, i, k, input);
+                    self.push_point_out(l, i, k, near);
                 }
             }
         }
@@ -128,24 +97,25 @@ impl LaneGroup {
 
     /// Pushes lane `l`'s point `i` out of its `k`th near balloon, whose bound
     /// it is within.
-    fn push_point_out(&mut self, l: usize, i: usize, k: usize, input: &SubstepInput) {
-        let place = |b: &NearBalloon, out: &mut Vec<Sphere>| {
-            let tree = &input.shapes[b.tree as usize].tree;
-            let (nodes, scale) = (tree.nodes(), input.size[b.state as usize].scale);
-            for &leaf in tree.leaves() {
-                let node = &nodes[leaf as usize];
-                out.push(Sphere::new(
-                    b.center + b.rotation * (node.center * scale),
-                    node.radius * scale,
-                ));
-            }
-        };
+    fn push_point_out(&mut self, l: usize, i: usize, k: usize, near: &NearInput) {
+        let input = near.input;
         let radius = self.radius(i).as_array()[l];
         let (start, mut point) = (self.start[i].lane(l), self.points[i].lane(l));
-        let lane = &mut self.lanes[l];
+        let (lane, placed) = (&mut self.lanes[l], &mut self.spheres);
         let b = &mut lane.near[k];
+        let leaves = if near.bodies.all_leaves {
+            &near.bodies.leaves
+        } else {
+            if b.leaves.0 == b.leaves.1 {
+                let first = placed.len() as u32;
+                place_leaves(b, input, placed);
+                b.leaves = (first, placed.len() as u32);
+            }
+            &*placed
+        };
+        let spheres = &leaves[b.leaves.0 as usize..b.leaves.1 as usize];
         let mu = BALLOON_FRICTION;
-        let moved = push_out_of_balloon(&mut point, start, radius, mu, b, &mut self.spheres, place);
+        let moved = push_out_of_balloon(&mut point, start, radius, mu, b, spheres);
         self.points[i].set_lane(l, point);
         let Some(moved) = moved else { return };
         // The point's momentum change, the other way, where it touched.
@@ -168,7 +138,7 @@ impl LaneGroup {
         let NearInput {
             input,
             states,
-            bounds,
+            bodies: spheres,
         } = *near;
         let lane = &mut self.lanes[l];
         lane.near.clear();
@@ -181,7 +151,7 @@ impl LaneGroup {
             let Bound {
                 center: root_center,
                 radius: root_radius,
-            } = bounds[b as usize];
+            } = spheres.bounds[b as usize];
             let closest = root_center.clamp(lo, hi);
             if closest.distance_squared(root_center) > (root_radius + reach).powi(2) {
                 continue;
@@ -194,7 +164,7 @@ impl LaneGroup {
                 center: input.centers[b as usize] + s.dp,
                 rotation: s.q,
                 tree: input.shape_of[b as usize],
-                leaves: (0, 0),
+                leaves: spheres.leaves_of(b),
             });
         }
     }

@@ -23,6 +23,7 @@
 //! sleeps and wakes with its balloon, and keeps its balloon awake while it
 //! still moves.
 
+mod body_spheres;
 pub(crate) mod chain;
 pub(crate) mod collide;
 mod lane_group;

@@ -31,7 +31,7 @@ use glam::Vec3;
 
 use super::collide::NearTriangle;
 use super::lane_group::RibbonLanes;
-use super::lane_pushes::{place_bounds, NearInput};
+use super::lane_pushes::NearInput;
 use super::nearby::NearbyBodies;
 use super::{
     Ribbon, AIR_VISCOSITY, NORMAL_DRAG_COEFFICIENT, RIBBON_WIDTH, TANGENT_DRAG_COEFFICIENT,
@@ -221,11 +221,13 @@ impl SubstepPart for RibbonSubsteps<'_> {
 /// balloons, in the ribbons' order.
 fn substep(lanes: &mut RibbonLanes, input: &SubstepInput, states: &mut [BodyState]) {
     let read: &[BodyState] = states;
-    place_bounds(&mut lanes.bounds, input, read);
+    // A crowd's leaves placed once for all its ribbons.
+    let all_leaves = 2 * lanes.order.len() >= input.centers.len();
+    lanes.bodies.place(input, read, all_leaves);
     let near = NearInput {
         input,
         states: read,
-        bounds: &lanes.bounds,
+        bodies: &lanes.bodies,
     };
     fill_chunks(&mut lanes.groups[..lanes.used], GROUP_CHUNK, |_, groups| {
         for g in groups {
