@@ -170,7 +170,7 @@ pub(crate) fn solve_chains(
         let pivot = w(j) + w(j + 1) - lower * previous_upper;
         let mut solved = !pivot.abs().simd_lt(F4::splat(TINY));
         if j == 0 {
-            solved = solved & taut_knot;
+            solved &= taut_knot;
         }
         upper[j] = select(solved, c / pivot, zero);
         rhs[j] = select(solved, (rhs[j] - lower * previous_rhs) / pivot, zero);
@@ -179,7 +179,7 @@ pub(crate) fn solve_chains(
     }
     // Back substitution: `rhs` becomes λ_j.
     for j in (0..n.saturating_sub(1)).rev() {
-        rhs[j] = rhs[j] - upper[j] * rhs[j + 1];
+        rhs[j] -= upper[j] * rhs[j + 1];
     }
     // Δx_i = w_i·(λ_{i−1}·n_{i−1} − λ_i·n_i).
     for i in 1..=n {

@@ -155,7 +155,7 @@ impl LaneGroup {
             let knot = self.points[0] + knots.point_motion(impulse);
             self.points[0] = V4::select(moving, knot, self.points[0]);
             self.impulse = V4::select(moving, self.impulse + impulse, self.impulse);
-            moving = moving & !worst.simd_lt(tolerance);
+            moving &= !worst.simd_lt(tolerance);
             if !moving.any() {
                 break;
             }
