@@ -86,45 +86,27 @@ pub(crate) struct NearBalloon {
     pub center: Vec3,
     pub rotation: Quat,
     pub tree: u32,
-    /// Where its placed leaves are in the list beside it; empty until placed.
+    /// Where its placed leaves are in the list of placed leaves; empty until
+    /// placed.
     pub leaves: (u32, u32),
 }
 
-/// Pushes `point` (which was at `start` when the substep began) out of the
-/// leaf spheres of each balloon of `near` whose bounding sphere it is in
-/// (most points are in none: one test a balloon), with friction `mu` against
-/// the balloon's move; places a balloon's leaves (`place`) the first time a
-/// point needs them, and hands each balloon that moved the point, with that
-/// move and where the point ended, to `moved_by` (the push back on it).
-#[allow(clippy::too_many_arguments)] // the point, its surfaces, and two callbacks
-pub(crate) fn push_out_of_balloons(
+/// Pushes `point` (which was at `start` when the substep began), found
+/// within `b`'s bounding sphere, out of `spheres` (its leaves, placed), with
+/// friction `mu` against the balloon's move. Returns the point's move, if
+/// it moved (the balloon takes the push back).
+pub(crate) fn push_out_of_balloon(
     point: &mut Vec3,
     start: Vec3,
     radius: f32,
     mu: f32,
-    near: &mut [NearBalloon],
-    leaves: &mut Vec<Sphere>,
-    place: impl Fn(&NearBalloon, &mut Vec<Sphere>),
-    mut moved_by: impl FnMut(&NearBalloon, Vec3, Vec3),
-) {
-    for b in near {
-        let reach = b.bound.radius + radius;
-        if point.distance_squared(b.bound.center) >= reach * reach {
-            continue;
-        }
-        if b.leaves.0 == b.leaves.1 {
-            let first = leaves.len() as u32;
-            place(b, leaves);
-            b.leaves = (first, leaves.len() as u32);
-        }
-        let before = *point;
-        let spheres = &leaves[b.leaves.0 as usize..b.leaves.1 as usize];
-        push_out_of_spheres(point, radius, spheres);
-        take_back_slide(point, *point - start - b.moved, *point - before, mu);
-        if *point != before {
-            moved_by(b, *point - before, *point);
-        }
-    }
+    b: &NearBalloon,
+    spheres: &[Sphere],
+) -> Option<Vec3> {
+    let before = *point;
+    push_out_of_spheres(point, radius, spheres);
+    take_back_slide(point, *point - start - b.moved, *point - before, mu);
+    (*point != before).then_some(*point - before)
 }
 
 /// Pushes `point` out of each of `spheres`.

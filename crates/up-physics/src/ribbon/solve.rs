@@ -12,10 +12,12 @@
 //! 4. each point's velocity is what it moved over the substep (less any
 //!    bounce off a balloon).
 //!
-//! The solver runs it as its `ribbons` part (`RibbonSubsteps`, a
-//! `solver::SubstepPart`). The ribbons read the bodies' states and write
-//! only their own points, so
-//! they run on rayon's threads in any split; their pulls on their balloons
+//! The awake ribbons are solved four at a time, a ribbon a SIMD lane, in
+//! groups of one segment count (`lane_group`, `lane_substep`,
+//! `lane_pushes`). The solver runs them as its `ribbons` part
+//! (`RibbonSubsteps`, a `solver::SubstepPart`). The ribbons read the bodies'
+//! states and write only their own points, so the groups run on rayon's
+//! threads in any split; their pulls on their balloons
 //! (one ribbon a balloon) and the pushes back of the balloons they touched
 //! are then applied in ribbon order. A pull moves its balloon's centre but
 //! turns it only through its angular velocity (`BodyState::apply_pull`); the
@@ -26,18 +28,17 @@
 use std::ops::Range;
 
 use glam::Vec3;
-use up_geom::norm::Norm;
-use up_geom::Sphere;
 
-use super::chain::{solve_chain, KnotBody};
-use super::collide::{push_out_of_balloons, push_out_of_room, NearBalloon, NearTriangle};
+use super::collide::NearTriangle;
+use super::lane_group::RibbonLanes;
+use super::lane_pushes::NearInput;
 use super::nearby::NearbyBodies;
 use super::{
-    Ribbon, AIR_VISCOSITY, BALLOON_FRICTION, NORMAL_DRAG_COEFFICIENT, RIBBON_WIDTH, ROOM_FRICTION,
-    TANGENT_DRAG_COEFFICIENT, WEIGHT_DRAG_COEFFICIENT, WEIGHT_RADIUS,
+    Ribbon, AIR_VISCOSITY, NORMAL_DRAG_COEFFICIENT, RIBBON_WIDTH, TANGENT_DRAG_COEFFICIENT,
+    WEIGHT_DRAG_COEFFICIENT, WEIGHT_RADIUS,
 };
 use crate::body::{BodySize, ShapeData};
-use crate::forces::field::{ForceFields, PointSample};
+use crate::forces::field::ForceFields;
 use crate::solver::body_state::BodyState;
 use crate::solver::SubstepPart;
 use crate::threading::tasks::fill_chunks;
@@ -46,15 +47,16 @@ use crate::threading::tasks::fill_chunks;
 /// last one's linearisation left (a taut ribbon whose light points swing
 /// across it, jerked by its balloon, needs several; left alone, that error
 /// grows into a stretched ribbon); a calm ribbon needs one or two.
-const CHAIN_ITERATIONS: usize = 8;
+pub(super) const CHAIN_ITERATIONS: usize = 8;
 /// A solve that started within this fraction of the segment length of every
 /// length ends them: what it leaves is of the order of its square.
-const CHAIN_TOLERANCE: f32 = 2e-3;
+pub(super) const CHAIN_TOLERANCE: f32 = 2e-3;
 
-/// Ribbons one task takes.
-const RIBBON_CHUNK: usize = 64;
+/// Lane groups one task takes (64 ribbons).
+const GROUP_CHUNK: usize = 16;
 
-/// An awake ribbon during the step, its points taken from the world's.
+/// An awake ribbon during the step, its points taken from the world's; the
+/// substeps solve it in a lane of a `lane_group::LaneGroup`.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct ActiveRibbon {
     /// Its slot in the world's ribbons.
@@ -71,39 +73,46 @@ pub(crate) struct ActiveRibbon {
     pub velocities: Vec<Vec3>,
     /// Per point: inverse mass (0 for a held point; unused at the knot).
     pub inv_mass: Vec<f32>,
-    /// Per point: drag across and along the ribbon (½·ρ·C∞·A, kg/m), and
-    /// across at low Reynolds numbers: the drag factor times the speed is
-    /// `drag[0]·|v| + drag[2]` (a viscous force, linear in the speed).
-    pub drag: Vec<[f32; 3]>,
-    /// Per point: its radius, m.
-    pub radius: Vec<f32>,
-    /// Where each point began the substep.
-    start: Vec<Vec3>,
+    /// Drag across and along the ribbon (½·ρ·C∞·A, kg/m), and across at low
+    /// Reynolds numbers: the drag factor times the speed is
+    /// `drag[0]·|v| + drag[2]` (a viscous force, linear in the speed); of
+    /// each point between the ends, and of the end.
+    pub(super) drag_mid: [f32; 3],
+    pub(super) drag_end: [f32; 3],
+    /// The end's radius, m (the other points': `RIBBON_RADIUS`).
+    pub(super) end_radius: f32,
     /// Room triangles and balloons near it this step, in the stage's lists.
     pub triangles: Range<u32>,
     pub bodies: Range<u32>,
     /// A grabbed point and where it is carried, and how fast, m/s.
     pub grab: Option<(usize, Vec3)>,
     pub grab_speed: f32,
-    /// This substep's position impulse on the balloon (kg·m) and the knot's
-    /// arm it acts at, world frame, m.
-    pub impulse: Vec3,
-    pub arm: Vec3,
     /// The knot's position impulses on the balloon summed over the step's
-    /// substeps so far (kg·m), and those substeps' count and length (s).
-    step_impulse: Vec3,
-    substeps: u32,
-    h: f32,
+    /// substeps (kg·m), and those substeps' count and length (s).
+    pub(super) step_impulse: Vec3,
+    pub(super) substeps: u32,
+    pub(super) h: f32,
     pub segment_length: f32,
-    /// This substep's pushes back on the balloons its points touched: the
-    /// balloon's state, the position impulse (kg·m) and its arm (m).
-    reactions: Vec<(u32, Vec3, Vec3)>,
-    /// Per point: the normal of the balloon that pushed it this substep (zero
-    /// if none), and that balloon's velocity.
-    touched: Vec<(Vec3, Vec3)>,
-    /// The balloons near it and their leaf spheres, at this substep's poses.
-    near: Vec<NearBalloon>,
-    spheres: Vec<Sphere>,
+}
+
+/// Point `i`'s drag factors (`ActiveRibbon::drag_mid`) in air of `air_density`.
+fn drag_at(ribbon: &Ribbon, i: usize, air_density: f32) -> [f32; 3] {
+    let n = ribbon.segments();
+    // The knot's and the end's half segments; the weight's cross-section.
+    let share = if i == 0 || i == n { 0.5 } else { 1.0 };
+    let q = 0.5 * air_density * share * ribbon.segment_length * RIBBON_WIDTH;
+    let nu = AIR_VISCOSITY / air_density;
+    let mut across = q * NORMAL_DRAG_COEFFICIENT;
+    let along = q * TANGENT_DRAG_COEFFICIENT;
+    // 10/Re·|v| = 10·ν/w.
+    let mut viscous = q * 10.0 * nu / RIBBON_WIDTH;
+    if i == n && ribbon.weight > 0.0 {
+        let disc = 0.5 * air_density * std::f32::consts::PI * WEIGHT_RADIUS * WEIGHT_RADIUS;
+        across += disc * WEIGHT_DRAG_COEFFICIENT;
+        // 24/Re·|v| = 24·ν/D.
+        viscous += disc * 24.0 * nu / (2.0 * WEIGHT_RADIUS);
+    }
+    [across, along, viscous]
 }
 
 impl ActiveRibbon {
@@ -114,28 +123,13 @@ impl ActiveRibbon {
         self.segment_length = ribbon.segment_length;
         let n = ribbon.segments();
         self.inv_mass.clear();
-        self.drag.clear();
-        self.radius.clear();
         for i in 0..=n {
             let m = if i == 0 { 0.0 } else { ribbon.mass(i) };
             self.inv_mass.push(if m > 0.0 { 1.0 / m } else { 0.0 });
-            // The knot's and the end's half segments; the weight's cross-section.
-            let share = if i == 0 || i == n { 0.5 } else { 1.0 };
-            let q = 0.5 * air_density * share * ribbon.segment_length * RIBBON_WIDTH;
-            let nu = AIR_VISCOSITY / air_density;
-            let mut across = q * NORMAL_DRAG_COEFFICIENT;
-            let along = q * TANGENT_DRAG_COEFFICIENT;
-            // 10/Re·|v| = 10·ν/w.
-            let mut viscous = q * 10.0 * nu / RIBBON_WIDTH;
-            if i == n && ribbon.weight > 0.0 {
-                let disc = 0.5 * air_density * std::f32::consts::PI * WEIGHT_RADIUS * WEIGHT_RADIUS;
-                across += disc * WEIGHT_DRAG_COEFFICIENT;
-                // 24/Re·|v| = 24·ν/D.
-                viscous += disc * 24.0 * nu / (2.0 * WEIGHT_RADIUS);
-            }
-            self.drag.push([across, along, viscous]);
-            self.radius.push(ribbon.radius(i));
         }
+        self.drag_mid = drag_at(ribbon, 1, air_density);
+        self.drag_end = drag_at(ribbon, n, air_density);
+        self.end_radius = ribbon.radius(n);
         // Last: a ribbon without its points has no segments to ask about.
         self.points = std::mem::take(&mut ribbon.points);
         self.velocities = std::mem::take(&mut ribbon.velocities);
@@ -178,6 +172,8 @@ pub(crate) struct RibbonStage {
     /// for the steps in which more are awake (no allocation a step).
     pub active: Vec<ActiveRibbon>,
     pub awake: usize,
+    /// The awake ribbons laid out for the substeps (`pack`, `unpack`).
+    pub lanes: RibbonLanes,
     /// Room triangles and balloons near each active ribbon, back to back.
     pub triangles: Vec<NearTriangle>,
     pub bodies: Vec<u32>,
@@ -195,9 +191,23 @@ pub(crate) struct RibbonStage {
     pub moving: Vec<bool>,
 }
 
+impl RibbonStage {
+    /// Lays out the awake ribbons for the substeps (after they were taken).
+    pub fn pack(&mut self) {
+        self.lanes.pack(&self.active[..self.awake]);
+    }
+
+    /// Hands the solved points back to the awake ribbons (before they are
+    /// given back); the lanes are empty until the next `pack`.
+    pub fn unpack(&mut self) {
+        self.lanes.unpack(&mut self.active[..self.awake]);
+    }
+}
+
 /// The awake ribbons as the solver's `ribbons` part of each substep.
 pub(crate) struct RibbonSubsteps<'a> {
-    pub active: &'a mut [ActiveRibbon],
+    /// Packed in lane groups (`RibbonStage::pack`).
+    pub active: &'a mut RibbonLanes,
     pub input: SubstepInput<'a>,
 }
 
@@ -207,211 +217,30 @@ impl SubstepPart for RibbonSubsteps<'_> {
     }
 }
 
-/// One substep of every active ribbon; then their pulls on their balloons.
-fn substep(active: &mut [ActiveRibbon], input: &SubstepInput, states: &mut [BodyState]) {
+/// One substep of every lane group; then the ribbons' pulls on their
+/// balloons, in the ribbons' order.
+fn substep(lanes: &mut RibbonLanes, input: &SubstepInput, states: &mut [BodyState]) {
     let read: &[BodyState] = states;
-    fill_chunks(active, RIBBON_CHUNK, |_, ribbons| {
-        for r in ribbons {
-            substep_one(r, input, read);
+    // A crowd's leaves placed once for all its ribbons.
+    let all_leaves = 2 * lanes.order.len() >= input.centers.len();
+    lanes.bodies.place(input, read, all_leaves);
+    let near = NearInput {
+        input,
+        states: read,
+        bodies: &lanes.bodies,
+    };
+    fill_chunks(&mut lanes.groups[..lanes.used], GROUP_CHUNK, |_, groups| {
+        for g in groups {
+            g.substep(&near);
         }
     });
     let inv_h = 1.0 / input.h;
-    for r in active.iter() {
-        states[r.state as usize].apply_pull(r.impulse, r.arm, inv_h);
-        for &(state, impulse, arm) in &r.reactions {
+    for &(g, l) in &lanes.order {
+        let (group, l) = (&lanes.groups[g as usize], l as usize);
+        let lane = &group.lanes[l];
+        states[lane.state as usize].apply_pull(group.impulse.lane(l), group.arm.lane(l), inv_h);
+        for &(state, impulse, arm) in &lane.reactions {
             states[state as usize].apply_impulse(impulse * inv_h, arm);
         }
-    }
-}
-
-fn substep_one(r: &mut ActiveRibbon, input: &SubstepInput, states: &[BodyState]) {
-    let h = input.h;
-    let s = &states[r.state as usize];
-    r.arm = s.dq * r.arm0;
-    r.points[0] = r.origin + s.dp + r.arm;
-    let n = r.points.len() - 1;
-    r.start.clear();
-    r.start.extend_from_slice(&r.points);
-    fall(r, input, h);
-    if let Some((k, target)) = r.grab {
-        // Carried at the speed that reaches the target by the step's end.
-        let to = target - r.start[k];
-        let len = to.norm();
-        let reach = (r.grab_speed * h).min(len);
-        if len > 0.0 {
-            r.points[k] = r.start[k] + to * (reach / len);
-        }
-    }
-    place_near_spheres(r, input, states);
-    let place = |b: &NearBalloon, out: &mut Vec<Sphere>| {
-        let tree = &input.shapes[b.tree as usize].tree;
-        let (nodes, scale) = (tree.nodes(), input.size[b.state as usize].scale);
-        for &leaf in tree.leaves() {
-            let node = &nodes[leaf as usize];
-            out.push(Sphere::new(
-                b.center + b.rotation * (node.center * scale),
-                node.radius * scale,
-            ));
-        }
-    };
-    r.reactions.clear();
-    r.touched.clear();
-    r.touched.resize(n + 1, (Vec3::ZERO, Vec3::ZERO));
-    for i in (1..=n).filter(|&i| r.inv_mass[i] > 0.0) {
-        let (start, radius, mass) = (r.start[i], r.radius[i], 1.0 / r.inv_mass[i]);
-        let (reactions, touched) = (&mut r.reactions, &mut r.touched[i]);
-        // The point's momentum change, the other way, where it touched.
-        let push_back = |b: &NearBalloon, moved: Vec3, at: Vec3| {
-            reactions.push((b.state, -mass * moved, at - b.center));
-            *touched = (moved.normalize_or_zero(), b.moved / h);
-        };
-        let (point, near, leaves) = (&mut r.points[i], &mut r.near, &mut r.spheres);
-        let mu = BALLOON_FRICTION;
-        push_out_of_balloons(point, start, radius, mu, near, leaves, place, push_back);
-    }
-    let triangles = &input.triangles[r.triangles.start as usize..r.triangles.end as usize];
-    push_out_of_room_all(r, triangles);
-    let knot = KnotBody {
-        inv_mass: s.inv_mass,
-        inv_inertia: s.inv_inertia,
-        arm: r.arm,
-    };
-    r.impulse = Vec3::ZERO;
-    let mut converged = false;
-    for _ in 0..CHAIN_ITERATIONS {
-        let (impulse, worst) = solve_chain(&mut r.points, &r.inv_mass, r.segment_length, &knot);
-        // The knot moves with its body's share before the next solve.
-        r.points[0] += knot.point_motion(impulse);
-        r.impulse += impulse;
-        if worst < CHAIN_TOLERANCE * r.segment_length {
-            converged = true;
-            break;
-        }
-    }
-    if !converged {
-        follow_the_leader(&mut r.points, &r.inv_mass, r.segment_length);
-    }
-    push_out_of_room_all(r, triangles);
-    r.step_impulse += r.impulse;
-    r.substeps += 1;
-    r.h = h;
-    let inv_h = 1.0 / h;
-    for i in 1..=n {
-        let mut v = (r.points[i] - r.start[i]) * inv_h;
-        // A push out of a balloon stops the point going in; it does not
-        // throw it off (no bounce: a ribbon against latex is inelastic).
-        let (normal, balloon) = r.touched.get(i).copied().unwrap_or_default();
-        let off = (v - balloon).dot(normal);
-        if off > 0.0 {
-            v -= off * normal;
-        }
-        r.velocities[i] = v;
-    }
-    r.velocities[0] = s.point_velocity(r.arm);
-}
-
-/// Each point pulled after the one before it, from the knot out, to at most
-/// the segment length (Müller, Kim, Chentanez, "Fast simulation of
-/// inextensible hair and fur", 2012): for a ribbon jerked harder than the
-/// solves converge on in a substep (a balloon thrown at 25 m/s with a weight
-/// on its ribbon), which bounds its length at the price of the momentum the
-/// solves had not yet handed round. A held point stays.
-fn follow_the_leader(points: &mut [Vec3], inv_mass: &[f32], segment_length: f32) {
-    for i in 1..points.len() {
-        let d = points[i] - points[i - 1];
-        let len = d.norm();
-        if len > segment_length && inv_mass[i] > 0.0 {
-            points[i] = points[i - 1] + d * (segment_length / len);
-        }
-    }
-}
-
-/// Gravity, the fields' forces and drag on each point, then its move over
-/// the substep.
-fn fall(r: &mut ActiveRibbon, input: &SubstepInput, h: f32) {
-    let n = r.points.len() - 1;
-    let fields = (!input.fields.is_empty()).then_some(input.fields);
-    for i in 1..=n {
-        if r.inv_mass[i] == 0.0 {
-            continue;
-        }
-        let mut v = r.velocities[i] + h * input.gravity;
-        if let Some(fields) = fields {
-            let force = fields.force_on_point(&PointSample {
-                position: r.points[i],
-                velocity: r.velocities[i],
-                mass: 1.0 / r.inv_mass[i],
-                end: i == n,
-                drag_factor: r.drag[i][0],
-                user_data: r.user_data,
-                time: input.time,
-            });
-            v += h * r.inv_mass[i] * force;
-        }
-        // Along the ribbon: from the point before to the one after.
-        let along = r.points[(i + 1).min(n)] - r.points[i - 1];
-        let len = along.norm();
-        let t = if len > 1e-9 { along / len } else { Vec3::ZERO };
-        let v_along = v.dot(t) * t;
-        let v_across = v - v_along;
-        let [k_across, k_along, viscous] = r.drag[i];
-        let w = h * r.inv_mass[i];
-        let v_along = v_along / (1.0 + w * k_along * v_along.norm());
-        let across = k_across * v_across.norm() + viscous;
-        let v_across = v_across / (1.0 + w * across);
-        r.velocities[i] = v_along + v_across;
-        r.points[i] += h * r.velocities[i];
-    }
-}
-
-/// The balloons near `r` whose roots reach its points' bounds, at this
-/// substep's poses (their leaves are placed when a point comes near).
-fn place_near_spheres(r: &mut ActiveRibbon, input: &SubstepInput, states: &[BodyState]) {
-    r.spheres.clear();
-    r.near.clear();
-    let bodies = &input.bodies[r.bodies.start as usize..r.bodies.end as usize];
-    if bodies.is_empty() {
-        return;
-    }
-    let (mut lo, mut hi) = (r.points[1], r.points[1]);
-    let mut reach = 0.0f32;
-    for (p, &radius) in r.points[1..].iter().zip(&r.radius[1..]) {
-        lo = lo.min(*p);
-        hi = hi.max(*p);
-        reach = reach.max(radius);
-    }
-    for &b in bodies {
-        let s = &states[b as usize];
-        let tree = &input.shapes[input.shape_of[b as usize] as usize].tree;
-        let center = input.centers[b as usize] + s.dp;
-        let (root, scale) = (tree.root(), input.size[b as usize].scale);
-        let root_center = center + s.q * (root.center * scale);
-        let root_radius = root.radius * scale;
-        let closest = root_center.clamp(lo, hi);
-        if closest.distance_squared(root_center) > (root_radius + reach).powi(2) {
-            continue;
-        }
-        r.near.push(NearBalloon {
-            state: b,
-            bound: Sphere::new(root_center, root_radius),
-            moved: s.v * input.h,
-            center,
-            rotation: s.q,
-            tree: input.shape_of[b as usize],
-            leaves: (0, 0),
-        });
-    }
-}
-
-fn push_out_of_room_all(r: &mut ActiveRibbon, triangles: &[NearTriangle]) {
-    if triangles.is_empty() {
-        return;
-    }
-    for i in 1..r.points.len() {
-        if r.inv_mass[i] == 0.0 {
-            continue;
-        }
-        let (start, radius) = (r.start[i], r.radius[i]);
-        push_out_of_room(&mut r.points[i], start, radius, ROOM_FRICTION, triangles);
     }
 }

@@ -182,6 +182,7 @@ impl World {
             r.triangles = first..stage.triangles.len() as u32;
         }
         stage.awake = count;
+        stage.pack();
     }
 
     /// Hands the points back to the ribbons, each knot where its balloon
@@ -192,6 +193,7 @@ impl World {
     /// went non-finite (quarantined with them).
     pub(super) fn finish_ribbons(&mut self) {
         let stage = &mut self.stages.ribbons;
+        stage.unpack();
         let n = self.bodies.len();
         stage.moving.clear();
         stage.moving.resize(n, false);

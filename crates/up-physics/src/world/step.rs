@@ -158,7 +158,7 @@ impl World {
         let probe = (!probe.is_empty()).then_some(probe);
         let ribbons = &mut stages.ribbons;
         let mut ribbons = RibbonSubsteps {
-            active: &mut ribbons.active[..ribbons.awake],
+            active: &mut ribbons.lanes,
             input: SubstepInput {
                 h: params.dt / params.substeps as f32,
                 gravity: self.def.gravity,

@@ -1,0 +1,251 @@
+//! The awake ribbons laid out for the substeps: grouped by segment count,
+//! four to a group, a ribbon a lane (`solver::lanes`), in structure of
+//! arrays (per point index, one `V4` of the four ribbons' points). The
+//! substeps then run each group's steps on its four ribbons at once
+//! (`lane_substep`), with no branch on a ribbon and no allocation once the
+//! buffers have grown to the scene.
+//!
+//! Packed once a step from the `ActiveRibbon`s that `World::prepare_ribbons`
+//! filled, unpacked into them once a step for `World::finish_ribbons`. A
+//! group short of four ribbons fills its spare lanes with copies of its
+//! first: they compute harmless numbers that nothing reads.
+
+use std::ops::Range;
+
+use glam::{Mat3, Vec3};
+use up_geom::Sphere;
+
+use super::body_spheres::BodySpheres;
+use super::chain::ChainRows;
+use super::collide::NearBalloon;
+use super::lane_pushes::NearSlot;
+use super::solve::ActiveRibbon;
+use super::MAX_SEGMENTS;
+use crate::solver::lanes::{set, F4, LANES, M4, V4};
+
+/// A ribbon's lane, what is not laid out across the lanes: its balloon, what
+/// it may touch, and what it did to them this substep.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Lane {
+    /// Its balloon's solver state (dense index) and `BodyDef::user_data`.
+    pub state: u32,
+    pub user_data: u32,
+    /// The balloon's centre of mass at the step's start, and the knot from
+    /// it, world frame at the step's start, m.
+    pub origin: Vec3,
+    pub arm0: Vec3,
+    /// Room triangles and balloons near it this step, in the stage's lists.
+    pub triangles: Range<u32>,
+    pub bodies: Range<u32>,
+    /// A grabbed point, where it is carried and how fast, m/s.
+    pub grab: Option<(usize, Vec3)>,
+    pub grab_speed: f32,
+    /// This substep's pushes back on the balloons its points touched: the
+    /// balloon's state, the position impulse (kg·m) and its arm (m).
+    pub reactions: Vec<(u32, Vec3, Vec3)>,
+    /// The balloons near it at this substep's poses.
+    pub near: Vec<NearBalloon>,
+}
+
+/// Up to four ribbons of one segment count, a lane each.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct LaneGroup {
+    /// Ribbons in its lanes: lanes `live..` are spare.
+    pub live: usize,
+    /// All bits set in the ribbons' lanes.
+    pub live_mask: F4,
+    /// Per point (0 at the knot): position, velocity, where it began the
+    /// substep, inverse mass (0: held; unused at the knot).
+    pub points: Vec<V4>,
+    pub velocities: Vec<V4>,
+    pub start: Vec<V4>,
+    pub inv_mass: Vec<F4>,
+    /// Per point, once `touched`: the normal of the balloon that pushed it
+    /// this substep (zero if none), and that balloon's velocity.
+    pub touch_normal: Vec<V4>,
+    pub touch_velocity: Vec<V4>,
+    pub touched: bool,
+    pub segment_length: F4,
+    /// Drag across, along and viscous (`ActiveRibbon::take`) of the points
+    /// between the ends, and of the end.
+    pub drag_mid: [F4; 3],
+    pub drag_end: [F4; 3],
+    /// The end's radius, m (the others': `RIBBON_RADIUS`).
+    pub end_radius: F4,
+    pub lanes: [Lane; LANES],
+    /// This substep's position impulse on each balloon (kg·m) and the arm it
+    /// acts at, world frame, m; the impulses summed over the step.
+    pub impulse: V4,
+    pub arm: V4,
+    pub step_impulse: V4,
+    /// The step's substeps so far and their length, s.
+    pub substeps: u32,
+    pub h: f32,
+    /// The near balloons' leaf spheres, placed when a point comes near (when
+    /// not placed for all bodies), and their bounds lined up across the lanes.
+    pub spheres: Vec<Sphere>,
+    pub near_slots: Vec<NearSlot>,
+    pub rows: ChainRows,
+}
+
+impl LaneGroup {
+    /// Empties the group for ribbons of `segments` segments.
+    fn begin(&mut self, segments: usize) {
+        self.live = 0;
+        let points = segments + 1;
+        for v in [&mut self.points, &mut self.velocities, &mut self.start] {
+            v.resize(points, V4::ZERO);
+        }
+        for v in [&mut self.touch_normal, &mut self.touch_velocity] {
+            v.resize(points, V4::ZERO);
+        }
+        self.inv_mass.resize(points, F4::ZERO);
+        self.rows.resize(segments);
+        self.step_impulse = V4::ZERO;
+        self.substeps = 0;
+        self.h = 0.0;
+    }
+
+    /// Puts `r` in the next lane.
+    fn add(&mut self, r: &ActiveRibbon) {
+        let l = self.live;
+        self.live += 1;
+        for (i, (p, v)) in r.points.iter().zip(&r.velocities).enumerate() {
+            self.points[i].set_lane(l, *p);
+            self.velocities[i].set_lane(l, *v);
+            set(&mut self.inv_mass[i], l, r.inv_mass[i]);
+        }
+        set(&mut self.segment_length, l, r.segment_length);
+        for k in 0..3 {
+            set(&mut self.drag_mid[k], l, r.drag_mid[k]);
+            set(&mut self.drag_end[k], l, r.drag_end[k]);
+        }
+        set(&mut self.end_radius, l, r.end_radius);
+        let lane = &mut self.lanes[l];
+        lane.state = r.state;
+        lane.user_data = r.user_data;
+        lane.origin = r.origin;
+        lane.arm0 = r.arm0;
+        lane.triangles = r.triangles.clone();
+        lane.bodies = r.bodies.clone();
+        lane.grab = r.grab;
+        lane.grab_speed = r.grab_speed;
+    }
+
+    /// Fills the spare lanes with copies of the first, and sets `live_mask`.
+    fn pad(&mut self) {
+        let all = F4::splat(f32::from_bits(!0));
+        let live = self.live;
+        if live == LANES {
+            self.live_mask = all;
+            return;
+        }
+        let first = |x: F4| F4::splat(x.as_array()[0]);
+        let keep = |x: F4, spare: F4| {
+            let mut out = x;
+            for l in live..LANES {
+                set(&mut out, l, spare.as_array()[l]);
+            }
+            out
+        };
+        let fill = |x: &mut F4| *x = keep(*x, first(*x));
+        let fill_v = |v: &mut V4| {
+            fill(&mut v.x);
+            fill(&mut v.y);
+            fill(&mut v.z);
+        };
+        for v in self.points.iter_mut().chain(&mut self.velocities) {
+            fill_v(v);
+        }
+        self.inv_mass.iter_mut().for_each(fill);
+        fill(&mut self.segment_length);
+        self.drag_mid
+            .iter_mut()
+            .chain(&mut self.drag_end)
+            .for_each(fill);
+        fill(&mut self.end_radius);
+        self.live_mask = keep(all, F4::ZERO);
+        for lane in &mut self.lanes[self.live..] {
+            lane.grab = None;
+            lane.reactions.clear();
+            lane.near.clear();
+        }
+    }
+
+    /// Lane `l`'s points, velocities and step back into `r`.
+    fn take_out(&self, l: usize, r: &mut ActiveRibbon) {
+        for (i, (p, v)) in r.points.iter_mut().zip(&mut r.velocities).enumerate() {
+            *p = self.points[i].lane(l);
+            *v = self.velocities[i].lane(l);
+        }
+        r.step_impulse = self.step_impulse.lane(l);
+        r.substeps = self.substeps;
+        r.h = self.h;
+    }
+}
+
+/// Writes `m` into lane `l` of `m4`.
+pub(crate) fn set_matrix(m4: &mut M4, l: usize, m: &Mat3) {
+    m4.x_axis.set_lane(l, m.x_axis);
+    m4.y_axis.set_lane(l, m.y_axis);
+    m4.z_axis.set_lane(l, m.z_axis);
+}
+
+/// The awake ribbons in lane groups, with the buffers kept between steps.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct RibbonLanes {
+    /// The groups in use are the first `used`.
+    pub groups: Vec<LaneGroup>,
+    pub used: usize,
+    /// Per awake ribbon, in the solver's order: its group and lane (pulls
+    /// are applied in this order, whatever the grouping).
+    pub order: Vec<(u32, u32)>,
+    /// Per segment count: the group being filled (`u32::MAX`: none).
+    filling: Vec<u32>,
+    /// The bodies' spheres at the substep's pose.
+    pub bodies: BodySpheres,
+}
+
+impl RibbonLanes {
+    /// No ribbon packed.
+    pub fn is_empty(&self) -> bool {
+        self.used == 0
+    }
+
+    /// Lays out `active` in groups, in their order: each ribbon goes to the
+    /// latest group of its segment count with a free lane.
+    pub fn pack(&mut self, active: &[ActiveRibbon]) {
+        self.used = 0;
+        self.order.clear();
+        self.filling.clear();
+        self.filling.resize(MAX_SEGMENTS as usize + 1, u32::MAX);
+        for r in active {
+            let segments = r.points.len() - 1;
+            let mut g = self.filling[segments];
+            if g == u32::MAX || self.groups[g as usize].live == LANES {
+                g = self.used as u32;
+                if self.groups.len() == self.used {
+                    self.groups.push(LaneGroup::default());
+                }
+                self.used += 1;
+                self.groups[g as usize].begin(segments);
+                self.filling[segments] = g;
+            }
+            let group = &mut self.groups[g as usize];
+            self.order.push((g, group.live as u32));
+            group.add(r);
+        }
+        for group in &mut self.groups[..self.used] {
+            group.pad();
+        }
+    }
+
+    /// Hands the points back to `active` (as packed) and empties the groups.
+    pub fn unpack(&mut self, active: &mut [ActiveRibbon]) {
+        for (r, &(g, l)) in active.iter_mut().zip(&self.order) {
+            self.groups[g as usize].take_out(l as usize, r);
+        }
+        self.used = 0;
+        self.order.clear();
+    }
+}

@@ -1,0 +1,191 @@
+//! A lane group's points pushed out of the balloons near its ribbons and out
+//! of the room (`collide`), lane by lane where there is something to push
+//! against: the balloons whose bounds a ribbon's box meets, lined up across
+//! the lanes so that each point is tested against them four ribbons at a
+//! time, and the pushes themselves (rare) made point by point.
+
+use glam::Vec3;
+use up_geom::Sphere;
+
+use super::body_spheres::{place_leaves, BodySpheres, Bound};
+use super::collide::{push_out_of_balloon, push_out_of_room, NearBalloon, NearTriangle};
+use super::lane_group::LaneGroup;
+use super::solve::SubstepInput;
+use super::{BALLOON_FRICTION, RIBBON_RADIUS, ROOM_FRICTION};
+use crate::solver::body_state::BodyState;
+use crate::solver::lanes::{set, F4, V4};
+
+/// The `k`th near balloon of each lane: its bounding sphere, and the lanes
+/// that have a `k`th (bit `l` for lane `l`).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct NearSlot {
+    center: V4,
+    radius: F4,
+    lanes: u32,
+}
+
+/// What the pushes out of balloons read.
+#[derive(Clone, Copy)]
+pub(crate) struct NearInput<'a> {
+    pub input: &'a SubstepInput<'a>,
+    pub states: &'a [BodyState],
+    pub bodies: &'a BodySpheres,
+}
+
+impl LaneGroup {
+    /// Radius of point `i` in each lane, m.
+    pub(super) fn radius(&self, i: usize) -> F4 {
+        if i == self.points.len() - 1 {
+            self.end_radius
+        } else {
+            F4::splat(RIBBON_RADIUS)
+        }
+    }
+
+    /// Pushes each ribbon's points (as they fell) out of the balloons near
+    /// it, at this substep's poses; keeps the pushes back and the touched
+    /// points' normals.
+    pub(super) fn push_out_of_balloons(&mut self, near: &NearInput) {
+        self.spheres.clear();
+        self.touched = false;
+        let (mut lo, mut hi) = (self.points[1], self.points[1]);
+        for p in &self.points[2..] {
+            lo = V4::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z));
+            hi = V4::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
+        }
+        let mut most = 0;
+        for l in 0..self.live {
+            self.find_near(l, (lo.lane(l), hi.lane(l)), near);
+            self.lanes[l].reactions.clear();
+            most = most.max(self.lanes[l].near.len());
+        }
+        if most == 0 {
+            return;
+        }
+        self.near_slots.clear();
+        for k in 0..most {
+            let mut slot = NearSlot::default();
+            for (l, lane) in self.lanes[..self.live].iter().enumerate() {
+                if let Some(b) = lane.near.get(k) {
+                    slot.center.set_lane(l, b.bound.center);
+                    set(&mut slot.radius, l, b.bound.radius);
+                    slot.lanes |= 1 << l;
+                }
+            }
+            self.near_slots.push(slot);
+        }
+        let n = self.points.len() - 1;
+        for i in 1..=n {
+            let movable = self.inv_mass[i].simd_gt(F4::ZERO).to_bitmask();
+            let radius = self.radius(i);
+            for k in 0..most {
+                let slot = self.near_slots[k];
+                let away = self.points[i] - slot.center;
+                let reach = slot.radius + radius;
+                // Not `<`: a NaN point is taken as within, as it would be
+                // one ribbon at a time.
+                let outside = away.dot(away).simd_ge(reach * reach).to_bitmask();
+                let mut within = !outside & slot.lanes & movable;
+                while within != 0 {
+                    let l = within.trailing_zeros() as usize;
+                    within &= within - 1;
+                    self.push_point_out(l, i, k, near);
+                }
+            }
+        }
+    }
+
+    /// Pushes lane `l`'s point `i` out of its `k`th near balloon, whose bound
+    /// it is within.
+    fn push_point_out(&mut self, l: usize, i: usize, k: usize, near: &NearInput) {
+        let input = near.input;
+        let radius = self.radius(i).as_array()[l];
+        let (start, mut point) = (self.start[i].lane(l), self.points[i].lane(l));
+        let (lane, placed) = (&mut self.lanes[l], &mut self.spheres);
+        let b = &mut lane.near[k];
+        let leaves = if near.bodies.all_leaves {
+            &near.bodies.leaves
+        } else {
+            if b.leaves.0 == b.leaves.1 {
+                let first = placed.len() as u32;
+                place_leaves(b, input, placed);
+                b.leaves = (first, placed.len() as u32);
+            }
+            &*placed
+        };
+        let spheres = &leaves[b.leaves.0 as usize..b.leaves.1 as usize];
+        let mu = BALLOON_FRICTION;
+        let moved = push_out_of_balloon(&mut point, start, radius, mu, b, spheres);
+        self.points[i].set_lane(l, point);
+        let Some(moved) = moved else { return };
+        // The point's momentum change, the other way, where it touched.
+        let mass = 1.0 / self.inv_mass[i].as_array()[l];
+        lane.reactions
+            .push((b.state, -mass * moved, point - b.center));
+        if !self.touched {
+            self.touched = true;
+            self.touch_normal.fill(V4::ZERO);
+            self.touch_velocity.fill(V4::ZERO);
+        }
+        self.touch_normal[i].set_lane(l, moved.normalize_or_zero());
+        self.touch_velocity[i].set_lane(l, b.moved / input.h);
+    }
+
+    /// Lane `l`'s near balloons: those of its candidates whose roots reach
+    /// its points' box `(lo, hi)` (the knot's left out), at this substep's
+    /// poses (their leaves are placed when a point comes near).
+    fn find_near(&mut self, l: usize, (lo, hi): (Vec3, Vec3), near: &NearInput) {
+        let NearInput {
+            input,
+            states,
+            bodies: spheres,
+        } = *near;
+        let lane = &mut self.lanes[l];
+        lane.near.clear();
+        let bodies = &input.bodies[lane.bodies.start as usize..lane.bodies.end as usize];
+        if bodies.is_empty() {
+            return;
+        }
+        let reach = RIBBON_RADIUS.max(self.end_radius.as_array()[l]);
+        for &b in bodies {
+            let Bound {
+                center: root_center,
+                radius: root_radius,
+            } = spheres.bounds[b as usize];
+            let closest = root_center.clamp(lo, hi);
+            if closest.distance_squared(root_center) > (root_radius + reach).powi(2) {
+                continue;
+            }
+            let s = &states[b as usize];
+            lane.near.push(NearBalloon {
+                state: b,
+                bound: Sphere::new(root_center, root_radius),
+                moved: s.v * input.h,
+                center: input.centers[b as usize] + s.dp,
+                rotation: s.q,
+                tree: input.shape_of[b as usize],
+                leaves: spheres.leaves_of(b),
+            });
+        }
+    }
+
+    /// Pushes each ribbon's movable points out of the room's triangles near it.
+    pub(super) fn push_out_of_room(&mut self, triangles: &[NearTriangle]) {
+        for l in 0..self.live {
+            let range = &self.lanes[l].triangles;
+            let near = &triangles[range.start as usize..range.end as usize];
+            if near.is_empty() {
+                continue;
+            }
+            for i in 1..self.points.len() {
+                if self.inv_mass[i].as_array()[l] == 0.0 {
+                    continue;
+                }
+                let (start, radius) = (self.start[i].lane(l), self.radius(i).as_array()[l]);
+                let mut point: Vec3 = self.points[i].lane(l);
+                push_out_of_room(&mut point, start, radius, ROOM_FRICTION, near);
+                self.points[i].set_lane(l, point);
+            }
+        }
+    }
+}

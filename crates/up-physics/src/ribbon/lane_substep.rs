@@ -1,0 +1,204 @@
+//! One substep of a lane group (`lane_group`): the steps that `solve` lists,
+//! on four ribbons at once. Where one ribbon alone would branch (a held
+//! point, a converged chain) each lane selects, so every lane computes bit
+//! for bit what its ribbon would alone; the balloons' states, the force
+//! fields, a grab and the pushes are read and made lane by lane.
+
+use glam::Vec3;
+
+use super::chain::{div, norm, solve_chains, Knots};
+use super::lane_group::{set_matrix, LaneGroup};
+use super::lane_pushes::NearInput;
+use super::solve::{SubstepInput, CHAIN_ITERATIONS, CHAIN_TOLERANCE};
+use crate::forces::field::PointSample;
+use crate::solver::body_state::BodyState;
+use crate::solver::lanes::{set, F4, V4};
+
+/// A segment shorter than this gives the ribbon no direction at a point, m.
+const NO_DIRECTION: f32 = 1e-9;
+
+impl LaneGroup {
+    /// One substep of the group's ribbons, reading the balloons' `states`.
+    pub(crate) fn substep(&mut self, near: &NearInput) {
+        let (input, states) = (near.input, near.states);
+        let h = input.h;
+        let knots = self.place_knots(states);
+        self.start.copy_from_slice(&self.points);
+        self.fall(input, h);
+        self.carry_grabbed(h);
+        self.push_out_of_balloons(near);
+        self.push_out_of_room(input.triangles);
+        let unconverged = self.solve_chains(&knots);
+        if unconverged.any() {
+            self.follow_the_leader(unconverged);
+        }
+        self.push_out_of_room(input.triangles);
+        self.step_impulse = self.step_impulse + self.impulse;
+        self.substeps += 1;
+        self.h = h;
+        self.update_velocities(h, states);
+    }
+
+    /// Each knot where its balloon is now; the balloons as the chains' solve
+    /// sees them.
+    fn place_knots(&mut self, states: &[BodyState]) -> Knots {
+        let mut knots = Knots::default();
+        for (l, lane) in self.lanes[..self.live].iter().enumerate() {
+            let s = &states[lane.state as usize];
+            let arm = s.dq * lane.arm0;
+            self.points[0].set_lane(l, lane.origin + s.dp + arm);
+            knots.arm.set_lane(l, arm);
+            set(&mut knots.inv_mass, l, s.inv_mass);
+            set_matrix(&mut knots.inv_inertia, l, &s.inv_inertia);
+        }
+        self.arm = knots.arm;
+        knots
+    }
+
+    /// Gravity, the fields' forces and drag on each point (drag implicit,
+    /// across and along the ribbon apart), then its move over the substep.
+    fn fall(&mut self, input: &SubstepInput, h: f32) {
+        let n = self.points.len() - 1;
+        let fields = (!input.fields.is_empty()).then_some(input.fields);
+        let (h4, one) = (F4::splat(h), F4::ONE);
+        let hg = h * input.gravity;
+        let hg = V4::new(F4::splat(hg.x), F4::splat(hg.y), F4::splat(hg.z));
+        for i in 1..=n {
+            let inv_mass = self.inv_mass[i];
+            let movable = inv_mass.simd_ne(F4::ZERO);
+            let mut v = self.velocities[i] + hg;
+            if let Some(fields) = fields {
+                let force = self.field_forces(fields, i, input.time);
+                v = v + (h4 * inv_mass) * force;
+            }
+            // Along the ribbon: from the point before to the one after.
+            let along = self.points[(i + 1).min(n)] - self.points[i - 1];
+            let len = norm(along);
+            let t = V4::select(
+                len.simd_gt(F4::splat(NO_DIRECTION)),
+                div(along, len),
+                V4::ZERO,
+            );
+            let v_along = v.dot(t) * t;
+            let v_across = v - v_along;
+            let [k_across, k_along, viscous] = if i == n { self.drag_end } else { self.drag_mid };
+            let w = h4 * inv_mass;
+            let v_along = div(v_along, one + w * k_along * norm(v_along));
+            let across = k_across * norm(v_across) + viscous;
+            let v_across = div(v_across, one + w * across);
+            let v = v_along + v_across;
+            let moved = self.points[i] + h4 * v;
+            self.velocities[i] = V4::select(movable, v, self.velocities[i]);
+            self.points[i] = V4::select(movable, moved, self.points[i]);
+        }
+    }
+
+    /// The world's force fields on point `i` of each ribbon (none on a held
+    /// point), N.
+    fn field_forces(&self, fields: &crate::forces::field::ForceFields, i: usize, time: f64) -> V4 {
+        let n = self.points.len() - 1;
+        let drag = if i == n { self.drag_end } else { self.drag_mid };
+        let mut force = V4::ZERO;
+        for (l, lane) in self.lanes[..self.live].iter().enumerate() {
+            let inv_mass = self.inv_mass[i].as_array()[l];
+            if inv_mass == 0.0 {
+                continue;
+            }
+            let f = fields.force_on_point(&PointSample {
+                position: self.points[i].lane(l),
+                velocity: self.velocities[i].lane(l),
+                mass: 1.0 / inv_mass,
+                end: i == n,
+                drag_factor: drag[0].as_array()[l],
+                user_data: lane.user_data,
+                time,
+            });
+            force.set_lane(l, f);
+        }
+        force
+    }
+
+    /// A grabbed point carried at the speed that reaches its target by the
+    /// step's end.
+    fn carry_grabbed(&mut self, h: f32) {
+        for (l, lane) in self.lanes[..self.live].iter().enumerate() {
+            let Some((k, target)) = lane.grab else {
+                continue;
+            };
+            let start = self.start[k].lane(l);
+            let to = target - start;
+            let len = up_geom::norm::Norm::norm(to);
+            let reach = (lane.grab_speed * h).min(len);
+            if len > 0.0 {
+                self.points[k].set_lane(l, start + to * (reach / len));
+            }
+        }
+    }
+
+    /// The chains, knots included, brought back to their lengths: direct
+    /// solves, each lane until its solve started within the tolerance, at
+    /// most `CHAIN_ITERATIONS`. Returns the lanes that never did.
+    fn solve_chains(&mut self, knots: &Knots) -> F4 {
+        self.impulse = V4::ZERO;
+        let tolerance = F4::splat(CHAIN_TOLERANCE) * self.segment_length;
+        let mut moving = self.live_mask;
+        for _ in 0..CHAIN_ITERATIONS {
+            let (impulse, worst) = solve_chains(
+                &mut self.points,
+                &self.inv_mass,
+                self.segment_length,
+                knots,
+                moving,
+                &mut self.rows,
+            );
+            // The knot moves with its body's share before the next solve.
+            let knot = self.points[0] + knots.point_motion(impulse);
+            self.points[0] = V4::select(moving, knot, self.points[0]);
+            self.impulse = V4::select(moving, self.impulse + impulse, self.impulse);
+            moving &= !worst.simd_lt(tolerance);
+            if !moving.any() {
+                break;
+            }
+        }
+        moving
+    }
+
+    /// In the lanes of `lanes`, each point pulled after the one before it,
+    /// from the knot out, to at most the segment length (Müller, Kim,
+    /// Chentanez, "Fast simulation of inextensible hair and fur", 2012): for
+    /// a ribbon jerked harder than the solves converge on in a substep (a
+    /// balloon thrown at 25 m/s with a weight on its ribbon), which bounds
+    /// its length at the price of the momentum the solves had not yet handed
+    /// round. A held point stays.
+    fn follow_the_leader(&mut self, lanes: F4) {
+        let length = self.segment_length;
+        for i in 1..self.points.len() {
+            let d = self.points[i] - self.points[i - 1];
+            let len = norm(d);
+            let pulled = self.points[i - 1] + (length / len) * d;
+            let far = len.simd_gt(length) & self.inv_mass[i].simd_gt(F4::ZERO) & lanes;
+            self.points[i] = V4::select(far, pulled, self.points[i]);
+        }
+    }
+
+    /// Each point's velocity: what it moved over the substep, less what a
+    /// balloon's push gave it toward the outside (no bounce: a ribbon against
+    /// latex is inelastic); the knot's, its balloon's at the knot.
+    fn update_velocities(&mut self, h: f32, states: &[BodyState]) {
+        let inv_h = F4::splat(1.0 / h);
+        for i in 1..self.points.len() {
+            let mut v = inv_h * (self.points[i] - self.start[i]);
+            if self.touched {
+                let normal = self.touch_normal[i];
+                let off = (v - self.touch_velocity[i]).dot(normal);
+                v = V4::select(off.simd_gt(F4::ZERO), v - off * normal, v);
+            }
+            self.velocities[i] = v;
+        }
+        for (l, lane) in self.lanes[..self.live].iter().enumerate() {
+            let arm: Vec3 = self.arm.lane(l);
+            let v = states[lane.state as usize].point_velocity(arm);
+            self.velocities[0].set_lane(l, v);
+        }
+    }
+}
