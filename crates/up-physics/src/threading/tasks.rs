@@ -1,17 +1,54 @@
 //! Splitting a pass into tasks for rayon's threads (`parallel` feature), or
 //! running it whole on the calling thread.
 
+#[cfg(feature = "parallel")]
+use std::cell::Cell;
 use std::ops::Range;
 
 #[cfg(feature = "parallel")]
 use rayon::prelude::*;
+
+#[cfg(feature = "parallel")]
+thread_local! {
+    /// Whether this thread runs work that keeps off rayon's pool (`alone`).
+    static ALONE: Cell<bool> = const { Cell::new(false) };
+}
+
+/// Threads the passes run here may share: one inside `alone`, else
+/// rayon's pool's (the current one, or the global one outside any).
+#[cfg(feature = "parallel")]
+pub(crate) fn threads_here() -> usize {
+    if ALONE.get() {
+        1
+    } else {
+        rayon::current_num_threads()
+    }
+}
+
+/// Runs `work` on this thread with every pass in it run whole, as on a pool
+/// of one thread: for work too small to pay a hand-over between threads (a
+/// futex round trip, tens of microseconds on a virtual machine, per pass
+/// handed out and per step moved onto the pool). Results are the same as on
+/// any number of threads.
+#[cfg(feature = "parallel")]
+pub(crate) fn alone<R>(work: impl FnOnce() -> R) -> R {
+    /// Puts back what `ALONE` was, however `work` ends.
+    struct Restore(bool);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            ALONE.set(self.0);
+        }
+    }
+    let _restore = Restore(ALONE.replace(true));
+    work()
+}
 
 /// Whether `len` items are worth splitting into tasks of `chunk`: more than
 /// one task, and more than one thread to take them (on one thread rayon's
 /// splitting is pure overhead).
 #[cfg(feature = "parallel")]
 pub(crate) fn worth_splitting(len: usize, chunk: usize) -> bool {
-    len > chunk && rayon::current_num_threads() > 1
+    len > chunk && threads_here() > 1
 }
 
 /// Calls `fill(first, items)` on consecutive runs of `chunk` items, `first`
