@@ -3,7 +3,9 @@
 //! masses the bodies take from their gas. `World::advance`'s jumps age the
 //! gas the same way.
 
-use super::gas::{WAKE_GROWTH, WAKE_LIFT_CHANGE, WAKE_LIFT_FLOOR, WAKE_SHRINK};
+use super::gas::{
+    WAKE_GROWTH, WAKE_LIFT_CHANGE, WAKE_LIFT_FLOOR, WAKE_LIFT_HOVER, WAKE_LIFT_KNEE, WAKE_SHRINK,
+};
 use super::World;
 use crate::body::BodySize;
 use crate::forces::atmosphere::Atmosphere;
@@ -108,5 +110,14 @@ fn moved_too_far(gas: &Gas, size: BodySize, volume: f32, air: &Atmosphere) -> bo
     let s3 = slept * slept * slept;
     let lift_slept = f64::from(air.air_density()) * f64::from(volume) * s3 - f64::from(size.mass);
     let lift = gas.free_lift_kg(air);
-    (lift - lift_slept).abs() > WAKE_LIFT_CHANGE * lift_slept.abs() + WAKE_LIFT_FLOOR
+    (lift - lift_slept).abs() > wake_lift_change(lift_slept)
+}
+
+/// kg: the change of free lift from `lift` kg that wakes a sleeper.
+fn wake_lift_change(lift: f64) -> f64 {
+    if lift > 0.0 {
+        WAKE_LIFT_CHANGE * lift * (lift / WAKE_LIFT_KNEE).min(1.0) + WAKE_LIFT_HOVER
+    } else {
+        WAKE_LIFT_CHANGE * -lift + WAKE_LIFT_FLOOR
+    }
 }
