@@ -293,6 +293,40 @@ mod tests {
         }
     }
 
+    /// Inside `alone`, on a pool of four threads, a pass that would split
+    /// runs whole on the calling thread, and so do the lists' collection;
+    /// after it the pool is used again.
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn alone_runs_every_pass_whole_on_the_calling_thread() {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(4)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let me = rayon::current_thread_index();
+            let runs = std::sync::Mutex::new(Vec::new());
+            let mut items = vec![0u32; 1000];
+            alone(|| {
+                assert_eq!(threads_here(), 1);
+                assert!(!worth_splitting(1000, 10));
+                fill_chunks(&mut items, 10, |first, run| {
+                    runs.lock()
+                        .unwrap()
+                        .push((first, run.len(), rayon::current_thread_index()));
+                });
+                let (mut lists, mut out) = (Vec::<Vec<u32>>::new(), Vec::new());
+                collect_in_order(1000, 10, &mut lists, &mut out, |range, out| {
+                    out.extend(range.map(|k| k as u32));
+                });
+                assert!(out.iter().enumerate().all(|(k, &v)| v == k as u32));
+            });
+            assert_eq!(runs.into_inner().unwrap(), vec![(0, 1000, me)]);
+            assert_eq!(threads_here(), 4);
+            assert!(worth_splitting(1000, 10));
+        });
+    }
+
     /// A ragged buffer whose first item starts past 0 (a run's view) keeps
     /// its items where `start` says.
     #[test]
