@@ -43,5 +43,6 @@ pub use up_geom;
 pub use world::limits;
 pub use world::{
     Advance, ContactInfo, ForceBreakdown, ForceProbe, PhysicsError, StepStats, World, WorldDef,
-    MAX_BODIES, MAX_JUMP_S, WAKE_GROWTH, WAKE_LIFT_CHANGE, WAKE_LIFT_FLOOR, WAKE_SHRINK,
+    MAX_BODIES, MAX_JUMP_S, WAKE_GROWTH, WAKE_LIFT_CHANGE, WAKE_LIFT_FLOOR, WAKE_LIFT_HOVER,
+    WAKE_LIFT_KNEE, WAKE_SHRINK,
 };

@@ -22,6 +22,7 @@ use std::hint::spin_loop;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::counters::now_ms;
+use crate::threading::tasks::threads_here;
 
 /// How long a kept thread looks for work in vain before it leaves the step
 /// to rayon's sleep: longer than the step's serial stretches between passes.
@@ -43,7 +44,7 @@ pub(crate) fn with_threads_kept_awake<R: Send>(work: impl FnOnce() -> R + Send) 
     let Some(owner) = rayon::current_thread_index() else {
         return work();
     };
-    if rayon::current_num_threads() <= 1 || KEPT.get() {
+    if threads_here() <= 1 || KEPT.get() {
         return work();
     }
     let over = AtomicBool::new(false);

@@ -28,6 +28,7 @@ use std::hint::spin_loop;
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 
 use crate::threading::spare::{release_spare, BUFFER_FLOOR};
+use crate::threading::tasks::threads_here;
 
 /// Spins before a waiting thread yields its core (to a thread that holds a
 /// block, when there are more threads than cores).
@@ -136,7 +137,7 @@ impl Stages {
                 .map(|k| k as u32),
         );
         self.starts.push(blocks as u32);
-        self.threads = rayon::current_num_threads().clamp(1, blocks.max(1));
+        self.threads = threads_here().clamp(1, blocks.max(1));
         let shares = self.stages() * self.threads;
         if self.shares.len() != shares {
             self.shares.resize_with(shares, || Share::new(0, 0));
@@ -226,6 +227,11 @@ pub(crate) fn run_in_stages(stages: &Stages, run: impl Fn(usize) + Sync) {
             done.0.fetch_add(ran, Ordering::Release);
         }
     };
+    // One thread here (`tasks::alone`, or a layout for one): it takes every
+    // share itself, and the pool is not asked.
+    if threads == 1 || threads_here() == 1 {
+        return work();
+    }
     rayon::scope(|scope| {
         for _ in 1..threads {
             scope.spawn(|_| work());

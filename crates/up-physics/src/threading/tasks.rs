@@ -1,17 +1,54 @@
 //! Splitting a pass into tasks for rayon's threads (`parallel` feature), or
 //! running it whole on the calling thread.
 
+#[cfg(feature = "parallel")]
+use std::cell::Cell;
 use std::ops::Range;
 
 #[cfg(feature = "parallel")]
 use rayon::prelude::*;
+
+#[cfg(feature = "parallel")]
+thread_local! {
+    /// Whether this thread runs work that keeps off rayon's pool (`alone`).
+    static ALONE: Cell<bool> = const { Cell::new(false) };
+}
+
+/// Threads the passes run here may share: one inside `alone`, else
+/// rayon's pool's (the current one, or the global one outside any).
+#[cfg(feature = "parallel")]
+pub(crate) fn threads_here() -> usize {
+    if ALONE.get() {
+        1
+    } else {
+        rayon::current_num_threads()
+    }
+}
+
+/// Runs `work` on this thread with every pass in it run whole, as on a pool
+/// of one thread: for work too small to pay a hand-over between threads (a
+/// futex round trip, tens of microseconds on a virtual machine, per pass
+/// handed out and per step moved onto the pool). Results are the same as on
+/// any number of threads.
+#[cfg(feature = "parallel")]
+pub(crate) fn alone<R>(work: impl FnOnce() -> R) -> R {
+    /// Puts back what `ALONE` was, however `work` ends.
+    struct Restore(bool);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            ALONE.set(self.0);
+        }
+    }
+    let _restore = Restore(ALONE.replace(true));
+    work()
+}
 
 /// Whether `len` items are worth splitting into tasks of `chunk`: more than
 /// one task, and more than one thread to take them (on one thread rayon's
 /// splitting is pure overhead).
 #[cfg(feature = "parallel")]
 pub(crate) fn worth_splitting(len: usize, chunk: usize) -> bool {
-    len > chunk && rayon::current_num_threads() > 1
+    len > chunk && threads_here() > 1
 }
 
 /// Calls `fill(first, items)` on consecutive runs of `chunk` items, `first`
@@ -254,6 +291,40 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// Inside `alone`, on a pool of four threads, a pass that would split
+    /// runs whole on the calling thread, and so do the lists' collection;
+    /// after it the pool is used again.
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn alone_runs_every_pass_whole_on_the_calling_thread() {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(4)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let me = rayon::current_thread_index();
+            let runs = std::sync::Mutex::new(Vec::new());
+            let mut items = vec![0u32; 1000];
+            alone(|| {
+                assert_eq!(threads_here(), 1);
+                assert!(!worth_splitting(1000, 10));
+                fill_chunks(&mut items, 10, |first, run| {
+                    runs.lock()
+                        .unwrap()
+                        .push((first, run.len(), rayon::current_thread_index()));
+                });
+                let (mut lists, mut out) = (Vec::<Vec<u32>>::new(), Vec::new());
+                collect_in_order(1000, 10, &mut lists, &mut out, |range, out| {
+                    out.extend(range.map(|k| k as u32));
+                });
+                assert!(out.iter().enumerate().all(|(k, &v)| v == k as u32));
+            });
+            assert_eq!(runs.into_inner().unwrap(), vec![(0, 1000, me)]);
+            assert_eq!(threads_here(), 4);
+            assert!(worth_splitting(1000, 10));
+        });
     }
 
     /// A ragged buffer whose first item starts past 0 (a run's view) keeps

@@ -20,16 +20,23 @@ use crate::forces::atmosphere::Atmosphere;
 use crate::gas::{EnvelopeDef, Gas};
 
 /// A sleeper wakes when its free lift has moved by this share of what it
-/// was when it fell asleep, plus `WAKE_LIFT_FLOOR`. Each wake costs its
-/// island a second or two of steps to settle again, so the thresholds are
-/// as coarse as the picture allows: a balloon pressed to the ceiling wakes
-/// a few times an hour, and one hovering on a 0.25 g/m ribbon (which bobs
-/// with a period of ≈ 15 s and takes tens of seconds to settle) comes down in
-/// steps of at most ≈ 16 cm (`docs/perf-log.md`, the time-lapse entry).
-/// A balloon so leaves the ceiling late by at most that much lift.
+/// was when it fell asleep, plus `WAKE_LIFT_FLOOR`, or a balloon on a ribbon
+/// by the finer `WAKE_LIFT_KNEE` rule. Each wake costs its island a second
+/// or two of steps to settle again, so the threshold is as coarse as the
+/// picture allows: a balloon pressed to the ceiling (where a change of lift
+/// moves nothing) wakes a few times an hour.
 pub const WAKE_LIFT_CHANGE: f64 = 0.05;
-/// kg of lift: the smallest change that wakes (40 mg), for balloons whose
-/// free lift is small or passes through zero.
+/// kg of free lift below which a balloon on a ribbon wakes on the share
+/// `WAKE_LIFT_CHANGE` shrunk in proportion, plus `WAKE_LIFT_HOVER` (2 g): it
+/// may hover, where 2.5 mg of lift is a centimetre of a 0.25 g/m ribbon
+/// lifted off the floor, and it leaves the ceiling once its lift falls below
+/// its ribbon's weight (0.4 g), late by the threshold (`docs/perf-log.md`,
+/// the time-lapse entries).
+pub const WAKE_LIFT_KNEE: f64 = 2e-3;
+/// kg of lift: the smallest change that wakes a balloon on a ribbon while
+/// its lift is positive (10 mg, 4 cm of such a ribbon).
+pub const WAKE_LIFT_HOVER: f64 = 1e-5;
+/// kg of lift: the smallest change that wakes any other (40 mg).
 pub const WAKE_LIFT_FLOOR: f64 = 4e-5;
 /// Growth of a sleeper's size that wakes it: 0.2 %, ≈ 0.3 mm on an 11″
 /// balloon, within the position pass's target overlap.

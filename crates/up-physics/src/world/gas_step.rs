@@ -3,7 +3,9 @@
 //! masses the bodies take from their gas. `World::advance`'s jumps age the
 //! gas the same way.
 
-use super::gas::{WAKE_GROWTH, WAKE_LIFT_CHANGE, WAKE_LIFT_FLOOR, WAKE_SHRINK};
+use super::gas::{
+    WAKE_GROWTH, WAKE_LIFT_CHANGE, WAKE_LIFT_FLOOR, WAKE_LIFT_HOVER, WAKE_LIFT_KNEE, WAKE_SHRINK,
+};
 use super::World;
 use crate::body::BodySize;
 use crate::forces::atmosphere::Atmosphere;
@@ -46,6 +48,7 @@ impl World {
         woken.clear();
         moved.clear();
         let b = &mut self.bodies;
+        let ribbons = &self.ribbons;
         for i in 0..b.len() {
             let Some(gas) = b.gas[i].as_mut() else {
                 continue;
@@ -60,7 +63,14 @@ impl World {
                 moved.push(i as u32);
             } else {
                 let shape = &self.shapes[b.shape[i] as usize];
-                if moved_too_far(gas, b.size[i], shape.def.volume, air) {
+                // Only a balloon on a ribbon hovers: the finer threshold
+                // is looked up only once it is passed.
+                let wakes = match moved_too_far(gas, b.size[i], shape.def.volume, air) {
+                    Wake::No => false,
+                    Wake::Yes => true,
+                    Wake::IfHovering => ribbons.on(b.id[i]).is_some(),
+                };
+                if wakes {
                     woken.push(b.island[i]);
                     moved.push(i as u32);
                 }
@@ -97,16 +107,37 @@ impl World {
     }
 }
 
+/// Whether a sleeper's gas has moved it far enough to wake.
+enum Wake {
+    No,
+    Yes,
+    /// Past the finer threshold of a balloon that may hover on its ribbon
+    /// (`WAKE_LIFT_KNEE`), not the coarse one.
+    IfHovering,
+}
+
 /// Whether a sleeper's gas has moved it past a wake threshold from `size`,
 /// the size it sleeps with: `volume` m³ is its shape's.
-fn moved_too_far(gas: &Gas, size: BodySize, volume: f32, air: &Atmosphere) -> bool {
+fn moved_too_far(gas: &Gas, size: BodySize, volume: f32, air: &Atmosphere) -> Wake {
     let scale = f64::from(gas.scale(air));
     let slept = f64::from(size.scale);
     if scale > slept * (1.0 + WAKE_GROWTH) || scale < slept * (1.0 - WAKE_SHRINK) {
-        return true;
+        return Wake::Yes;
     }
     let s3 = slept * slept * slept;
     let lift_slept = f64::from(air.air_density()) * f64::from(volume) * s3 - f64::from(size.mass);
-    let lift = gas.free_lift_kg(air);
-    (lift - lift_slept).abs() > WAKE_LIFT_CHANGE * lift_slept.abs() + WAKE_LIFT_FLOOR
+    let change = (gas.free_lift_kg(air) - lift_slept).abs();
+    if change > WAKE_LIFT_CHANGE * lift_slept.abs() + WAKE_LIFT_FLOOR {
+        Wake::Yes
+    } else if lift_slept > 0.0 && change > hover_lift_change(lift_slept) {
+        Wake::IfHovering
+    } else {
+        Wake::No
+    }
+}
+
+/// kg: the change of free lift from `lift` kg (> 0) that wakes a sleeper
+/// on a ribbon.
+fn hover_lift_change(lift: f64) -> f64 {
+    WAKE_LIFT_CHANGE * lift * (lift / WAKE_LIFT_KNEE).min(1.0) + WAKE_LIFT_HOVER
 }

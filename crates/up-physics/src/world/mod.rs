@@ -49,7 +49,10 @@ use crate::sleep::{SleepBuffers, SleepInput, SleepRules, SleepingIslands};
 pub use contacts::ContactInfo;
 pub use def::WorldDef;
 pub use error::PhysicsError;
-pub use gas::{Advance, MAX_JUMP_S, WAKE_GROWTH, WAKE_LIFT_CHANGE, WAKE_LIFT_FLOOR, WAKE_SHRINK};
+pub use gas::{
+    Advance, MAX_JUMP_S, WAKE_GROWTH, WAKE_LIFT_CHANGE, WAKE_LIFT_FLOOR, WAKE_LIFT_HOVER,
+    WAKE_LIFT_KNEE, WAKE_SHRINK,
+};
 pub use probe::{ForceBreakdown, ForceProbe};
 pub use step::StepStats;
 

@@ -21,7 +21,7 @@ use crate::solver::zones::zone_bodies;
 use crate::solver::Solver;
 use crate::threading::tasks::for_each_run;
 #[cfg(feature = "parallel")]
-use crate::threading::tasks::{fill_chunks, worth_splitting};
+use crate::threading::tasks::{fill_chunks, threads_here, worth_splitting};
 
 /// Contacts one task prepares.
 #[cfg(feature = "parallel")]
@@ -111,7 +111,7 @@ impl World {
         // Ordering the constraints by zone pays only where threads share the solve.
         solver.zones.clear();
         #[cfg(feature = "parallel")]
-        if rayon::current_num_threads() > 1 {
+        if threads_here() > 1 {
             zone_bodies(&bodies.center, &mut solver.zones);
         }
         // The room: one static state after the bodies.

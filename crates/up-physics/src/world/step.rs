@@ -40,6 +40,18 @@ use crate::solver::integrate::GrabSpring;
 use crate::solver::{SolveParams, Stabilization, SubstepParts};
 #[cfg(feature = "parallel")]
 use crate::threading::keep_awake::with_threads_kept_awake;
+#[cfg(feature = "parallel")]
+use crate::threading::tasks::alone;
+
+/// Awake bodies (in the last step) above which a step is shared among the
+/// pool's threads: the smallest of the passes' tasks (the ribbons', 64 a
+/// task) is then more than one.
+#[cfg(feature = "parallel")]
+const POOL_AWAKE_BODIES: u32 = 64;
+/// Contact points (in the last step) above which a step is shared: the
+/// solver's groups then fill more than one task.
+#[cfg(feature = "parallel")]
+const POOL_CONTACTS: u32 = 256;
 
 /// What the last step measured.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -60,18 +72,37 @@ pub struct StepStats {
 impl World {
     /// Advances the world by `def.dt` seconds.
     pub fn step(&mut self) {
-        // Called from outside rayon's pool, the whole step moves onto one of
-        // its threads: otherwise every parallel pass (hundreds a step) would
-        // hand its work across threads and put this one to sleep until done.
-        // There the pool's other threads stay awake until the step ends.
         #[cfg(feature = "parallel")]
-        if rayon::current_thread_index().is_none() {
-            rayon::scope(|_| with_threads_kept_awake(|| self.step_here()))
-        } else {
-            with_threads_kept_awake(|| self.step_here())
+        {
+            // A small step runs on the calling thread, its passes whole: the
+            // pool would cost it more in hand-overs than it could share.
+            if !self.worth_the_pool() {
+                return alone(|| self.step_here());
+            }
+            // Called from outside rayon's pool, the whole step moves onto one
+            // of its threads: otherwise every parallel pass (hundreds a step)
+            // would hand its work across threads and put this one to sleep
+            // until done. There the pool's other threads stay awake until the
+            // step ends.
+            if rayon::current_thread_index().is_none() {
+                rayon::scope(|_| with_threads_kept_awake(|| self.step_here()))
+            } else {
+                with_threads_kept_awake(|| self.step_here())
+            }
         }
         #[cfg(not(feature = "parallel"))]
         self.step_here()
+    }
+
+    /// Whether this step is worth sharing among the pool's threads: there
+    /// are several, and the last step had enough awake bodies or contacts
+    /// that its passes split into more than one task (a step that wakes a
+    /// crowd runs alone once, the next one shares it).
+    #[cfg(feature = "parallel")]
+    fn worth_the_pool(&self) -> bool {
+        rayon::current_num_threads() > 1
+            && (self.stats.awake_count > POOL_AWAKE_BODIES
+                || self.stats.contact_count > POOL_CONTACTS)
     }
 
     /// `step`, on the calling thread.
