@@ -3,18 +3,26 @@
 // count, on the same scene:
 //
 //   node e2e/measure.mjs [--balloons 10000] [--threads 1,2] [--steps 300] [--seconds 10]
-//                                                        (after `npm run build`)
+//                        [--ribbons | --ribbons=0|1|both]      (after `npm run build`)
 //
-// For each thread count T the page opens with `?threads=T`, then:
+// The scene: BALLOONS free balloons released from the floor of a square room
+// wide enough to place them (the default scene's balloons and walls). With
+// `--ribbons` (`--ribbons=1`) each hangs on the default scene's ribbon (1.5 m,
+// read from the engine's `default_scene_json()`, the same definition the
+// page's default scene has); `--ribbons=both` measures without and with
+// ribbons in turn on each thread count, so that their ratio comes from one
+// run on the same machine.
+//
+// For each thread count T (and each ribbon setting) the page opens with `?threads=T`, then:
 // 1. runs for `seconds` while an arrow key is pressed and the canvas clicked
 //    every 400 ms: frame intervals, input delay, the main thread's frame work
 //    (app/frameMeter.ts: controls, poses to instance matrices, HUD, plot; and
 //    apart, the renderer.render call), and the steps per second the page
 //    reaches (the real-time factor: simulated seconds per second);
-// 2. the same with the balloons not drawn (`drawing_balloons` holds step 1):
-//    SwiftShader takes seconds a frame at thousands of balloons and the CPU
-//    from the worker, while the main thread's frame work is the same — every
-//    pose still becomes an instance matrix each frame;
+// 2. the same with the balloons and their ribbons not drawn (`drawing_balloons`
+//    holds step 1): SwiftShader takes seconds a frame at thousands of balloons
+//    and the CPU from the worker, while the main thread's frame work is the
+//    same — every pose still becomes an instance matrix each frame;
 // 3. pauses and measures the frames alone for a few seconds (same input);
 // 4. restarts the scene in the worker and times `steps` steps one by one
 //    (sim/stepMeter.ts) while the page's frames do nothing (`holdDrawing`,
@@ -25,22 +33,40 @@
 //    not, so it is held off the window that times the engine;
 // 5. the same window again with the page drawing (the balloons not drawn):
 //    `physics_ms_while_drawing`, what this machine's page shows.
-// Ends with one JSON line: {"balloons", "steps", "runs": [{"threads",
+// Ends with one JSON line: {"balloons", "steps", "ribbons": "off"|"on"|"both",
+// "ribbon": the ribbon tied on (or null), "runs": [{"threads", "ribbons",
 // "physics_ms": {median, mean, p95}, "physics_stages_ms": {stage: mean},
-// "realtime_factor", "frame_ms": {median, p95}, "state_hash", "steps",
-// "physics_ms_while_drawing", ...}],
+// "realtime_factor", "realtime_factor_wall", "frame_ms": {median, p95},
+// "state_hash", "steps", "physics_ms_while_drawing", ...}], "modes": [{"ribbons",
 // "speedup_mean": {"T": mean at 1 thread over mean at T}, "speedup_median",
-// "speedup_mean_while_drawing", "hashes_equal", ...}; exits 1 when the hashes
-// differ.
+// "speedup_mean_while_drawing", "hashes": {"T": hash}, "hashes_equal"}],
+// "ribbon_cost" (with both: {"T": {"mean", "median"}: with over without}),
+// "hashes_equal", ...}; a table of the same figures goes to standard error.
+// Exits 1 when the hashes of one ribbon setting differ across thread counts.
 
 import { base64url, launchChromium, TEST_PATH } from "./browser.mjs";
 import { serveDist } from "./serve.mjs";
 import { intArg } from "../scripts/cliArgs.mjs";
+import { loadUpWasm } from "../sim-node/loadEngine.mjs";
+
+/** `--ribbons` values: the ribbon settings measured, in the order they run on each thread count. */
+const RIBBON_SETTINGS = { 0: [false], off: [false], 1: [true], on: [true], both: [false, true] };
+
+/** The ribbon settings `--ribbons=VALUE` names (a bare `--ribbons`: on). */
+function ribbonsArg(value) {
+  const settings = Object.hasOwn(RIBBON_SETTINGS, value) ? RIBBON_SETTINGS[value] : undefined;
+  if (!settings) throw new Error(`--ribbons: expected 0, 1 or both, found ${JSON.stringify(value)}`);
+  return settings;
+}
 
 function parseArgs(argv) {
-  const opts = { balloons: 10000, threads: [1, 2], steps: 300, seconds: 10 };
+  const opts = { balloons: 10000, threads: [1, 2], steps: 300, seconds: 10, ribbons: [false] };
   for (let i = 2; i < argv.length; i++) {
     const arg = argv[i];
+    if (arg.startsWith("--ribbons=")) {
+      opts.ribbons = ribbonsArg(arg.slice("--ribbons=".length));
+      continue;
+    }
     const value = () => {
       if (i + 1 >= argv.length) throw new Error(`${arg}: expected a value`);
       return argv[++i];
@@ -54,7 +80,8 @@ function parseArgs(argv) {
       }
       case "--steps": opts.steps = intArg(arg, value(), 1, 20000); break;
       case "--seconds": opts.seconds = intArg(arg, value(), 1, 600); break;
-      default: throw new Error(`unknown argument ${JSON.stringify(arg)} (node e2e/measure.mjs [--balloons N] [--threads 1,2] [--steps S] [--seconds S])`);
+      case "--ribbons": opts.ribbons = RIBBON_SETTINGS.on; break;
+      default: throw new Error(`unknown argument ${JSON.stringify(arg)} (node e2e/measure.mjs [--balloons N] [--threads 1,2] [--steps S] [--seconds S] [--ribbons | --ribbons=0|1|both])`);
     }
   }
   return opts;
@@ -182,37 +209,45 @@ async function settleDrawing(page, timeoutMs = 300_000) {
   if (!settled) throw new Error(`the page's frames did not settle within ${timeoutMs / 1000} s of holding its drawing`);
 }
 
-async function measureThreads(browser, url, opts, threads) {
+/** Measures the page on `threads` threads, each balloon on a ribbon where `ribbons`. */
+async function measureThreads(browser, url, opts, threads, ribbons, dt) {
   const page = await browser.newPage({ viewport });
+  const label = `${threads} thread(s), ${ribbons ? "with" : "without"} ribbons`;
   const errors = [];
   page.on("pageerror", (e) => errors.push(e.message));
   try {
     const started = Date.now();
-    await page.goto(url(threads));
+    await page.goto(url(threads, ribbons));
     await page.waitForFunction(() => window.__up?.ready(), null, { timeout: 900_000, polling: 500 });
     const loadSeconds = (Date.now() - started) / 1000;
     const inPage = await page.evaluate(() => ({
       count: window.__up.balloonCount(),
+      ribbons: window.__up.ribbonCount(),
       // Present where the page runs a thread pool.
       threads: typeof window.__up.threads === "function" ? window.__up.threads() : null,
       isolated: typeof window.__up.isolated === "function" ? window.__up.isolated() : window.crossOriginIsolated,
     }));
+    // The page falls back to its default scene where the engine refuses the link's: measure only the scene asked for.
+    const wantRibbons = ribbons ? opts.balloons : 0;
+    if (inPage.count !== opts.balloons || inPage.ribbons !== wantRibbons) {
+      throw new Error(`the page runs ${inPage.count} balloons and ${inPage.ribbons} ribbons, expected ${opts.balloons} and ${wantRibbons}`);
+    }
     await page.evaluate(instrument);
     const drawn = await phase(page, opts.seconds * 1000);
-    log(`${threads} thread(s): loaded in ${round(loadSeconds)} s; ran ${opts.seconds} s drawing the balloons (${drawn.frames} frames)`);
+    log(`${label}: loaded in ${round(loadSeconds)} s; ran ${opts.seconds} s drawing the balloons (${drawn.frames} frames)`);
     // SwiftShader draws thousands of balloons in seconds a frame on the CPU, which
     // leaves few frames to measure and takes the cores from the worker: from here
     // the balloons are not drawn, while the frame's work (their poses to instance
     // matrices included) goes on every frame.
     await page.evaluate(() => window.__up.drawBalloons(false));
     const running = await phase(page, opts.seconds * 1000);
-    log(`${threads} thread(s): ran ${opts.seconds} s not drawing them (${running.frames} frames)`);
+    log(`${label}: ran ${opts.seconds} s not drawing them (${running.frames} frames)`);
     await page.keyboard.press(" ");
     // Seconds at 10,000 balloons: SwiftShader's frames hold the main thread's key handling back.
     await page.waitForFunction(() => window.__up.paused(), null, { timeout: 300_000, polling: 200 });
     await page.waitForTimeout(500);
     const paused = await phase(page, Math.min(5, opts.seconds) * 1000);
-    log(`${threads} thread(s): drawing alone measured (${paused.frames} frames); timing ${opts.steps} steps`);
+    log(`${label}: drawing alone measured (${paused.frames} frames); timing ${opts.steps} steps`);
     // The worker restarts the scene and steps the window; the page's frames
     // held (they do nothing), then the same window with the page drawing.
     const timeWindow = async (held) => {
@@ -222,20 +257,23 @@ async function measureThreads(browser, url, opts, threads) {
     };
     const window_ = await timeWindow(true);
     const physics = summary(window_.engineMs, 2);
-    log(`${threads} thread(s): physics mean ${physics.mean} ms per step, drawing held; the window again, drawing`);
+    log(`${label}: physics mean ${physics.mean} ms per step, drawing held; the window again, drawing`);
     const whileDrawing = await timeWindow(false);
     const physicsWhileDrawing = summary(whileDrawing.engineMs, 2);
     if (whileDrawing.stateHash !== window_.stateHash) {
       throw new Error(`the window ended on ${window_.stateHash} drawing held and on ${whileDrawing.stateHash} drawing`);
     }
-    const dtMs = 1000 / 60;
+    const dtMs = dt * 1000;
+    const wall = summary(window_.wallMs, 2);
     return {
       threads,
+      ribbons,
+      ribbons_in_page: inPage.ribbons,
       threads_in_page: inPage.threads,
       isolated: inPage.isolated,
       balloons: inPage.count,
       physics_ms: { median: physics.median, mean: physics.mean, p95: physics.p95, max: physics.max },
-      physics_wall_ms: summary(window_.wallMs, 2),
+      physics_wall_ms: wall,
       // The engine's stages over the same window: each one's mean ms per step (which ones scale).
       physics_stages_ms: Object.fromEntries(window_.stageMeanMs.map(([name, ms]) => [name, round(ms, 2)])),
       // The same window while the page draws (the balloons not drawn): SwiftShader on the same cores.
@@ -243,6 +281,8 @@ async function measureThreads(browser, url, opts, threads) {
       // Simulated seconds per second at the window's mean (1: real time), and what the page
       // reached while running (at most 1: the worker steps in real time or slower).
       realtime_factor: round(dtMs / physics.mean, 3),
+      // The same by the worker's clock around each step call (simulated seconds per wall second while stepping).
+      realtime_factor_wall: round(dtMs / wall.mean, 3),
       page_realtime_factor: running.realtime_factor,
       // The main thread's frame work (the render call apart) while the worker steps, balloons not drawn.
       frame_ms: running.frame_ms,
@@ -273,53 +313,121 @@ async function measureThreads(browser, url, opts, threads) {
   }
 }
 
+/** The default scene's ribbon and step, from the engine the page runs (its single-threaded module, in Node). */
+async function engineDefaults() {
+  const { glue } = await loadUpWasm({ threads: 1 });
+  const defaults = JSON.parse(glue.default_scene_json());
+  const ribbon = defaults.balloons?.find((g) => g.ribbon)?.ribbon;
+  if (!ribbon) throw new Error("the engine's default scene has no ribbon to tie on");
+  return { ribbon, dt: defaults.sim.dt };
+}
+
+/** The figures within one ribbon setting: speed-ups over one thread and the hashes by thread count. */
+function modeSummary(measured, ribbons) {
+  const runs = measured.filter((r) => r.ribbons === ribbons);
+  const base = runs.find((r) => r.threads === 1);
+  const ratio = (key, field = "physics_ms") =>
+    base ? Object.fromEntries(runs.filter((r) => r !== base).map((r) => [String(r.threads), round(base[field][key] / r[field][key], 2)])) : {};
+  return {
+    ribbons,
+    speedup_mean: ratio("mean"),
+    speedup_median: ratio("median"),
+    // The same by the worker's clock around each step call (the engine's time, and any wait for the pool's workers).
+    speedup_wall_mean: ratio("mean", "physics_wall_ms"),
+    // While SwiftShader draws the page on the same cores.
+    speedup_mean_while_drawing: ratio("mean", "physics_ms_while_drawing"),
+    hashes: Object.fromEntries(runs.map((r) => [String(r.threads), r.state_hash])),
+    hashes_equal: runs.every((r) => r.state_hash === runs[0].state_hash),
+  };
+}
+
+/** With and without ribbons on each thread count: the step with ribbons over the step without. */
+function ribbonCost(measured) {
+  const cost = {};
+  for (const withRibbons of measured.filter((r) => r.ribbons)) {
+    const without = measured.find((r) => !r.ribbons && r.threads === withRibbons.threads);
+    if (!without) continue;
+    const over = (key, field = "physics_ms") => round(withRibbons[field][key] / without[field][key], 2);
+    cost[String(withRibbons.threads)] = { mean: over("mean"), median: over("median"), wall_mean: over("mean", "physics_wall_ms") };
+  }
+  return cost;
+}
+
+/** The runs as a table on standard error (standard output keeps the one JSON line). */
+function printTable(runs, cost) {
+  const rows = [["ribbons", "threads", "mean ms", "median ms", "p95 ms", "wall mean ms", "realtime", "realtime (wall)", "hash"]];
+  for (const r of runs) {
+    if (r.error) rows.push([r.ribbons ? "on" : "off", String(r.threads), `failed: ${r.error}`]);
+    else rows.push([r.ribbons ? "on" : "off", String(r.threads), ...[r.physics_ms.mean, r.physics_ms.median, r.physics_ms.p95, r.physics_wall_ms.mean].map(String), `${r.realtime_factor}×`, `${r.realtime_factor_wall}×`, r.state_hash]);
+  }
+  const widths = rows[0].map((_, c) => Math.max(...rows.map((row) => (row[c] ?? "").length)));
+  for (const row of rows) console.error(row.map((cell, c) => (cell ?? "").padEnd(widths[c])).join("  ").trimEnd());
+  for (const [threads, c] of Object.entries(cost)) {
+    console.error(`ribbons' cost on ${threads} thread(s): ${c.mean}× by the mean, ${c.median}× by the median`);
+  }
+  const stages = runs.filter((r) => !r.error);
+  for (const r of stages) {
+    // The stages that take time (the others round to 0).
+    const list = Object.entries(r.physics_stages_ms).filter(([, ms]) => ms > 0).map(([name, ms]) => `${name} ${ms}`).join(", ");
+    console.error(`stages, ms a step (${r.ribbons ? "with" : "without"} ribbons, ${r.threads} thread(s)): ${list}`);
+  }
+}
+
 const opts = parseArgs(process.argv);
 /** A room large enough to place the balloons without overlap (about 40 per m² of floor, stacked). */
 const side = Math.max(6, Math.ceil(Math.sqrt(opts.balloons / 30)));
-const scene = { room: { width: side, depth: side }, balloons: [{ count: opts.balloons }] };
+const { ribbon, dt } = await engineDefaults();
+/** The scene measured, without or with the default scene's ribbon on every balloon. */
+const sceneOf = (ribbons) => ({ room: { width: side, depth: side }, balloons: [ribbons ? { count: opts.balloons, ribbon } : { count: opts.balloons }] });
+const settingName = opts.ribbons.length > 1 ? "both" : opts.ribbons[0] ? "on" : "off";
 const server = await serveDist();
 const browser = await launchChromium();
 let failed = false;
 try {
-  const url = (threads) => `${server.url}${TEST_PATH}&threads=${threads}#scene=${base64url(JSON.stringify(scene))}`;
+  const url = (threads, ribbons) => `${server.url}${TEST_PATH}&threads=${threads}#scene=${base64url(JSON.stringify(sceneOf(ribbons)))}`;
   const runs = [];
+  // Without and with ribbons in turn on each thread count: the machine's load drifts alike over both.
   for (const threads of opts.threads) {
-    try {
-      runs.push(await measureThreads(browser, url, opts, threads));
-    } catch (e) {
-      // The other thread counts are still measured; the run fails at the end.
-      log(`${threads} thread(s) failed: ${e.message}`);
-      runs.push({ threads, error: e.message });
-      continue;
+    for (const ribbons of opts.ribbons) {
+      const label = `${threads} thread(s), ${ribbons ? "with" : "without"} ribbons`;
+      try {
+        runs.push(await measureThreads(browser, url, opts, threads, ribbons, dt));
+      } catch (e) {
+        // The other runs are still measured; the run fails at the end.
+        log(`${label} failed: ${e.message}`);
+        runs.push({ threads, ribbons, error: e.message });
+        continue;
+      }
+      log(`${label}: ${JSON.stringify(runs.at(-1))}`);
+      log(`${label}: physics mean ${runs.at(-1).physics_ms.mean} ms per step, frame work median ${runs.at(-1).frame_ms?.median} ms`);
     }
-    log(`${threads} thread(s): ${JSON.stringify(runs.at(-1))}`);
-    log(`${threads} thread(s): physics mean ${runs.at(-1).physics_ms.mean} ms per step, frame work median ${runs.at(-1).frame_ms?.median} ms`);
   }
   const measured = runs.filter((r) => !r.error);
-  const base = measured.find((r) => r.threads === 1);
-  const ratio = (key, field = "physics_ms") =>
-    base ? Object.fromEntries(measured.filter((r) => r !== base).map((r) => [String(r.threads), round(base[field][key] / r[field][key], 2)])) : {};
-  const hashesEqual = measured.every((r) => r.state_hash === measured[0].state_hash);
+  const modes = opts.ribbons.map((ribbons) => modeSummary(measured, ribbons));
+  const hashesEqual = modes.every((m) => m.hashes_equal);
+  const cost = ribbonCost(measured);
   failed = !hashesEqual || measured.length < runs.length;
+  printTable(runs, cost);
   console.log(
     JSON.stringify({
       balloons: measured[0]?.balloons ?? opts.balloons,
       room_m: [side, side],
       steps: opts.steps,
+      ribbons: settingName,
+      ribbon: opts.ribbons.includes(true) ? ribbon : null,
+      dt,
       runs,
-      speedup_mean: ratio("mean"),
-      speedup_median: ratio("median"),
-      // The same by the worker's clock around each step call (the engine's time, and any wait for the pool's workers).
-      speedup_wall_mean: ratio("mean", "physics_wall_ms"),
-      // While SwiftShader draws the page on the same cores.
-      speedup_mean_while_drawing: ratio("mean", "physics_ms_while_drawing"),
+      modes,
+      ribbon_cost: cost,
       hashes_equal: hashesEqual,
       viewport,
       chromium: browser.version(),
       renderer: "SwiftShader (CPU)",
     }),
   );
-  if (!hashesEqual) console.error(`measure.mjs: the state hashes differ across thread counts: ${measured.map((r) => `${r.threads}: ${r.state_hash}`).join(", ")}`);
+  for (const m of modes.filter((m) => !m.hashes_equal)) {
+    console.error(`measure.mjs: the state hashes ${m.ribbons ? "with" : "without"} ribbons differ across thread counts: ${Object.entries(m.hashes).map(([t, h]) => `${t}: ${h}`).join(", ")}`);
+  }
 } finally {
   await browser.close();
   await server.close();

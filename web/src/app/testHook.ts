@@ -29,8 +29,11 @@ export function createTestHook(app: App) {
     resetFrameMeter: () => app.frameMeter.reset(),
     /** Measurements: the scene restarted and `steps` steps timed in the worker; resolves with the times and the state hash. */
     measureSteps: (steps: number) => app.bridge.measureSteps(steps),
-    /** Measurements: balloons drawn or not (the frame's work goes on; SwiftShader's drawing of thousands takes the CPU). */
-    drawBalloons: (on: boolean) => world.balloons?.setVisible(on),
+    /** Measurements: balloons and their ribbons drawn or not (the frame's work goes on; SwiftShader's drawing of thousands takes the CPU). */
+    drawBalloons: (on: boolean) => {
+      world.balloons?.setVisible(on);
+      if (world.ribbons) world.ribbons.group.visible = on;
+    },
     /** Measurements: frames that do nothing (the GPU gets nothing to draw), or their work again (`App.drawingHeld`). */
     holdDrawing: (held: boolean) => {
       app.drawingHeld = held;
