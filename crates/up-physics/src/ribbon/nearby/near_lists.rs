@@ -137,8 +137,9 @@ impl NearLists {
         for i in 0..n {
             let (center, radius) = (spheres.centers[i], spheres.radii[i]);
             let out = (center - self.drift).distance(self.anchor_center[i]) + radius;
-            // `!(..)` so that a non-finite body counts as loose.
-            if !(out <= self.anchor_radius[i] - SLACK) {
+            // False for a non-finite body: it counts as loose.
+            let anchored = out <= self.anchor_radius[i] - SLACK;
+            if !anchored {
                 if !center.is_finite() || radius.is_nan() {
                     continue; // no box meets it
                 }
