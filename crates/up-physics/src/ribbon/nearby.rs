@@ -1,144 +1,22 @@
-//! Which balloons a ribbon may touch this step: a uniform grid of the
-//! balloons' bounding spheres, hashed into buckets and filled by a counting
-//! sort (no ordering by value, so the same bodies come out in the same order
-//! on any number of threads).
+//! What a ribbon may touch: the balloons and the room's triangles near it.
+//!
+//! Each ribbon keeps its candidates for as many steps as nothing has moved
+//! past a margin (`near_lists`), so a step checks how far things moved and
+//! filters short lists, instead of hashing every body again; the wake pass
+//! hashes only the restless bodies, each step, if more than a few
+//! (`sphere_grid`).
 
-use glam::Vec3;
-use up_geom::Aabb;
+mod near_lists;
+mod sphere_grid;
 
-/// Bounding spheres hashed by the cells they overlap.
+pub(crate) use near_lists::{NearLists, Spheres};
+pub(crate) use sphere_grid::{sphere_meets_box, SphereGrid};
+
+/// The ribbons' neighbour search, kept between steps.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct NearbyBodies {
-    cell: f32,
-    mask: u32,
-    /// Bucket `k`'s bodies are `bodies[start[k]..start[k + 1]]`.
-    start: Vec<u32>,
-    bodies: Vec<u32>,
-    /// Each sphere's cell range, kept between the counting pass and the filling one.
-    ranges: Vec<[[i32; 3]; 2]>,
-    /// Per sphere: the last query that found it (each is reported once).
-    seen: Vec<u32>,
-    query: u32,
-}
-
-fn bucket(ix: i32, iy: i32, iz: i32, mask: u32) -> u32 {
-    let h = (ix as u32).wrapping_mul(0x8da6_b343)
-        ^ (iy as u32).wrapping_mul(0xd816_3841)
-        ^ (iz as u32).wrapping_mul(0xcb1a_b31f);
-    h & mask
-}
-
-impl NearbyBodies {
-    /// Hashes `centers[i]`, `radii[i]` (the bodies in dense order).
-    pub fn build(&mut self, centers: &[Vec3], radii: &[f32]) {
-        let largest = radii.iter().copied().fold(0.0f32, f32::max);
-        self.cell = (2.0 * largest).max(0.05);
-        let buckets = (2 * centers.len()).next_power_of_two().max(16);
-        self.mask = buckets as u32 - 1;
-        self.start.clear();
-        self.start.resize(buckets + 1, 0);
-        self.ranges.clear();
-        let inv = 1.0 / self.cell;
-        self.seen.clear();
-        self.seen.resize(centers.len(), 0);
-        self.query = 0;
-        for (c, &r) in centers.iter().zip(radii) {
-            let lo = ((*c - r) * inv).floor().as_ivec3().to_array();
-            let hi = ((*c + r) * inv).floor().as_ivec3().to_array();
-            self.ranges.push([lo, hi]);
-        }
-        let each_cell = |[lo, hi]: [[i32; 3]; 2], f: &mut dyn FnMut(u32)| {
-            for ix in lo[0]..=hi[0] {
-                for iy in lo[1]..=hi[1] {
-                    for iz in lo[2]..=hi[2] {
-                        f(bucket(ix, iy, iz, self.mask));
-                    }
-                }
-            }
-        };
-        for &range in &self.ranges {
-            each_cell(range, &mut |b| self.start[b as usize + 1] += 1);
-        }
-        for k in 1..self.start.len() {
-            self.start[k] += self.start[k - 1];
-        }
-        let mut next = self.start.clone();
-        self.bodies.clear();
-        self.bodies.resize(self.start[buckets] as usize, 0);
-        for (i, &range) in self.ranges.iter().enumerate() {
-            each_cell(range, &mut |b| {
-                self.bodies[next[b as usize] as usize] = i as u32;
-                next[b as usize] += 1;
-            });
-        }
-    }
-
-    /// Appends to `out` each body whose sphere overlaps `aabb`, once, in the
-    /// order the grid holds them.
-    pub fn query(&mut self, aabb: &Aabb, centers: &[Vec3], radii: &[f32], out: &mut Vec<u32>) {
-        if self.start.is_empty() {
-            return;
-        }
-        self.query += 1;
-        let inv = 1.0 / self.cell;
-        let lo = (aabb.min * inv).floor().as_ivec3();
-        let hi = (aabb.max * inv).floor().as_ivec3();
-        // A huge box would walk many empty cells: every body is cheaper then.
-        let cells = (hi - lo + 1).as_vec3().element_product();
-        if cells > self.start.len() as f32 {
-            out.extend((0..centers.len() as u32).filter(|&i| {
-                let i = i as usize;
-                sphere_meets_box(centers[i], radii[i], aabb)
-            }));
-            return;
-        }
-        for ix in lo.x..=hi.x {
-            for iy in lo.y..=hi.y {
-                for iz in lo.z..=hi.z {
-                    let b = bucket(ix, iy, iz, self.mask) as usize;
-                    for &i in &self.bodies[self.start[b] as usize..self.start[b + 1] as usize] {
-                        let seen = &mut self.seen[i as usize];
-                        if *seen != self.query
-                            && sphere_meets_box(centers[i as usize], radii[i as usize], aabb)
-                        {
-                            *seen = self.query;
-                            out.push(i);
-                        }
-                    }
-                }
-            }
-        }
-    }
-}
-
-fn sphere_meets_box(center: Vec3, radius: f32, aabb: &Aabb) -> bool {
-    let closest = center.clamp(aabb.min, aabb.max);
-    closest.distance_squared(center) <= radius * radius
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn finds_exactly_the_spheres_that_meet_the_box() {
-        let mut next = crate::hash::uniform(7);
-        let centers: Vec<Vec3> = (0..500)
-            .map(|_| Vec3::new(next(), next(), next()) * 8.0)
-            .collect();
-        let radii: Vec<f32> = (0..500).map(|_| 0.05 + 0.2 * next()).collect();
-        let mut grid = NearbyBodies::default();
-        grid.build(&centers, &radii);
-        for k in 0..50 {
-            let lo = Vec3::new(next(), next(), next()) * 7.0;
-            let aabb = Aabb::new(lo, lo + Vec3::splat(0.1 + 0.05 * k as f32));
-            let mut found = Vec::new();
-            grid.query(&aabb, &centers, &radii, &mut found);
-            found.sort_unstable();
-            let expected: Vec<u32> = (0..500u32)
-                .filter(|&i| sphere_meets_box(centers[i as usize], radii[i as usize], &aabb))
-                .collect();
-            assert_eq!(found, expected);
-        }
-    }
+    /// The restless bodies' widened spheres, hashed by the wake pass.
+    pub restless: SphereGrid,
+    /// Each ribbon's candidate balloons and triangles.
+    pub lists: NearLists,
 }

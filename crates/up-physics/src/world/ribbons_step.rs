@@ -6,9 +6,13 @@ use up_geom::norm::Norm;
 use up_geom::Aabb;
 
 use super::World;
-use crate::ribbon::collide::NearTriangle;
+use crate::ribbon::nearby::{sphere_meets_box, Spheres};
 use crate::ribbon::solve::ActiveRibbon;
 use crate::ribbon::GRAB_MAX_SPEED;
+
+/// Restless bodies at most that the wake pass tests against every sleeping
+/// ribbon without hashing them.
+const FEW_RESTLESS: usize = 16;
 
 impl World {
     /// Wakes the balloons whose sleeping ribbons a moving balloon reaches
@@ -42,7 +46,13 @@ impl World {
         if stage.awake_bodies.is_empty() || !self.ribbons.iter().any(|(_, r)| asleep(r.body)) {
             return;
         }
-        stage.nearby.build(&stage.bound_center, &stage.bound_radius);
+        // A few restless bodies are tested against each ribbon directly:
+        // a grid's cells would cost more to walk than they spare.
+        let few = stage.awake_bodies.len() <= FEW_RESTLESS;
+        let restless = &mut stage.nearby.restless;
+        if !few {
+            restless.build(&stage.bound_center, &stage.bound_radius);
+        }
         let mut touched = std::mem::take(&mut stage.touched);
         let found = &mut stage.found;
         touched.clear();
@@ -55,9 +65,14 @@ impl World {
             }
             let aabb = Aabb::from_points(&ribbon.points).expanded(ribbon.radius(ribbon.segments()));
             found.clear();
-            stage
-                .nearby
-                .query(&aabb, &stage.bound_center, &stage.bound_radius, found);
+            let (centers, radii) = (&stage.bound_center, &stage.bound_radius);
+            if few {
+                let meets =
+                    |k: &u32| sphere_meets_box(centers[*k as usize], radii[*k as usize], &aabb);
+                found.extend((0..centers.len() as u32).filter(meets));
+            } else {
+                restless.query(&aabb, centers, radii, found);
+            }
             let reached = found.iter().any(|&k| {
                 let (c, r) = (
                     stage.bound_center[k as usize],
@@ -111,10 +126,14 @@ impl World {
                 .bound_radius
                 .push(shape.bound_radius * b.size[i].scale + reach + margin);
         }
-        stage.nearby.build(&stage.bound_center, &stage.bound_radius);
+        let room = self.def.room.as_ref();
+        let spheres = Spheres {
+            centers: &stage.bound_center,
+            radii: &stage.bound_radius,
+        };
+        stage.nearby.lists.begin_step(spheres, room);
         let air_density = self.air.air_density();
         let grab = self.ribbon_grab;
-        let room = self.def.room.as_ref();
         let mut count = 0;
         for (slot, ribbon) in self.ribbons.slots_mut().enumerate() {
             let Some(ribbon) = ribbon else { continue };
@@ -160,26 +179,12 @@ impl World {
             if let Some((k, _)) = r.grab {
                 r.inv_mass[k] = 0.0; // carried, not pushed
             }
-            let first = stage.bodies.len() as u32;
-            stage.nearby.query(
-                &aabb,
-                &stage.bound_center,
-                &stage.bound_radius,
-                &mut stage.bodies,
-            );
-            r.bodies = first..stage.bodies.len() as u32;
-            let first = stage.triangles.len() as u32;
-            if let Some(room) = room {
-                room.query_aabb(&aabb, |t| {
-                    if !room.is_degenerate(t) {
-                        stage.triangles.push(NearTriangle {
-                            corners: room.triangle(t),
-                            normal: room.normal(t),
-                        });
-                    }
-                });
-            }
-            r.triangles = first..stage.triangles.len() as u32;
+            let (first_body, first_triangle) = (stage.bodies.len(), stage.triangles.len());
+            let (bodies, triangles) = (&mut stage.bodies, &mut stage.triangles);
+            let lists = &mut stage.nearby.lists;
+            lists.near(slot, &aabb, spheres, room, bodies, triangles);
+            r.bodies = first_body as u32..stage.bodies.len() as u32;
+            r.triangles = first_triangle as u32..stage.triangles.len() as u32;
         }
         stage.awake = count;
         stage.pack();
