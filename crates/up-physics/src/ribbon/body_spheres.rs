@@ -7,8 +7,8 @@
 //! the balloons its points come within (`LaneGroup::push_point_out`). Both
 //! place a sphere with the same operations: the results are the same.
 
-use glam::Vec3;
-use up_geom::Sphere;
+use glam::{Quat, Vec3};
+use up_geom::{Sphere, SphereTree};
 
 use super::collide::NearBalloon;
 use super::solve::SubstepInput;
@@ -40,14 +40,27 @@ pub(crate) struct BodySpheres {
 /// Places `b`'s leaf spheres at its pose in `b`, after those in `out`.
 pub(crate) fn place_leaves(b: &NearBalloon, input: &SubstepInput, out: &mut Vec<Sphere>) {
     let tree = &input.shapes[b.tree as usize].tree;
-    let (nodes, scale) = (tree.nodes(), input.size[b.state as usize].scale);
-    for &leaf in tree.leaves() {
+    let scale = input.size[b.state as usize].scale;
+    out.extend(leaf_spheres(tree, b.center, b.rotation, scale));
+}
+
+/// `tree`'s leaf spheres for a body whose centre of mass is at `center`,
+/// turned by `rotation`, its tree scaled by `scale`: the one placement both
+/// ways of placing leaves use, so their results agree bit for bit.
+fn leaf_spheres(
+    tree: &SphereTree,
+    center: Vec3,
+    rotation: Quat,
+    scale: f32,
+) -> impl Iterator<Item = Sphere> + '_ {
+    let nodes = tree.nodes();
+    tree.leaves().iter().map(move |&leaf| {
         let node = &nodes[leaf as usize];
-        out.push(Sphere::new(
-            b.center + b.rotation * (node.center * scale),
+        Sphere::new(
+            center + rotation * (node.center * scale),
             node.radius * scale,
-        ));
-    }
+        )
+    })
 }
 
 impl BodySpheres {
@@ -91,18 +104,11 @@ impl BodySpheres {
             for (k, out) in bounds.iter_mut().enumerate() {
                 let b = first + k;
                 *out = bound(b);
-                // As `place_leaves` places them.
                 let s = &states[b];
-                let (center, rotation) = (input.centers[b] + s.dp, s.q);
-                let tree = tree(b);
-                let scale = input.size[b].scale;
-                let nodes = tree.nodes();
-                for (sphere, &leaf) in leaves.item(k).iter_mut().zip(tree.leaves()) {
-                    let node = &nodes[leaf as usize];
-                    *sphere = Sphere::new(
-                        center + rotation * (node.center * scale),
-                        node.radius * scale,
-                    );
+                let placed =
+                    leaf_spheres(tree(b), input.centers[b] + s.dp, s.q, input.size[b].scale);
+                for (sphere, placed) in leaves.item(k).iter_mut().zip(placed) {
+                    *sphere = placed;
                 }
             }
         });
