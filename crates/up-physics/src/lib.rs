@@ -9,6 +9,7 @@
 //! on every platform (no fast-math, libm for transcendental functions, no
 //! hash-map iteration on the step's path).
 
+pub mod air;
 mod body;
 mod broad_phase;
 mod contact;
@@ -30,6 +31,7 @@ mod solver;
 mod threading;
 mod world;
 
+pub use air::AirFlow;
 pub use body::{BalloonShape, BodyDef, BodyId, ShapeId};
 pub use counters::{Counters, Phase, Stage};
 pub use forces::atmosphere::Atmosphere;

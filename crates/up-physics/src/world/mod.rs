@@ -140,6 +140,9 @@ pub struct World {
     /// Code, not state (`forces::field`).
     #[serde(skip)]
     fields: ForceFields,
+    /// The room's moving air (`air`): still unless a scene sets sources.
+    #[serde(skip)]
+    air_flow: crate::AirFlow,
     #[serde(skip)]
     counters: Counters,
     #[serde(skip)]
@@ -171,6 +174,7 @@ impl World {
             stats: StepStats::default(),
             quarantined: Vec::new(),
             fields: ForceFields::default(),
+            air_flow: crate::AirFlow::default(),
             counters: Counters::default(),
             stages: Stages::default(),
         })
@@ -187,6 +191,23 @@ impl World {
     pub fn add_force_field(&mut self, field: std::sync::Arc<dyn crate::ForceField>) {
         self.fields.push(field);
         self.wake_all();
+    }
+
+    /// Sets the room's moving air (`air`): from the next step on, every drag
+    /// acts against it; the sleepers wake.
+    pub fn set_air_flow(&mut self, air_flow: crate::AirFlow) {
+        self.air_flow = air_flow;
+        self.wake_all();
+    }
+
+    /// The room's moving air.
+    pub fn air_flow(&self) -> &crate::AirFlow {
+        &self.air_flow
+    }
+
+    /// The air's velocity at `p` now, m/s.
+    pub fn air_velocity_at(&self, p: glam::Vec3) -> glam::Vec3 {
+        self.air_flow.velocity_at(p, self.time)
     }
 
     /// Removes every force field; the sleepers wake.

@@ -1,0 +1,64 @@
+//! Moving air: the room's air velocity u(x, t), which every drag in the
+//! engine reads (a balloon's, a ribbon point's, a weight's), made of
+//! sources that blow: fans and vents (round free jets, `jet`) and draughts
+//! through an open door or window (`draught`), each switched on and off by
+//! its schedule (`schedule`).
+//!
+//! The field is an analytic superposition of the sources' jets, one way
+//! coupled (balloons do not stir the air). Its limits, stated once: a jet
+//! does not feel the walls (it neither turns along a wall nor builds the
+//! closed room's return flow), jets add as vectors where they cross, and
+//! what draws a balloon toward a jet's axis is the jet's entrainment inflow
+//! alone (no pressure field). With no sources the field is zero everywhere
+//! and the step computes exactly what it does without moving air.
+
+mod draught;
+mod jet;
+mod schedule;
+
+pub use draught::Draught;
+pub use jet::{Jet, JetKind, Sweep, JET_DECAY_B, JET_SPREAD_S, JET_VIRTUAL_ORIGIN_D};
+pub use schedule::{Schedule, SPIN_UP_S};
+
+use glam::Vec3;
+use serde::{Deserialize, Serialize};
+
+/// Every source of moving air in the room. The default is still air.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct AirFlow {
+    /// Fans and vents.
+    pub jets: Vec<Jet>,
+    /// Open doors and windows.
+    pub draughts: Vec<Draught>,
+}
+
+impl AirFlow {
+    /// No sources at all: the air is at rest everywhere, always.
+    pub fn is_still(&self) -> bool {
+        self.jets.is_empty() && self.draughts.is_empty()
+    }
+
+    /// The air's velocity at `p` (m, world frame) at simulated time `t`
+    /// (s), m/s: the sum of every source's, in the order they are listed.
+    pub fn velocity_at(&self, p: Vec3, t: f64) -> Vec3 {
+        let jets = self.jets.iter().map(|j| j.velocity_at(p, t));
+        let draughts = self.draughts.iter().map(|d| d.velocity_at(p, t));
+        jets.chain(draughts).fold(Vec3::ZERO, |sum, u| sum + u)
+    }
+
+    /// Checks every source, naming the first bad one (`jets[2].diameter_m`).
+    pub fn validate(&self) -> Result<(), String> {
+        for (i, jet) in self.jets.iter().enumerate() {
+            jet.validate().map_err(|e| format!("jets[{i}].{e}"))?;
+        }
+        for (i, draught) in self.draughts.iter().enumerate() {
+            draught
+                .validate()
+                .map_err(|e| format!("draughts[{i}].{e}"))?;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests;
