@@ -37,6 +37,8 @@ macro_rules! stages {
 stages! {
     /// The room's air and every balloon's gas a step on; sizes that moved.
     Gas = "gas" in Gas,
+    /// The moving air's sources as they blow now; sleepers it reaches woken.
+    Air = "air" in Air,
     /// Pairs of bodies held by a joint, for the sleep islands.
     Joined = "joined" in Joints,
     /// Balloons woken whose sleeping ribbons a moving balloon reaches.
@@ -99,6 +101,7 @@ stages! {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum Phase {
     Gas,
+    Air,
     Joints,
     Ribbons,
     Broadphase,
@@ -115,6 +118,7 @@ impl Phase {
     pub fn name(self) -> &'static str {
         match self {
             Phase::Gas => "gas",
+            Phase::Air => "air",
             Phase::Joints => "joints",
             Phase::Ribbons => "ribbons",
             Phase::Broadphase => "broadphase",

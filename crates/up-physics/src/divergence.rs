@@ -33,8 +33,11 @@ pub enum Field {
     Ribbon,
     /// The gas inside, and the size and mass it gives.
     Gas,
-    /// No body differs, but the state hash does: the clock, the air or a
-    /// body's sleep timer (which the world does not show body by body).
+    /// No body differs, but the moving air's sources do (`World::air_flow`).
+    Air,
+    /// No body differs, but the state hash does: the clock, the room's air
+    /// (its temperature) or a body's sleep timer (which the world does not
+    /// show body by body).
     Rest,
 }
 
@@ -61,6 +64,7 @@ impl Field {
             Field::Awake => "awake",
             Field::Ribbon => "ribbon",
             Field::Gas => "gas",
+            Field::Air => "air",
             Field::Rest => "rest",
         }
     }
@@ -173,6 +177,7 @@ impl fmt::Display for Divergence {
         }
         match self.field {
             Field::Bodies => write!(f, ": the bodies differ (their number or handles)"),
+            Field::Air => write!(f, ": the moving air's sources differ"),
             Field::Rest => write!(
                 f,
                 ": the state hash differs in no body's fields (the clock, the air or a sleep timer)"
@@ -206,6 +211,9 @@ pub fn compare(a: &World, b: &World) -> Option<Divergence> {
         if let Some(field) = ha.first_difference(&hb) {
             return Some(at(Some(id), Some(ha.user_data), field));
         }
+    }
+    if a.air_flow() != b.air_flow() {
+        return Some(at(None, None, Field::Air));
     }
     (a.state_hash() != b.state_hash()).then(|| at(None, None, Field::Rest))
 }

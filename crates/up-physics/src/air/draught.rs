@@ -7,7 +7,7 @@ use glam::Vec3;
 use serde::{Deserialize, Serialize};
 use up_geom::norm::Norm;
 
-use super::jet::{Jet, JetKind};
+use super::jet::{Jet, JetKind, JetNow};
 use super::schedule::Schedule;
 
 /// An opening the air moves through.
@@ -47,19 +47,32 @@ impl Draught {
     /// The air's velocity at `p` at `t`, m/s: the set velocity inside the
     /// opening, the jet's beyond it.
     pub fn velocity_at(&self, p: Vec3, t: f64) -> Vec3 {
-        if self.velocity == Vec3::ZERO {
-            return Vec3::ZERO;
-        }
-        let level = self.schedule.level_at(t);
-        if level == 0.0 {
-            return Vec3::ZERO;
-        }
-        let inside = p.cmpge(self.min).all() && p.cmple(self.max).all();
-        if inside {
-            self.velocity * level
+        self.now(t).velocity_at(p)
+    }
+
+    /// The draught as it blows at `t`.
+    pub(crate) fn now(&self, t: f64) -> DraughtNow {
+        let level = if self.velocity == Vec3::ZERO {
+            0.0
+        } else {
+            self.schedule.level_at(t)
+        };
+        let jet = if level == 0.0 {
+            None
         } else {
             let jet = self.jet();
-            jet.flow_at(p, jet.direction, jet.speed * level)
+            Some(JetNow {
+                outlet: jet.outlet,
+                aim: jet.direction,
+                diameter: jet.diameter,
+                speed: jet.speed * level,
+            })
+        };
+        DraughtNow {
+            min: self.min,
+            max: self.max,
+            through: self.velocity * level,
+            jet,
         }
     }
 
@@ -80,5 +93,32 @@ impl Draught {
             ));
         }
         self.schedule.validate()
+    }
+}
+
+/// A draught at one instant (`Draught::now`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct DraughtNow {
+    min: Vec3,
+    max: Vec3,
+    /// The velocity inside the opening now, m/s.
+    through: Vec3,
+    /// The jet beyond it; None while the draught is off.
+    jet: Option<JetNow>,
+}
+
+impl DraughtNow {
+    /// The air's velocity at `p`, m/s.
+    #[inline]
+    pub fn velocity_at(&self, p: Vec3) -> Vec3 {
+        let Some(jet) = &self.jet else {
+            return Vec3::ZERO;
+        };
+        let inside = p.cmpge(self.min).all() && p.cmple(self.max).all();
+        if inside {
+            self.through
+        } else {
+            jet.flow_at(p)
+        }
     }
 }

@@ -102,63 +102,46 @@ impl Jet {
 
     /// Where the potential core ends, m from the outlet.
     pub fn core_length(&self) -> f32 {
-        (JET_VIRTUAL_ORIGIN_D + JET_DECAY_B) * self.diameter
+        core_length(self.diameter)
     }
 
     /// The axis speed `x` m downstream of the outlet, as a fraction of the
     /// outlet speed: 1 along the core, B·D/(x − x₀) past it, 0 behind.
     pub fn centreline_fraction(&self, x: f32) -> f32 {
-        if x < 0.0 {
-            0.0
-        } else if x <= self.core_length() {
-            1.0
-        } else {
-            JET_DECAY_B * self.diameter / (x - JET_VIRTUAL_ORIGIN_D * self.diameter)
-        }
+        centreline_fraction(self.diameter, x)
     }
 
     /// Where the speed across the jet is half the centreline's, `x` m
     /// downstream, m.
     pub fn half_width(&self, x: f32) -> f32 {
-        let core = self.core_length();
-        let far = |x: f32| JET_SPREAD_S * (x - JET_VIRTUAL_ORIGIN_D * self.diameter);
-        if x >= core {
-            far(x)
-        } else {
-            let outlet = 0.5 * self.diameter;
-            outlet + (far(core) - outlet) * (x.max(0.0) / core)
+        half_width(self.diameter, x)
+    }
+
+    /// The jet as it blows at `t`: aimed and at the speed of then.
+    pub(crate) fn now(&self, t: f64) -> JetNow {
+        JetNow {
+            outlet: self.outlet,
+            aim: self.aim_at(t),
+            diameter: self.diameter,
+            speed: self.speed_at(t),
         }
     }
 
     /// The air's velocity at `p` at `t`, m/s.
     pub fn velocity_at(&self, p: Vec3, t: f64) -> Vec3 {
-        let speed = self.speed_at(t);
-        if speed == 0.0 {
-            return Vec3::ZERO;
-        }
-        self.flow_at(p, self.aim_at(t), speed)
+        self.now(t).velocity_at(p)
     }
 
     /// The jet's velocity at `p` when it blows along `aim` at outlet speed
     /// `speed`, m/s (the schedule and sweep already applied).
     pub fn flow_at(&self, p: Vec3, aim: Vec3, speed: f32) -> Vec3 {
-        let offset = p - self.outlet;
-        let x = offset.dot(aim);
-        if x <= 0.0 {
-            return Vec3::ZERO;
-        }
-        let across = offset - x * aim;
-        let r = across.norm();
-        let r_half = self.half_width(x);
-        let inside = libm::expf(-LN_2 * (r / r_half) * (r / r_half));
-        let along = speed * self.centreline_fraction(x) * inside;
-        // (dQ/dx)/(2π·r) with dQ/dx = 0.32·U₀·(π·D²/4)/D, faded inside the jet.
-        let inflow = if r > 1e-6 {
-            ENTRAINMENT * 0.125 * speed * self.diameter * (1.0 - inside) / r
-        } else {
-            0.0
+        let now = JetNow {
+            outlet: self.outlet,
+            aim,
+            diameter: self.diameter,
+            speed,
         };
-        along * aim - inflow * (across / r.max(1e-6))
+        now.flow_at(p)
     }
 
     pub fn validate(&self) -> Result<(), String> {
@@ -193,5 +176,80 @@ impl Jet {
             ));
         }
         self.schedule.validate()
+    }
+}
+
+/// A jet at one instant: its aim and outlet speed fixed (the sweep and the
+/// schedule applied), so that many points are evaluated at one time without
+/// the sweep's sine each.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct JetNow {
+    pub outlet: Vec3,
+    /// A unit vector.
+    pub aim: Vec3,
+    pub diameter: f32,
+    /// Outlet speed, m/s.
+    pub speed: f32,
+}
+
+impl JetNow {
+    /// The air's velocity at `p`, m/s: zero while the jet is off.
+    #[inline]
+    pub fn velocity_at(&self, p: Vec3) -> Vec3 {
+        if self.speed == 0.0 {
+            return Vec3::ZERO;
+        }
+        self.flow_at(p)
+    }
+
+    /// The jet's velocity at `p`, m/s: along the aim with the profile's
+    /// speed, and the entrainment's inflow toward the axis.
+    pub fn flow_at(&self, p: Vec3) -> Vec3 {
+        let (aim, speed, diameter) = (self.aim, self.speed, self.diameter);
+        let offset = p - self.outlet;
+        let x = offset.dot(aim);
+        if x <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let across = offset - x * aim;
+        let r = across.norm();
+        let r_half = half_width(diameter, x);
+        let inside = libm::expf(-LN_2 * (r / r_half) * (r / r_half));
+        let along = speed * centreline_fraction(diameter, x) * inside;
+        // (dQ/dx)/(2π·r) with dQ/dx = 0.32·U₀·(π·D²/4)/D, faded inside the jet.
+        let inflow = if r > 1e-6 {
+            ENTRAINMENT * 0.125 * speed * diameter * (1.0 - inside) / r
+        } else {
+            0.0
+        };
+        along * aim - inflow * (across / r.max(1e-6))
+    }
+}
+
+/// Where the potential core of a jet of `diameter` ends, m from the outlet.
+fn core_length(diameter: f32) -> f32 {
+    (JET_VIRTUAL_ORIGIN_D + JET_DECAY_B) * diameter
+}
+
+/// `Jet::centreline_fraction` of a jet of `diameter`.
+fn centreline_fraction(diameter: f32, x: f32) -> f32 {
+    if x < 0.0 {
+        0.0
+    } else if x <= core_length(diameter) {
+        1.0
+    } else {
+        JET_DECAY_B * diameter / (x - JET_VIRTUAL_ORIGIN_D * diameter)
+    }
+}
+
+/// `Jet::half_width` of a jet of `diameter`.
+fn half_width(diameter: f32, x: f32) -> f32 {
+    let core = core_length(diameter);
+    let far = |x: f32| JET_SPREAD_S * (x - JET_VIRTUAL_ORIGIN_D * diameter);
+    if x >= core {
+        far(x)
+    } else {
+        let outlet = 0.5 * diameter;
+        outlet + (far(core) - outlet) * (x.max(0.0) / core)
     }
 }

@@ -14,14 +14,22 @@
 
 mod draught;
 mod jet;
+mod now;
 mod schedule;
 
 pub use draught::Draught;
 pub use jet::{Jet, JetKind, Sweep, JET_DECAY_B, JET_SPREAD_S, JET_VIRTUAL_ORIGIN_D};
+pub(crate) use now::AirNow;
 pub use schedule::{Schedule, SPIN_UP_S};
 
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
+
+/// Air at least this fast, m/s, keeps a balloon awake where it blows (at
+/// its centre or any point of its ribbon), and wakes a sleeper it reaches:
+/// well under the 0.25 m/s people notice, and enough to stir a balloon's
+/// ribbon (`sleep` has the whole rule).
+pub const RESTLESS_AIR_SPEED: f32 = 0.1;
 
 /// Every source of moving air in the room. The default is still air.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -41,9 +49,10 @@ impl AirFlow {
     /// The air's velocity at `p` (m, world frame) at simulated time `t`
     /// (s), m/s: the sum of every source's, in the order they are listed.
     pub fn velocity_at(&self, p: Vec3, t: f64) -> Vec3 {
-        let jets = self.jets.iter().map(|j| j.velocity_at(p, t));
-        let draughts = self.draughts.iter().map(|d| d.velocity_at(p, t));
-        jets.chain(draughts).fold(Vec3::ZERO, |sum, u| sum + u)
+        now::sum(
+            self.jets.iter().map(|j| j.velocity_at(p, t)),
+            self.draughts.iter().map(|d| d.velocity_at(p, t)),
+        )
     }
 
     /// Checks every source, naming the first bad one (`jets[2].diameter_m`).

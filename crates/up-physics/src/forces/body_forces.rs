@@ -1,6 +1,8 @@
 //! Each body's forces for one step, assembled once before the substeps:
 //! gravity and buoyancy, the user's force and torque, the scene's force
-//! fields (`field`), and the drag factor the substeps apply implicitly.
+//! fields (`field`), and the drag factor the substeps apply implicitly,
+//! with the air's velocity at the body (`crate::air`) that the drag acts
+//! against.
 
 use glam::Vec3;
 
@@ -10,7 +12,7 @@ use super::field::{FieldSample, ForceFields};
 use super::gravity::gravity_force;
 use crate::body::{BodySize, ShapeData};
 
-/// Per-body forces for one step. 52 bytes.
+/// Per-body forces for one step. 64 bytes.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct BodyForces {
     /// Gravity + buoyancy + the user's and the fields' forces, N (all constant
@@ -24,6 +26,9 @@ pub(crate) struct BodyForces {
     pub torque: Vec3,
     /// ½·ρ·C_D·A, kg/m.
     pub drag_factor: f32,
+    /// The air's velocity at the centre of mass, sampled once a step, m/s:
+    /// the drag is −k·|v − u|·(v − u). Zero in still air.
+    pub air: Vec3,
 }
 
 /// The air and gravity the forces come from.
@@ -46,6 +51,8 @@ pub(crate) struct BodyLoad {
     /// Held by the user for this step, N and N·m.
     pub force: Vec3,
     pub torque: Vec3,
+    /// The air's velocity at `center`, m/s.
+    pub air: Vec3,
 }
 
 impl BodyForces {
@@ -81,16 +88,19 @@ impl BodyForces {
             buoyancy_arm: shape.buoyancy_arm * scale,
             torque: load.torque,
             drag_factor,
+            air: load.air,
         }
     }
 
     /// The torque on a body turned to `q` and moving at `v`: the user's, the
     /// buoyancy's about the centre of mass, and the drag's, which acts at the
-    /// centre of buoyancy (the centre of the displaced air), N·m.
+    /// centre of buoyancy (the centre of the displaced air) against the
+    /// velocity relative to the air, N·m. (v − 0 is v to the bit: still air
+    /// turns a body as it did before air moved.)
     #[inline]
     pub fn torque_at(&self, q: glam::Quat, v: Vec3) -> Vec3 {
         let arm = q * self.buoyancy_arm;
-        let drag = drag_force(self.drag_factor, v);
+        let drag = drag_force(self.drag_factor, v - self.air);
         self.torque + buoyancy_torque(arm, self.buoyancy) + arm.cross(drag)
     }
 }

@@ -65,6 +65,11 @@ pub(crate) struct LaneGroup {
     pub touch_normal: Vec<V4>,
     pub touch_velocity: Vec<V4>,
     pub touched: bool,
+    /// Per point, once `windy`: the air's velocity there this step, sampled
+    /// at the first substep (`lane_substep`); and per lane the fastest of it.
+    pub air: Vec<V4>,
+    pub windy: bool,
+    pub air_speed: F4,
     pub segment_length: F4,
     /// Drag across, along and viscous (`ActiveRibbon::take`) of the points
     /// between the ends, and of the end.
@@ -96,9 +101,11 @@ impl LaneGroup {
         for v in [&mut self.points, &mut self.velocities, &mut self.start] {
             v.resize(points, V4::ZERO);
         }
-        for v in [&mut self.touch_normal, &mut self.touch_velocity] {
+        for v in [&mut self.touch_normal, &mut self.touch_velocity, &mut self.air] {
             v.resize(points, V4::ZERO);
         }
+        self.windy = false;
+        self.air_speed = F4::ZERO;
         self.inv_mass.resize(points, F4::ZERO);
         self.rows.resize(segments);
         self.step_impulse = V4::ZERO;
@@ -179,6 +186,7 @@ impl LaneGroup {
             *v = self.velocities[i].lane(l);
         }
         r.step_impulse = self.step_impulse.lane(l);
+        r.air_speed = self.air_speed.as_array()[l];
         r.substeps = self.substeps;
         r.h = self.h;
     }

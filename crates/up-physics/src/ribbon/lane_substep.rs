@@ -56,9 +56,16 @@ impl LaneGroup {
     }
 
     /// Gravity, the fields' forces and drag on each point (drag implicit,
-    /// across and along the ribbon apart), then its move over the substep.
+    /// across and along the ribbon apart, on the velocity relative to the
+    /// air), then its move over the substep. In still air, or where no
+    /// lane's point feels any, the still-air arithmetic runs unchanged.
     fn fall(&mut self, input: &SubstepInput, h: f32) {
         let n = self.points.len() - 1;
+        if self.substeps == 0 {
+            if let Some(air) = input.air {
+                self.sample_air(air);
+            }
+        }
         let fields = (!input.fields.is_empty()).then_some(input.fields);
         let (h4, one) = (F4::splat(h), F4::ONE);
         let hg = h * input.gravity;
@@ -70,6 +77,11 @@ impl LaneGroup {
             if let Some(fields) = fields {
                 let force = self.field_forces(fields, i, input.time);
                 v = v + (h4 * inv_mass) * force;
+            }
+            // Relative to the air, moved with it again after the drag.
+            let air = if self.windy { self.air[i] } else { V4::ZERO };
+            if self.windy {
+                v = v - air;
             }
             // Along the ribbon: from the point before to the one after.
             let along = self.points[(i + 1).min(n)] - self.points[i - 1];
@@ -86,11 +98,35 @@ impl LaneGroup {
             let v_along = div(v_along, one + w * k_along * norm(v_along));
             let across = k_across * norm(v_across) + viscous;
             let v_across = div(v_across, one + w * across);
-            let v = v_along + v_across;
+            let mut v = v_along + v_across;
+            if self.windy {
+                v = v + air;
+            }
             let moved = self.points[i] + h4 * v;
             self.velocities[i] = V4::select(movable, v, self.velocities[i]);
             self.points[i] = V4::select(movable, moved, self.points[i]);
         }
+    }
+
+    /// The air's velocity at each point of each live lane (the knot's
+    /// unused; spare lanes' zero), and `windy` if any is not zero.
+    fn sample_air(&mut self, air: &crate::air::AirNow) {
+        let mut fastest = [0.0f32; crate::solver::lanes::LANES];
+        let mut windy = false;
+        for (i, (u, p)) in self.air.iter_mut().zip(&self.points).enumerate() {
+            for (l, fastest) in fastest.iter_mut().enumerate().take(self.live) {
+                let here = if i == 0 {
+                    Vec3::ZERO
+                } else {
+                    air.velocity_at(p.lane(l))
+                };
+                u.set_lane(l, here);
+                windy |= here != Vec3::ZERO;
+                *fastest = fastest.max(up_geom::norm::Norm::norm(here));
+            }
+        }
+        self.windy = windy;
+        self.air_speed = F4::new(fastest);
     }
 
     /// The world's force fields on point `i` of each ribbon (none on a held

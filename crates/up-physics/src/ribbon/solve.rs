@@ -4,7 +4,9 @@
 //! 1. each point falls under gravity, the world's force fields
 //!    (`ForceField::force_on_point`, when there are any) and air drag (drag
 //!    taken implicitly, as the bodies' is, across and along the ribbon
-//!    apart, viscous when slow);
+//!    apart, viscous when slow) on its velocity relative to the moving air
+//!    (`crate::air`, sampled at each point once a step, at the first
+//!    substep);
 //! 2. points are pushed out of the balloons near the ribbon and out of the room;
 //! 3. the chain, knot included, is brought back to its lengths by direct
 //!    solves (`chain`; follow-the-leader if a jerk outruns them), and the
@@ -37,6 +39,7 @@ use super::{
     Ribbon, AIR_VISCOSITY, NORMAL_DRAG_COEFFICIENT, RIBBON_WIDTH, TANGENT_DRAG_COEFFICIENT,
     WEIGHT_DRAG_COEFFICIENT, WEIGHT_RADIUS,
 };
+use crate::air::AirNow;
 use crate::body::{BodySize, ShapeData};
 use crate::forces::field::ForceFields;
 use crate::solver::body_state::BodyState;
@@ -93,6 +96,8 @@ pub(crate) struct ActiveRibbon {
     pub(super) substeps: u32,
     pub(super) h: f32,
     pub segment_length: f32,
+    /// The fastest air at any of its points this step, m/s (0 in still air).
+    pub air_speed: f32,
 }
 
 /// Point `i`'s drag factors (`ActiveRibbon::drag_mid`) in air of `air_density`.
@@ -120,6 +125,7 @@ impl ActiveRibbon {
     pub fn take(&mut self, ribbon: &mut Ribbon, air_density: f32) {
         self.step_impulse = Vec3::ZERO;
         self.substeps = 0;
+        self.air_speed = 0.0;
         self.segment_length = ribbon.segment_length;
         let n = ribbon.segments();
         self.inv_mass.clear();
@@ -163,6 +169,8 @@ pub(crate) struct SubstepInput<'a> {
     /// seconds at the step's start.
     pub fields: &'a ForceFields,
     pub time: f64,
+    /// The moving air as it blows this step; None in still air.
+    pub air: Option<&'a AirNow>,
 }
 
 /// The ribbons' buffers for a step.

@@ -58,9 +58,10 @@ pub(crate) struct SleepInput<'a> {
     pub joined: &'a [(u32, u32)],
     /// The step's contact points (they hold groups falling asleep together).
     pub contacts: &'a [ContactPoint],
-    /// Per body: its ribbon still moves (it may not rest); empty in the
-    /// wake pass, which runs before the ribbons have moved.
-    pub ribbon_moving: &'a [bool],
+    /// Per body: its ribbon still moves, or moving air pushes it or its
+    /// ribbon (`world::air_step`): it may not rest. Empty in the wake pass,
+    /// which runs before the ribbons have moved.
+    pub kept_awake: &'a [bool],
 }
 
 /// The sleep passes' buffers.

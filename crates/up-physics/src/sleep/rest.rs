@@ -36,7 +36,7 @@ pub(crate) fn update_sleep(
         &bodies.linear_velocity,
         &bodies.angular_velocity,
     );
-    let ribbon_moving = input.ribbon_moving;
+    let kept_awake = input.kept_awake;
     let (linear_speed, angular_speed) = (rules.linear_speed, rules.angular_speed);
     fill_chunks(&mut bodies.sleep_time, PLACE_CHUNK, |first, times| {
         for (k, time) in times.iter_mut().enumerate() {
@@ -46,7 +46,7 @@ pub(crate) fn update_sleep(
             }
             let slow = linear_velocity[i].norm() < linear_speed
                 && angular_velocity[i].norm() < angular_speed
-                && !ribbon_moving.get(i).copied().unwrap_or(false);
+                && !kept_awake.get(i).copied().unwrap_or(false);
             if slow && grabbed != Some(i) {
                 *time += dt;
             } else {

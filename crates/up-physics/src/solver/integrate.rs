@@ -25,6 +25,16 @@ pub(crate) struct GrabSpring {
 
 /// v ← (v + h·F/m) / (1 + h·k|v|/m): drag taken implicitly, so that a balloon
 /// thrown at 30 m/s cannot overshoot, and the terminal velocity is exact.
+/// In moving air u (`BodyForces::air`) the drag is on v − u:
+/// v ← (v + h·F/m + h·k|v − u|·u/m) / (1 + h·k|v − u|/m), the relative speed
+/// taken at the substep's start as the speed is in still air. Where u is zero
+/// the still-air form runs, so still air gives the same bits as before.
+///
+/// The added mass (in m, `forces::drag`) multiplies the body's own
+/// acceleration, not its acceleration relative to the air: the air's own
+/// acceleration (and the pressure gradient that drives it) is left out,
+/// which is exact in a steady, uniform stream and a fair guess in a jet,
+/// whose air changes speed over metres while a balloon crosses it.
 pub(crate) fn integrate_velocities(
     states: &mut [BodyState],
     forces: &[BodyForces],
@@ -38,8 +48,14 @@ pub(crate) fn integrate_velocities(
         }
         let f = &forces[i as usize];
         let torque = f.torque_at(s.q, s.v);
-        let speed_damping = h * f.drag_factor * s.v.norm() * s.inv_mass;
-        s.v = (s.v + h * s.inv_mass * f.force) / (1.0 + speed_damping);
+        if f.air == Vec3::ZERO {
+            let speed_damping = h * f.drag_factor * s.v.norm() * s.inv_mass;
+            s.v = (s.v + h * s.inv_mass * f.force) / (1.0 + speed_damping);
+        } else {
+            let speed_damping = h * f.drag_factor * (s.v - f.air).norm() * s.inv_mass;
+            let pushed = s.v + h * s.inv_mass * f.force + speed_damping * f.air;
+            s.v = pushed / (1.0 + speed_damping);
+        }
         s.w = (s.w + h * (s.inv_inertia * torque)) / (1.0 + h * angular_damping);
         if s.inv_mass > 0.0 && !quarantine::is_sane_motion(s.v, s.w) {
             s.freeze_runaway();

@@ -319,7 +319,7 @@ impl Solver {
         );
         for _ in 0..p.substeps {
             if let Some(probe) = probe.as_deref_mut() {
-                probe.before(&self.states);
+                probe.before(&self.states, &self.forces);
             }
             integrate::integrate_velocities(
                 &mut self.states,

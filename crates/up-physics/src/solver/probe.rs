@@ -14,7 +14,8 @@ use crate::forces::BodyForces;
 pub(crate) struct SubstepProbe {
     /// Dense indices of the probed awake bodies, ascending.
     pub bodies: Vec<u32>,
-    /// Their speeds before this substep's velocity update, m/s.
+    /// Their speeds relative to the air before this substep's velocity
+    /// update, m/s.
     speed: Vec<f32>,
     /// Drag impulses summed over the substeps, N·s.
     pub drag: Vec<Vec3>,
@@ -40,22 +41,24 @@ impl SubstepProbe {
         self.bodies.is_empty()
     }
 
-    /// Before a substep's velocity update: the speeds the drag is taken at.
-    pub fn before(&mut self, states: &[BodyState]) {
+    /// Before a substep's velocity update: the speeds relative to the air
+    /// (`BodyForces::air`) that the drag is taken at.
+    pub fn before(&mut self, states: &[BodyState], forces: &[BodyForces]) {
         for (speed, &i) in self.speed.iter_mut().zip(&self.bodies) {
-            *speed = states[i as usize].v.norm();
+            *speed = (states[i as usize].v - forces[i as usize].air).norm();
         }
     }
 
-    /// After it: v' = (v + h·F/M) / (1 + h·k·|v|/M) is M·(v' − v)/h =
-    /// F − k·|v|·v', so the drag this substep applied is −h·k·|v|·v'.
+    /// After it: v' = (v + h·F/M + h·k·|v − u|·u/M) / (1 + h·k·|v − u|/M)
+    /// is M·(v' − v)/h = F − k·|v − u|·(v' − u), so the drag this substep
+    /// applied is −h·k·|v − u|·(v' − u) (u = 0 in still air).
     pub fn after(&mut self, states: &[BodyState], forces: &[BodyForces], h: f32) {
         for (k, &i) in self.bodies.iter().enumerate() {
-            let s = &states[i as usize];
+            let (s, f) = (&states[i as usize], &forces[i as usize]);
             if s.runaway {
                 continue;
             }
-            self.drag[k] += -(h * forces[i as usize].drag_factor * self.speed[k]) * s.v;
+            self.drag[k] += -(h * f.drag_factor * self.speed[k]) * (s.v - f.air);
         }
     }
 

@@ -11,6 +11,7 @@
 //! each stage owning its buffers.
 
 mod actions;
+mod air_step;
 mod bodies;
 mod contacts;
 mod def;
@@ -89,6 +90,10 @@ struct Stages {
     solved: bool,
     /// The force probe's setting and records (`probe`).
     probe: probe::ProbeStage,
+    /// The moving air's sources as they blow this step (`air_step`).
+    air_now: crate::air::AirNow,
+    /// Islands the moving air woke (`air_step`).
+    air_woken: Vec<u32>,
 }
 
 impl Stages {
@@ -108,7 +113,7 @@ impl Stages {
             motion: &self.place.motion,
             joined: &self.joined,
             contacts: &self.narrow.found.contacts,
-            ribbon_moving: &self.ribbons.moving,
+            kept_awake: &self.ribbons.moving,
         };
         (input, &mut self.sleep)
     }
@@ -141,7 +146,6 @@ pub struct World {
     #[serde(skip)]
     fields: ForceFields,
     /// The room's moving air (`air`): still unless a scene sets sources.
-    #[serde(skip)]
     air_flow: crate::AirFlow,
     #[serde(skip)]
     counters: Counters,
@@ -194,7 +198,8 @@ impl World {
     }
 
     /// Sets the room's moving air (`air`): from the next step on, every drag
-    /// acts against it; the sleepers wake.
+    /// acts against it; the sleepers wake. Kept by snapshots and in the
+    /// state hash (still air hashes as a world that never had any).
     pub fn set_air_flow(&mut self, air_flow: crate::AirFlow) {
         self.air_flow = air_flow;
         self.wake_all();

@@ -71,6 +71,8 @@ impl World {
             fields: &self.fields,
             time: self.time,
         };
+        // The air is sampled only at the awake bodies, and only when it moves.
+        let air = (!self.air_flow.is_still()).then_some(&self.stages.air_now);
         let parts = (&mut solver.states[..n], &mut solver.forces[..n]);
         for_each_run(n, PLACE_CHUNK, parts, |first, (states, forces)| {
             for (k, (state, forces)) in states.iter_mut().zip(forces).enumerate() {
@@ -104,6 +106,7 @@ impl World {
                     user_data: bodies.user_data[i],
                     force: bodies.force[i],
                     torque: bodies.torque[i],
+                    air: air.map_or(Vec3::ZERO, |a| a.velocity_at(bodies.center[i])),
                 };
                 *forces = BodyForces::assemble(&input, shape, bodies.size[i], &load);
             }

@@ -4,7 +4,8 @@
 //!
 //! Weight, buoyancy and the scene's forces are the step's `BodyForces`; the
 //! drag is what the implicit update took off each substep
-//! (`solver::probe`); the contacts are their constraints' impulses over the
+//! (`solver::probe`), against the velocity relative to the moving air, whose
+//! velocity at the centre of mass (as the step sampled it) comes with it; the contacts are their constraints' impulses over the
 //! step (`ContactInfo`) and the room's continuous hits; the ribbon's is its
 //! mean pull on the knot; the grab spring's is its impulse. Each is a mean
 //! over the step: an impulse over `dt`. Joints' corrections (balloons tied
@@ -15,7 +16,7 @@ use glam::Vec3;
 use super::World;
 use crate::body::BodyId;
 use crate::forces::buoyancy::buoyancy_force;
-use crate::forces::drag::terminal_velocity;
+use crate::forces::drag::{drag_factor, drag_force, terminal_velocity};
 use crate::forces::gravity::gravity_force;
 
 /// The forces on one body over the last step, world frame, N: the values
@@ -37,10 +38,13 @@ pub struct ForceBreakdown {
     pub center_of_mass: Vec3,
     pub center_of_buoyancy: Vec3,
     pub knot: Option<Vec3>,
+    /// The air's velocity at the centre of mass over the step, m/s (zero
+    /// in still air): the drag acts on the velocity relative to it.
+    pub air: Vec3,
 }
 
 impl ForceBreakdown {
-    /// All the forces summed, N.
+    /// All the forces summed, N (`air` is a velocity, not among them).
     pub fn total(&self) -> Vec3 {
         self.weight + self.buoyancy + self.drag + self.contact + self.ribbon + self.other
     }
@@ -60,8 +64,9 @@ pub enum ForceProbe {
 pub(super) struct ProbeStage {
     pub(super) probe: ForceProbe,
     pub substeps: crate::solver::probe::SubstepProbe,
-    /// Per probed body: weight, buoyancy and the other forces, constant over the step.
-    pub(super) constant: Vec<[Vec3; 3]>,
+    /// Per probed body: weight, buoyancy and the other forces, constant over
+    /// the step, and the air's velocity at it.
+    pub(super) constant: Vec<[Vec3; 4]>,
     /// Per probed body: its velocity before the continuous sweep, m/s.
     pub(super) before_sweep: Vec<Vec3>,
     /// The last step's, in the order of the dense indices it was taken at.
@@ -150,19 +155,33 @@ impl World {
         }
     }
 
-    /// A sleeper's forces: at rest, the contacts balance the rest.
+    /// A sleeper's forces: at rest, the contacts balance the rest (the
+    /// drag of any air too slow to wake it included).
     fn at_rest(&self, i: usize) -> ForceBreakdown {
         let g = self.def.gravity;
+        let scale = self.bodies.size[i].scale;
         let weight = gravity_force(self.bodies.size[i].mass, g);
         let shape = &self.shapes[self.bodies.shape[i] as usize];
-        let volume = shape.volume(self.bodies.size[i].scale);
-        let buoyancy = buoyancy_force(self.air.air_density(), volume, g);
+        let volume = shape.volume(scale);
+        let density = self.air.air_density();
+        let buoyancy = buoyancy_force(density, volume, g);
         let (ribbon, knot) = self.ribbon_on(i);
+        let air = self.air_velocity_at(self.bodies.center[i]);
+        let area = shape.def.reference_area * scale * scale;
+        let k = drag_factor(density, self.def.drag_coefficient, area);
+        let (drag, contact) = if air == Vec3::ZERO {
+            (Vec3::ZERO, -(weight + buoyancy + ribbon))
+        } else {
+            let drag = drag_force(k, -air);
+            (drag, -(weight + buoyancy + ribbon + drag))
+        };
         ForceBreakdown {
             weight,
             buoyancy,
-            contact: -(weight + buoyancy + ribbon),
+            drag,
+            contact,
             ribbon,
+            air,
             center_of_mass: self.bodies.center[i],
             center_of_buoyancy: self.center_of_buoyancy(i),
             knot,

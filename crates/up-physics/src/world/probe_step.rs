@@ -43,7 +43,7 @@ impl World {
                 } else {
                     f.force - weight - f.buoyancy
                 };
-                [weight, f.buoyancy, other]
+                [weight, f.buoyancy, other, f.air]
             }));
     }
 
@@ -100,7 +100,7 @@ impl World {
             let mass = 1.0 / self.bodies.inv_mass[i];
             // The continuous sweep's bounce off the room is a contact too.
             let swept = mass * (self.bodies.linear_velocity[i] - stage.before_sweep[k]);
-            let [weight, buoyancy, other] = stage.constant[k];
+            let [weight, buoyancy, other, air] = stage.constant[k];
             let (ribbon, knot) = self.ribbon_on(i);
             let breakdown = ForceBreakdown {
                 weight,
@@ -112,6 +112,7 @@ impl World {
                 center_of_mass: self.bodies.center[i],
                 center_of_buoyancy: self.center_of_buoyancy(i),
                 knot,
+                air,
             };
             records.push((self.bodies.id[i], breakdown));
         }

@@ -221,7 +221,8 @@ impl World {
                 self.stages.faults.non_finite.push(i);
                 continue;
             }
-            stage.moving[i] = ribbon.rms_speed() >= slow;
+            stage.moving[i] =
+                ribbon.rms_speed() >= slow || r.air_speed >= crate::air::RESTLESS_AIR_SPEED;
             max_stretch = max_stretch.max(ribbon.stretch());
         }
         self.ribbons.max_stretch = max_stretch;

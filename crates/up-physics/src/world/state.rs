@@ -7,8 +7,10 @@ use crate::snapshot::{self, SnapshotError};
 impl World {
     /// FNV-1a over every body's handle, pose, velocity and sleep state, in
     /// dense order, then every ribbon's points and their velocities, then
-    /// the gas of the balloons that have one and the clock.
-    /// A world without ribbons or gas hashes as it did before there were any.
+    /// the gas of the balloons that have one and the clock, then the moving
+    /// air's sources (as snapshots encode them) when there are any.
+    /// A world without ribbons, gas or moving air hashes as it did before
+    /// there were any.
     pub fn state_hash(&self) -> u64 {
         let mut h = Fnv1a::new();
         h.write_u32(self.bodies.len() as u32);
@@ -50,6 +52,10 @@ impl World {
                 }
             }
         }
+        if !self.air_flow.is_still() {
+            // Plain data into a Vec cannot fail to encode.
+            h.write_bytes(&postcard::to_stdvec(&self.air_flow).unwrap_or_default());
+        }
         h.finish()
     }
 
@@ -65,6 +71,10 @@ impl World {
             .validate()
             .map_err(|e| SnapshotError::Invalid(e.to_string()))?;
         world.check_consistency().map_err(SnapshotError::Invalid)?;
+        world
+            .air_flow
+            .validate()
+            .map_err(|e| SnapshotError::Invalid(format!("air: {e}")))?;
         world.warm.index();
         world.sleeping.impulses.index();
         Ok(world)

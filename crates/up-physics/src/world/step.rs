@@ -4,28 +4,32 @@
 //!
 //! 1. `gas`: the room's air and every balloon's gas a step on, the sleepers
 //!    it moved too far woken, sizes taken (`gas_step`);
-//! 2. `joined`: the pairs of bodies a joint holds, for the sleep islands
+//! 2. `air`: the moving air's sources as they blow now, and the sleepers it
+//!    reaches woken (`air_step`; nothing in still air);
+//! 3. `joined`: the pairs of bodies a joint holds, for the sleep islands
 //!    (`joints`);
-//! 3. `wake_ribbons`: the balloons woken whose sleeping ribbons an awake one
+//! 4. `wake_ribbons`: the balloons woken whose sleeping ribbons an awake one
 //!    reaches (`ribbons_step`);
-//! 4. broadphase: `place` the bodies' trees and bounds (`place`), `pairs` of
+//! 5. broadphase: `place` the bodies' trees and bounds (`place`), `pairs` of
 //!    bounds, `wake_bodies` that restless bodies reach (`sleep::wake`),
 //!    `pair_woken` (the pairs of those), `knocks` each pair may give;
-//! 5. `contacts`: the narrowphase's contact points (`contacts`);
-//! 6. prepare: `prepare_bodies` (solver states, forces and the force fields'
-//!    on balloons, `forces::body_forces`), `prepare_contacts`,
+//! 6. `contacts`: the narrowphase's contact points (`contacts`);
+//! 7. prepare: `prepare_bodies` (solver states, forces and the force fields'
+//!    on balloons, the air's velocity at each, `forces::body_forces`),
+//!    `prepare_contacts`,
 //!    `prepare_joints`, `grab_spring` (`prepare`), `prepare_ribbons` (the
 //!    awake ribbons taken out, `ribbons_step`), `begin_probe` (`probe_step`);
-//! 7. `solve`: the substeps (`solver`), the ribbons in them as the solver's
+//! 8. `solve`: the substeps (`solver`), the ribbons in them as the solver's
 //!    `ribbons` part (`ribbon::solve`, where the force fields act on their
-//!    points);
-//! 8. finish: `bounce` (restitution), `store_impulses`, `store_tensions`,
+//!    points and the air is sampled at them);
+//! 9. finish: `bounce` (restitution), `store_impulses`, `store_tensions`,
 //!    `remove_overlap` (position passes), `finish_motion` (results back to
 //!    the bodies) (`finish`);
-//! 9. `probe_before_sweep`, `sweep` (fast bodies swept against the room,
-//!    `crate::continuous`), `finish_ribbons` (points handed back,
-//!    `ribbons_step`), `finish_probe` (`probe_step`);
-//! 10. `sleep` (rest clocks, groups falling asleep: `sleep::rest`),
+//! 10. `probe_before_sweep`, `sweep` (fast bodies swept against the room,
+//!     `crate::continuous`), `finish_ribbons` (points handed back,
+//!     `ribbons_step`; the bodies the air pushes kept from resting,
+//!     `air_step`), `finish_probe` (`probe_step`);
+//! 11. `sleep` (rest clocks, groups falling asleep: `sleep::rest`),
 //!     `quarantine` (bodies gone non-finite taken out), `release_spare`
 //!     (spare capacity given back).
 
@@ -111,6 +115,8 @@ impl World {
 
         self.update_gas();
         clock.lap(Stage::Gas);
+        self.wake_in_air();
+        clock.lap(Stage::Air);
         self.find_joined();
         clock.lap(Stage::Joined);
         self.wake_touched_ribbons();
@@ -164,6 +170,7 @@ impl World {
         self.sweep_fast_bodies();
         clock.lap(Stage::Sweep);
         self.finish_ribbons();
+        self.keep_awake_in_air();
         clock.lap(Stage::FinishRibbons);
         self.finish_probe();
         clock.lap(Stage::FinishProbe);
@@ -201,6 +208,7 @@ impl World {
                 bodies: &ribbons.bodies,
                 fields: &self.fields,
                 time: self.time,
+                air: (!self.air_flow.is_still()).then_some(&stages.air_now),
             },
         };
         let parts = SubstepParts {
