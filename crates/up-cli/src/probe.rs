@@ -1,6 +1,7 @@
 //! `up run --probe ID --probe-out FILE.csv`: one balloon's forces every
 //! step, as the engine integrated them (`up_physics::ForceBreakdown`), the
-//! numbers the web app draws as arrows.
+//! numbers the web app draws as arrows, and the moving air's velocity at
+//! the balloon, which its drag acts against.
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -26,9 +27,11 @@ pub struct ProbeArgs {
     )]
     pub probe: Option<i64>,
     /// The probe's CSV: `t,fx_weight,fy_weight,fz_weight,fx_buoyancy,...` with
-    /// weight, buoyancy, drag, contact (room and balloons), ribbon and other
-    /// (a hand's pull, force fields): s, then N, world frame, Y up. Each is
-    /// its mean over the step that ends at t.
+    /// weight, buoyancy, drag (against the air's velocity relative to the
+    /// balloon), contact (room and balloons), ribbon and other (a hand's
+    /// pull, force fields): s, then N, world frame, Y up, each its mean over
+    /// the step that ends at t; then `ux_air,uy_air,uz_air`, the moving
+    /// air's velocity at the balloon over that step, m/s.
     #[arg(long, value_name = "FILE.csv", requires = "probe")]
     pub probe_out: Option<PathBuf>,
 }
@@ -40,12 +43,13 @@ pub struct ProbeCsv {
     body: BodyId,
 }
 
-/// The header: `t` and three columns per force.
+/// The header: `t`, three columns per force, and three for the air's velocity.
 pub fn header() -> String {
     let mut columns = vec!["t".to_string()];
     for force in FORCES {
         columns.extend(["x", "y", "z"].map(|axis| format!("f{axis}_{force}")));
     }
+    columns.extend(["x", "y", "z"].map(|axis| format!("u{axis}_air")));
     columns.join(",")
 }
 
@@ -93,7 +97,9 @@ impl ProbeCsv {
 
     fn row(&mut self, t: f64, f: &ForceBreakdown) -> std::io::Result<()> {
         write!(self.file, "{t}")?;
-        for v in [f.weight, f.buoyancy, f.drag, f.contact, f.ribbon, f.other] {
+        for v in [
+            f.weight, f.buoyancy, f.drag, f.contact, f.ribbon, f.other, f.air,
+        ] {
             // + 0 turns −0 (a zero component of −ρ·V·g, say) into 0.
             let v = v + glam::Vec3::ZERO;
             write!(self.file, ",{},{},{}", v.x, v.y, v.z)?;

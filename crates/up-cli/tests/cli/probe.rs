@@ -4,9 +4,10 @@ use super::*;
 
 const HEADER: &str = "t,fx_weight,fy_weight,fz_weight,fx_buoyancy,fy_buoyancy,fz_buoyancy,\
 fx_drag,fy_drag,fz_drag,fx_contact,fy_contact,fz_contact,fx_ribbon,fy_ribbon,fz_ribbon,\
-fx_other,fy_other,fz_other";
+fx_other,fy_other,fz_other,ux_air,uy_air,uz_air";
 
-/// Column of force `k` (weight 0 … other 5), axis `axis` (0 x, 1 y, 2 z).
+/// Column of force `k` (weight 0 … other 5; 6 is the air's velocity), axis
+/// `axis` (0 x, 1 y, 2 z).
 fn col(k: usize, axis: usize) -> usize {
     1 + 3 * k + axis
 }
@@ -30,6 +31,10 @@ fn a_probed_balloon_s_forces_are_written_every_step_and_balance_at_terminal_spee
     assert_eq!(rows.len(), 300, "one row a step");
     for pair in rows.windows(2) {
         assert!(pair[1][0] > pair[0][0], "time goes on");
+    }
+    // Still air: no velocity of the air at the balloon.
+    for row in &rows {
+        assert_eq!([row[col(6, 0)], row[col(6, 1)], row[col(6, 2)]], [0.0; 3]);
     }
     let first = &rows[0];
     assert!((first[0] - 1.0 / 60.0).abs() < 1e-9, "after the first step");

@@ -11,6 +11,14 @@
 //! what draws a balloon toward a jet's axis is the jet's entrainment inflow
 //! alone (no pressure field). With no sources the field is zero everywhere
 //! and the step computes exactly what it does without moving air.
+//!
+//! The step samples the field once a step (`AirNow`, the sources as they
+//! blow at the step's start): at each awake body's centre of mass
+//! (`forces::BodyForces::air`), whose drag, and the drag's torque about the
+//! centre of buoyancy, act on its velocity relative to the air; and at each
+//! point of each awake ribbon at its first substep, whose drag across and
+//! along likewise. Sleepers are checked against it a quarter a step
+//! (`world::air_step`).
 
 mod draught;
 mod jet;

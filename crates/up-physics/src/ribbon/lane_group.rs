@@ -101,7 +101,11 @@ impl LaneGroup {
         for v in [&mut self.points, &mut self.velocities, &mut self.start] {
             v.resize(points, V4::ZERO);
         }
-        for v in [&mut self.touch_normal, &mut self.touch_velocity, &mut self.air] {
+        for v in [
+            &mut self.touch_normal,
+            &mut self.touch_velocity,
+            &mut self.air,
+        ] {
             v.resize(points, V4::ZERO);
         }
         self.windy = false;

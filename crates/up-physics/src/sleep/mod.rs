@@ -11,7 +11,9 @@
 //! the groups of all it can reach this step, as the user does (an impulse, a
 //! grab, a removal next door), and so does a restless body's pull on a joint
 //! (`wake`). A group keeps its contacts' impulses while it sleeps, so it
-//! wakes without a jolt.
+//! wakes without a jolt. Moving air (`crate::air`) keeps the bodies it
+//! pushes awake and wakes the sleepers it reaches (`world::air_step` has
+//! the rule).
 
 mod islands;
 mod rest;
