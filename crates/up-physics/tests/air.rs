@@ -346,8 +346,9 @@ fn a_balloon_in_a_jet_aimed_off_its_centre_turns_and_stands_up_again_when_it_sto
     assert!(tilt_after < upright + 2.0, "upright again: {tilt_after}°");
 }
 
-#[test]
-fn a_fan_switched_on_wakes_the_balloons_it_reaches_and_keeps_them_awake_until_it_stops() {
+/// Five balloons in a row in a room 4 m square, under a fan blowing up at
+/// the middle one while `on`.
+fn row_under_a_fan(on: [f64; 2]) -> (World, Vec<BodyId>) {
     let def = WorldDef {
         room: Some(room(4.0, 4.0, 2.5, None)),
         ..WorldDef::default()
@@ -359,17 +360,21 @@ fn a_fan_switched_on_wakes_the_balloons_it_reaches_and_keeps_them_awake_until_it
             add(&mut world, shape, at, Quat::IDENTITY)
         })
         .collect();
-    let asleep = |w: &World| ids.iter().filter(|&&id| !w.is_awake(id).unwrap()).count();
-    // Up at the ceiling and asleep; a fan below them comes on at 15 s and
-    // goes off at 25 s.
     let mut fan = Jet::new(JetKind::Fan, Vec3::new(0.0, 0.2, 0.0), Vec3::Y, 0.4, 2.0);
-    fan.schedule = Schedule {
-        on: vec![[15.0, 25.0]],
-    };
+    fan.schedule = Schedule { on: vec![on] };
     world.set_air_flow(AirFlow {
         jets: vec![fan],
         draughts: Vec::new(),
     });
+    (world, ids)
+}
+
+#[test]
+fn a_fan_switched_on_wakes_the_balloons_it_reaches_and_keeps_them_awake_until_it_stops() {
+    // Up at the ceiling and asleep; the fan comes on at 15 s and goes off
+    // at 25 s.
+    let (mut world, ids) = row_under_a_fan([15.0, 25.0]);
+    let asleep = |w: &World| ids.iter().filter(|&&id| !w.is_awake(id).unwrap()).count();
     steps(&mut world, 14.0);
     assert_eq!(asleep(&world), ids.len(), "asleep at the ceiling");
     steps(&mut world, 2.0);
@@ -390,6 +395,29 @@ fn a_fan_switched_on_wakes_the_balloons_it_reaches_and_keeps_them_awake_until_it
         ids.len()
     );
     assert!(world.is_awake(middle).is_some_and(|a| !a), "asleep again");
+}
+
+#[test]
+fn the_time_lapse_does_not_jump_over_a_puff_of_air() {
+    // Asleep at the ceiling by 20 s; the fan blows from 33 s to 34 s, which
+    // ten-second jumps from then would pass over.
+    let (mut puffed, ids) = row_under_a_fan([33.0, 34.0]);
+    let (mut calm, _) = row_under_a_fan([1e6, 1e6 + 1.0]);
+    let middle = ids[2];
+    let (a, b) = (puffed.advance(20.0, u64::MAX), calm.advance(20.0, u64::MAX));
+    assert_eq!(a, b, "the same until the puff");
+    assert!(!puffed.is_awake(middle).unwrap(), "asleep by then");
+    // One call: its jumps stop where the puff starts and spins up.
+    let steps_puffed = puffed.advance(40.0, u64::MAX).steps;
+    let steps_calm = calm.advance(40.0, u64::MAX).steps;
+    eprintln!(
+        "time-lapse: 20 s to 60 s in {steps_puffed} steps with the puff, {steps_calm} without"
+    );
+    assert!(
+        steps_puffed > steps_calm + 30,
+        "the puff woke them, and they were stepped while it blew"
+    );
+    assert!(!puffed.is_awake(middle).unwrap(), "asleep again after it");
 }
 
 #[test]

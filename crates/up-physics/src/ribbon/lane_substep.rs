@@ -114,8 +114,8 @@ impl LaneGroup {
         let mut fastest = [0.0f32; crate::solver::lanes::LANES];
         let mut windy = false;
         for (i, (u, p)) in self.air.iter_mut().zip(&self.points).enumerate() {
-            for (l, fastest) in fastest.iter_mut().enumerate().take(self.live) {
-                let here = if i == 0 {
+            for (l, fastest) in fastest.iter_mut().enumerate() {
+                let here = if i == 0 || l >= self.live {
                     Vec3::ZERO
                 } else {
                     air.velocity_at(p.lane(l))

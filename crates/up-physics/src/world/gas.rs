@@ -144,7 +144,7 @@ impl World {
         // Half a step of slack: the clock is a sum of f32 steps.
         while end - self.time > 0.5 * dt {
             if self.everything_sleeps() {
-                let jump = (end - self.time).min(MAX_JUMP_S);
+                let jump = self.air_jump((end - self.time).min(MAX_JUMP_S));
                 self.jump(jump);
                 done.jumps += 1;
             } else if done.steps < max_steps {
@@ -165,12 +165,14 @@ impl World {
             && self.ribbon_grab.is_none()
     }
 
-    /// `seconds` pass with every body asleep: only the air and the gas move.
+    /// `seconds` pass with every body asleep: only the air and the gas move;
+    /// then every sleeper the moving air reaches wakes.
     fn jump(&mut self, seconds: f64) {
         let middle = self.air_at(self.time + 0.5 * seconds);
         self.age_gas(seconds, &middle, 0.0);
         self.time += seconds;
         self.air = self.air_at(self.time);
+        self.wake_sleepers_in_air(0, 1);
     }
 
     /// The room's air at `time` s.
