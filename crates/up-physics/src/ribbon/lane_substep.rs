@@ -12,10 +12,13 @@ use super::lane_pushes::NearInput;
 use super::solve::{SubstepInput, CHAIN_ITERATIONS, CHAIN_TOLERANCE};
 use crate::forces::field::PointSample;
 use crate::solver::body_state::BodyState;
-use crate::solver::lanes::{set, F4, V4};
+use crate::solver::lanes::{set, F4, LANES, V4};
 
 /// A segment shorter than this gives the ribbon no direction at a point, m.
 const NO_DIRECTION: f32 = 1e-9;
+/// The air is sampled at every this many points of a ribbon (and its end),
+/// linear between (`sample_air`).
+const AIR_SAMPLE_EVERY: usize = 4;
 
 impl LaneGroup {
     /// One substep of the group's ribbons, reading the balloons' `states`.
@@ -108,19 +111,34 @@ impl LaneGroup {
         }
     }
 
-    /// The air's velocity at each point of each live lane (the knot's
-    /// unused; spare lanes' zero), and `windy` if any is not zero.
+    /// The air's velocity at each point of each live lane (spare lanes'
+    /// zero), and `windy` if any is not zero: sampled at the knot, every
+    /// `AIR_SAMPLE_EVERY`th point and the end, linear between, since a
+    /// jet's air changes over decimetres and a ribbon's points are a few
+    /// centimetres apart; a uniform stream is the same at every point.
     fn sample_air(&mut self, air: &crate::air::AirNow) {
-        let mut fastest = [0.0f32; crate::solver::lanes::LANES];
+        let n = self.points.len() - 1;
+        let mut fastest = [0.0f32; LANES];
         let mut windy = false;
-        for (i, (u, p)) in self.air.iter_mut().zip(&self.points).enumerate() {
-            for (l, fastest) in fastest.iter_mut().enumerate() {
-                let here = if i == 0 || l >= self.live {
-                    Vec3::ZERO
-                } else {
-                    air.velocity_at(p.lane(l))
-                };
-                u.set_lane(l, here);
+        for (l, fastest) in fastest.iter_mut().enumerate() {
+            if l >= self.live {
+                self.air.iter_mut().for_each(|u| u.set_lane(l, Vec3::ZERO));
+                continue;
+            }
+            let (mut before, mut u_before) = (0, air.velocity_at(self.points[0].lane(l)));
+            self.air[0].set_lane(l, u_before);
+            while before < n {
+                let after = (before + AIR_SAMPLE_EVERY).min(n);
+                let u_after = air.velocity_at(self.points[after].lane(l));
+                for k in before + 1..after {
+                    let t = (k - before) as f32 / (after - before) as f32;
+                    self.air[k].set_lane(l, u_before + (u_after - u_before) * t);
+                }
+                self.air[after].set_lane(l, u_after);
+                (before, u_before) = (after, u_after);
+            }
+            for u in &self.air {
+                let here = u.lane(l);
                 windy |= here != Vec3::ZERO;
                 *fastest = fastest.max(up_geom::norm::Norm::norm(here));
             }
