@@ -117,3 +117,42 @@ fn validation_names_the_bad_key() {
     let err = air.validate().unwrap_err();
     assert!(err.starts_with("jets[0].diameter_m"), "{err}");
 }
+
+#[test]
+fn the_steps_frozen_sources_give_the_fields_velocity_bit_for_bit() {
+    let mut swept = fan();
+    swept.sweep = Sweep {
+        angle_rad: 1.2,
+        period_s: 7.0,
+    };
+    swept.schedule = Schedule {
+        on: vec![[2.0, 6.0]],
+    };
+    let flow = AirFlow {
+        jets: vec![swept, fan()],
+        draughts: vec![Draught {
+            min: Vec3::new(-0.5, 0.0, 2.9),
+            max: Vec3::new(0.5, 2.0, 3.0),
+            velocity: Vec3::new(0.0, 0.0, -0.8),
+            schedule: Schedule {
+                on: vec![[1.0, 4.0]],
+            },
+        }],
+    };
+    let mut now = AirNow::default();
+    for t in [0.0, 1.5, 2.5, 3.3, 6.4, 9.0] {
+        now.refresh(&flow, t);
+        for k in 0..200 {
+            let p = Vec3::new(
+                (k % 7) as f32 * 0.4 - 1.2,
+                (k % 5) as f32 * 0.5,
+                (k / 7) as f32 * 0.3 - 2.0,
+            );
+            let (a, b) = (now.velocity_at(p), flow.velocity_at(p, t));
+            assert_eq!(
+                a.to_array().map(f32::to_bits),
+                b.to_array().map(f32::to_bits)
+            );
+        }
+    }
+}
