@@ -107,7 +107,10 @@ pub fn add_ribbons(b: &mut Builder, recording: &Recording) -> Vec<Index<Node>> {
         if n < 2 {
             continue;
         }
-        let (rgb, hex) = (linear_from_srgb(look.rgb), crate::document::hex_name(look.rgb));
+        let (rgb, hex) = (
+            linear_from_srgb(look.rgb),
+            crate::document::hex_name(look.rgb),
+        );
         let strip_material = material_for(&mut strips, look.rgb, || {
             b.root.push(Material {
                 double_sided: true,
