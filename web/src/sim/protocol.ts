@@ -4,10 +4,11 @@
 // transfers it; the main thread keeps the newest frame and hands the previous
 // buffer back. No typed array is allocated per frame on either side.
 
-import type { Constants, EngineStats, Finish, LiveSetting, ModelMesh, RibbonTables, RoomMesh, TreeNode } from "./engine";
+import type { AirCommand, Constants, EngineStats, Finish, LiveSetting, ModelMesh, RibbonTables, RoomMesh, TreeNode } from "./engine";
 import type { FloatSample } from "../ui/floatPlot";
 import type { ForcesPayload } from "./forcesFrame";
 import type { StepsMeasured } from "./stepMeter";
+import type { AirField } from "./airLayout";
 
 export type Vec3Tuple = [number, number, number];
 
@@ -42,7 +43,11 @@ export type ToWorker =
   /** Measurements: the scene from its start, `steps` steps timed one by one (sim/stepMeter.ts). */
   | { type: "measureSteps"; steps: number }
   /** Asks for the world's state hash and the steps taken since it was built; answered by `hash` with the same `id`. */
-  | { type: "hash"; id: number };
+  | { type: "hash"; id: number }
+  /** A command of the air tools for the running world (`Engine.applyAir`), as the panel made it. */
+  | { type: "air"; command: AirCommand }
+  /** "Show air" on or off: the sampled field comes (`airField`) only while it is on. */
+  | { type: "showAir"; on: boolean };
 
 /** What the main thread needs to draw a freshly built world. */
 export interface WorldInfo {
@@ -104,6 +109,8 @@ export interface Frame {
   achievedRate: number;
   /** The probed forces and the selected body's card; only while a body is selected or all are shown. */
   forces?: ForcesPayload;
+  /** The air's sources now (sim/airLayout.ts); only while the room has any. */
+  airSources?: Float32Array;
 }
 
 /** Where the balloons floated at simulated time `t` (shares of all balloons), and their mean lift left (0–1). */
@@ -124,4 +131,6 @@ export type FromWorker =
   | { type: "validated"; id: number; error: string | null }
   | ({ type: "stepsMeasured" } & StepsMeasured)
   /** The world's state hash (16 hex digits, as the `up` CLI prints it) after `steps` steps. */
-  | { type: "hash"; id: number; hash: string; steps: number };
+  | { type: "hash"; id: number; hash: string; steps: number }
+  /** The air sampled on a grid of the room, every quarter second or so while "show air" is on. */
+  | { type: "airField"; field: AirField };
