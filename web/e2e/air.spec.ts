@@ -13,6 +13,8 @@ const air = (page: Page) => page.evaluate(() => window.__up!.air());
 const floorPixel = (page: Page, x: number, z: number) => page.evaluate(([px, pz]) => window.__up!.project(px, 0, pz), [x, z]);
 
 test("the fan tool places a fan on the clicked floor, a drag aims one, and show air draws the jet", async ({ page, consoleErrors }, testInfo) => {
+  // Many steps, each waiting on frames that SwiftShader draws at about one a second on a loaded machine.
+  test.setTimeout(480_000);
   await open(page);
   expect((await air(page)).sources, "the default room's air is still").toEqual([]);
   await page.locator('[data-key="fanTool"] input').check();

@@ -361,7 +361,7 @@ pub fn write_grid(
 /// The air's velocity now at each point of `points` (x, y, z each, m) into
 /// `out` (x, y, z each, m/s); returns how many points.
 pub fn write_at(world: &World, points: &[f32], out: &mut Vec<f32>) -> Result<usize, WasmError> {
-    if points.len() % 3 != 0 || points.len() / 3 > MAX_AIR_POINTS {
+    if !points.len().is_multiple_of(3) || points.len() / 3 > MAX_AIR_POINTS {
         return Err(WasmError::BadArgument(format!(
             "write_air_at: {} floats: expected x, y, z per point, at most {MAX_AIR_POINTS} points",
             points.len()

@@ -163,6 +163,8 @@ export class AirSourcesView {
   }
 
   private commit(mesh: THREE.InstancedMesh, count: number): void {
+    // A room without fans (or vents) uploads nothing.
+    if (count === 0 && mesh.count === 0) return;
     mesh.count = count;
     mesh.instanceMatrix.needsUpdate = true;
     if (mesh.instanceColor) mesh.instanceColor.needsUpdate = true;
