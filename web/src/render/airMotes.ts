@@ -1,19 +1,21 @@
 // "Show air": a few thousand motes carried by the engine's field, drawn as
 // short streaks (tail = where the air would have brought the mote from a
 // moment ago, so the streak's length is the air's speed) with a bright head.
-// The motes move on the CPU each frame through the field the worker samples
-// on a coarse grid every quarter second (moteField.ts: one trilinear lookup
-// and one Euler step a mote); the GPU draws them from two buffers in two
-// draw calls (the streaks as lines, their heads as points of the same
-// vertices). Motes in still air are not drawn, so a room without moving air
-// shows nothing.
+// The motes move on the CPU through the field the worker samples on a coarse
+// grid every quarter second (moteField.ts: one trilinear lookup and one
+// Euler step a mote), half of them each frame by the time since their last
+// move (each mote moves 30 times a second at 60 frames a second: half the
+// frame's work, and half the upload, for a motion the eye reads as smooth);
+// the GPU draws them from two buffers in two draw calls (the streaks as
+// lines, their heads as points of the same vertices). Motes in still air are
+// not drawn, so a room without moving air shows nothing.
 
 import * as THREE from "three";
 import type { AirField, AirSource } from "../sim/airLayout";
 import { MoteState, moteAlpha, mulberry32, scatterMotes, stepMotes } from "./moteField";
 
-/** Motes drawn: enough to fill two or three jets, a fraction of a millisecond to move. */
-export const MOTE_COUNT = 4000;
+/** Motes drawn: enough to fill two or three jets, a fraction of a millisecond to move (docs/perf-log.md). */
+export const MOTE_COUNT = 3000;
 /** A streak spans the path of the last this many seconds, s. */
 export const STREAK_S = 0.15;
 /** Head point size, CSS pixels. */
@@ -40,8 +42,12 @@ export class AirMotes {
   private readonly geometry = new THREE.BufferGeometry();
   private readonly positionAttribute: THREE.BufferAttribute;
   private readonly colorAttribute: THREE.BufferAttribute;
-  /** Motes drawn in the last update (alpha above zero). */
+  /** Motes drawn (alpha above zero) among those written last, times the halves. */
   visibleCount = 0;
+  /** Which half moves this frame, and the seconds each half has not yet moved. */
+  private half = 0;
+  private readonly pending = [0, 0];
+  private readonly visibleByHalf = [0, 0];
 
   constructor(count = MOTE_COUNT) {
     this.group.name = "air-motes";
@@ -90,24 +96,39 @@ export class AirMotes {
     const field = this.field;
     if (!this.group.visible || !field) return;
     const motes = this.motes;
+    let from = 0;
+    let to = motes.count;
+    this.pending[0] += dt;
+    this.pending[1] += dt;
     if (!this.seeded) {
       scatterMotes(motes, field, sources, this.random);
       this.seeded = true;
+      this.pending[0] = this.pending[1] = 0;
+    } else {
+      const split = Math.ceil(motes.count / 2);
+      [from, to] = this.half === 0 ? [0, split] : [split, motes.count];
     }
     if (!field.moving) {
       // Still air: nothing to draw, nothing to move.
-      if (this.visibleCount > 0) this.colors.fill(0);
+      if (this.visibleCount > 0) {
+        this.colors.fill(0);
+        this.colorAttribute.clearUpdateRanges();
+        this.colorAttribute.needsUpdate = true;
+      }
       this.visibleCount = 0;
-      this.colorAttribute.needsUpdate = true;
+      this.visibleByHalf.fill(0);
       return;
     }
-    stepMotes(motes, field, sources, dt, this.random);
+    const moved = this.half;
+    stepMotes(motes, field, sources, this.pending[moved], this.random, from, to);
+    this.pending[moved] = 0;
+    this.half = 1 - moved;
     const p = motes.position;
     const v = motes.velocity;
     const out = this.positions;
     const c = this.colors;
     let visible = 0;
-    for (let i = 0; i < motes.count; i++) {
+    for (let i = from; i < to; i++) {
       const o = i * 3;
       const w = i * 6;
       out[w] = p[o];
@@ -126,8 +147,17 @@ export class AirMotes {
       c[k + 7] = 0;
       if (alpha > 0) visible++;
     }
-    this.visibleCount = visible;
-    this.positionAttribute.needsUpdate = true;
-    this.colorAttribute.needsUpdate = true;
+    if (to - from === motes.count) this.visibleByHalf.fill(visible / 2);
+    else this.visibleByHalf[moved] = visible;
+    this.visibleCount = Math.round(this.visibleByHalf[0] + this.visibleByHalf[1]);
+    // Only the moved motes' vertices go to the GPU.
+    for (const [attribute, floats] of [
+      [this.positionAttribute, 6],
+      [this.colorAttribute, 8],
+    ] as const) {
+      attribute.clearUpdateRanges();
+      attribute.addUpdateRange(from * floats, (to - from) * floats);
+      attribute.needsUpdate = true;
+    }
   }
 }

@@ -13,8 +13,8 @@ import { AIR_GRID_STRIDE, type AirField, type AirSource } from "../sim/airLayout
 export const MOTE_LIFE_S: [number, number] = [2.5, 5];
 /** Share of motes that start at an outlet while any source blows. */
 export const OUTLET_SHARE = 0.6;
-/** Longest step taken in one frame, s (a frame after a stall does not fling motes). */
-export const MAX_MOTE_STEP_S = 0.05;
+/** Longest step a mote takes at once, s (a frame after a stall does not fling motes): 30 cm in a 3 m/s jet, about a cell. */
+export const MAX_MOTE_STEP_S = 0.1;
 
 /**
  * The field at (x, y, z), m/s, into `out` (ux, uy, uz, |u|): trilinear
@@ -22,40 +22,61 @@ export const MAX_MOTE_STEP_S = 0.05;
  * faces. Returns false (and zeros) outside the box.
  */
 export function sampleField(field: AirField, x: number, y: number, z: number, out: Float32Array | number[]): boolean {
-  const { dims, min, max, cells } = field;
-  const inside = x >= min[0] && x <= max[0] && y >= min[1] && y <= max[1] && z >= min[2] && z <= max[2];
-  if (!inside) {
+  const min = field.min;
+  const max = field.max;
+  if (!(x >= min[0] && x <= max[0] && y >= min[1] && y <= max[1] && z >= min[2] && z <= max[2])) {
     out[0] = out[1] = out[2] = out[3] = 0;
     return false;
   }
+  const dims = field.dims;
+  const cells = field.cells;
   const nx = dims[0];
   const ny = dims[1];
   const nz = dims[2];
-  // Continuous cell coordinates, 0 at the first cell's centre.
-  const gx = Math.min(Math.max(((x - min[0]) / (max[0] - min[0])) * nx - 0.5, 0), nx - 1);
-  const gy = Math.min(Math.max(((y - min[1]) / (max[1] - min[1])) * ny - 0.5, 0), ny - 1);
-  const gz = Math.min(Math.max(((z - min[2]) / (max[2] - min[2])) * nz - 0.5, 0), nz - 1);
-  const i0 = Math.min(Math.floor(gx), nx - 2 < 0 ? 0 : nx - 2);
-  const j0 = Math.min(Math.floor(gy), ny - 2 < 0 ? 0 : ny - 2);
-  const k0 = Math.min(Math.floor(gz), nz - 2 < 0 ? 0 : nz - 2);
-  const fx = nx > 1 ? gx - i0 : 0;
-  const fy = ny > 1 ? gy - j0 : 0;
-  const fz = nz > 1 ? gz - k0 : 0;
+  // Continuous cell coordinates, 0 at the first cell's centre, clamped to the outermost centres.
+  let gx = ((x - min[0]) * nx) / (max[0] - min[0]) - 0.5;
+  let gy = ((y - min[1]) * ny) / (max[1] - min[1]) - 0.5;
+  let gz = ((z - min[2]) * nz) / (max[2] - min[2]) - 0.5;
+  gx = gx < 0 ? 0 : gx > nx - 1 ? nx - 1 : gx;
+  gy = gy < 0 ? 0 : gy > ny - 1 ? ny - 1 : gy;
+  gz = gz < 0 ? 0 : gz > nz - 1 ? nz - 1 : gz;
+  // The lower corner (one short of the last cell, so its upper neighbour exists), and the step to the upper one.
+  let i0 = gx | 0;
+  let j0 = gy | 0;
+  let k0 = gz | 0;
+  if (i0 > nx - 2) i0 = nx > 1 ? nx - 2 : 0;
+  if (j0 > ny - 2) j0 = ny > 1 ? ny - 2 : 0;
+  if (k0 > nz - 2) k0 = nz > 1 ? nz - 2 : 0;
+  const fx = gx - i0;
+  const fy = gy - j0;
+  const fz = gz - k0;
   const di = nx > 1 ? AIR_GRID_STRIDE : 0;
   const dj = ny > 1 ? nx * AIR_GRID_STRIDE : 0;
   const dk = nz > 1 ? nx * ny * AIR_GRID_STRIDE : 0;
-  const base = ((k0 * ny + j0) * nx + i0) * AIR_GRID_STRIDE;
-  for (let c = 0; c < 3; c++) {
-    const o = base + c;
-    const x00 = cells[o] + (cells[o + di] - cells[o]) * fx;
-    const x10 = cells[o + dj] + (cells[o + dj + di] - cells[o + dj]) * fx;
-    const x01 = cells[o + dk] + (cells[o + dk + di] - cells[o + dk]) * fx;
-    const x11 = cells[o + dk + dj] + (cells[o + dk + dj + di] - cells[o + dk + dj]) * fx;
-    const y0 = x00 + (x10 - x00) * fy;
-    const y1 = x01 + (x11 - x01) * fy;
-    out[c] = y0 + (y1 - y0) * fz;
-  }
-  out[3] = Math.hypot(out[0], out[1], out[2]);
+  const a = ((k0 * ny + j0) * nx + i0) * AIR_GRID_STRIDE;
+  const b = a + dj;
+  const c = a + dk;
+  const d = c + dj;
+  // Weights of the eight corners.
+  const gx1 = 1 - fx;
+  const gy1 = 1 - fy;
+  const gz1 = 1 - fz;
+  const w000 = gx1 * gy1 * gz1;
+  const w100 = fx * gy1 * gz1;
+  const w010 = gx1 * fy * gz1;
+  const w110 = fx * fy * gz1;
+  const w001 = gx1 * gy1 * fz;
+  const w101 = fx * gy1 * fz;
+  const w011 = gx1 * fy * fz;
+  const w111 = fx * fy * fz;
+  // Unrolled by hand: this runs for every mote every other frame.
+  const u = w000 * cells[a] + w100 * cells[a + di] + w010 * cells[b] + w110 * cells[b + di] + w001 * cells[c] + w101 * cells[c + di] + w011 * cells[d] + w111 * cells[d + di];
+  const v = w000 * cells[a + 1] + w100 * cells[a + di + 1] + w010 * cells[b + 1] + w110 * cells[b + di + 1] + w001 * cells[c + 1] + w101 * cells[c + di + 1] + w011 * cells[d + 1] + w111 * cells[d + di + 1];
+  const w = w000 * cells[a + 2] + w100 * cells[a + di + 2] + w010 * cells[b + 2] + w110 * cells[b + di + 2] + w001 * cells[c + 2] + w101 * cells[c + di + 2] + w011 * cells[d + 2] + w111 * cells[d + di + 2];
+  out[0] = u;
+  out[1] = v;
+  out[2] = w;
+  out[3] = Math.sqrt(u * u + v * v + w * w);
   return true;
 }
 
@@ -137,25 +158,43 @@ export function respawn(motes: MoteState, i: number, field: AirField, outlets: r
   motes.speed[i] = 0;
 }
 
-/** Starts every mote afresh, at scattered ages. */
-export function scatterMotes(motes: MoteState, field: AirField, sources: readonly AirSource[], random: () => number): void {
-  const outlets = blowing(sources);
-  for (let i = 0; i < motes.count; i++) respawn(motes, i, field, outlets, random, true);
-}
-
 const sample = new Float32Array(4);
 
 /**
- * Moves every mote `dt` seconds (at most `MAX_MOTE_STEP_S`) along the field
- * (one Euler step: the field is smooth on the scale a mote moves in a
- * frame) and starts again those whose life ended or that left the box.
+ * Starts every mote afresh at a scattered age, and carries each through the
+ * field for the age it was given (steps of `MAX_MOTE_STEP_S`), so that the
+ * jets are full from the first frame rather than filling over seconds.
  */
-export function stepMotes(motes: MoteState, field: AirField, sources: readonly AirSource[], dt: number, random: () => number): void {
+export function scatterMotes(motes: MoteState, field: AirField, sources: readonly AirSource[], random: () => number): void {
+  const outlets = blowing(sources);
+  const p = motes.position;
+  for (let i = 0; i < motes.count; i++) {
+    respawn(motes, i, field, outlets, random, true);
+    const o = i * 3;
+    for (let t = 0; t < motes.age[i]; t += MAX_MOTE_STEP_S) {
+      if (!sampleField(field, p[o], p[o + 1], p[o + 2], sample)) {
+        respawn(motes, i, field, outlets, random);
+        break;
+      }
+      p[o] += sample[0] * MAX_MOTE_STEP_S;
+      p[o + 1] += sample[1] * MAX_MOTE_STEP_S;
+      p[o + 2] += sample[2] * MAX_MOTE_STEP_S;
+    }
+  }
+}
+
+/**
+ * Moves motes `from` to `to` (all by default) `dt` seconds (at most
+ * `MAX_MOTE_STEP_S`) along the field (one Euler step: the field is smooth on
+ * the scale a mote moves in a frame or two) and starts again those whose
+ * life ended or that left the box.
+ */
+export function stepMotes(motes: MoteState, field: AirField, sources: readonly AirSource[], dt: number, random: () => number, from = 0, to = motes.count): void {
   const h = Math.min(Math.max(dt, 0), MAX_MOTE_STEP_S);
   const p = motes.position;
   const v = motes.velocity;
   let outlets: AirSource[] | null = null;
-  for (let i = 0; i < motes.count; i++) {
+  for (let i = from; i < to; i++) {
     const o = i * 3;
     motes.age[i] += h;
     const inside = sampleField(field, p[o], p[o + 1], p[o + 2], sample);
