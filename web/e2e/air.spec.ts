@@ -7,6 +7,9 @@
 import { expect, open, test } from "./fixtures";
 import type { Page } from "@playwright/test";
 
+// A click on the panel waits for the page's next frame, which SwiftShader may take many seconds to draw on a loaded machine.
+test.use({ actionTimeout: 120_000 });
+
 const air = (page: Page) => page.evaluate(() => window.__up!.air());
 
 /** The client pixel of floor point (x, z). */
