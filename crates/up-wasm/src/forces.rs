@@ -61,6 +61,11 @@ pub struct BodyCard {
     /// Where drag balances the net lift (`World::terminal_speed`), m/s.
     pub terminal_speed_m_s: f32,
     pub gas: BodyGas,
+    /// The room's air at the centre of mass now (`World::air_velocity_at`), m/s.
+    pub air_velocity_m_s: [f32; 3],
+    pub air_speed_m_s: f32,
+    /// The balloon's speed through that air, |v − u|, m/s: what its drag acts against.
+    pub speed_through_air_m_s: f32,
 }
 
 /// What the next steps of `world` record: `PROBE_OFF`, `PROBE_ALL`, or one
@@ -143,6 +148,7 @@ pub fn card(world: &World, id: BodyId, index: u32) -> Option<BodyCard> {
     let axis = pose.rotation * Vec3::Y;
     let floor = world.room().map_or(0.0, |r| r.aabb().min.y);
     let center = world.center_of_mass(id)?;
+    let air_velocity = world.air_velocity_at(center);
     let (helium_mol, air_mol, helium_fraction) = match world.gas(id) {
         Some(gas) => (gas.helium_mol, gas.air_mol, gas.helium_mol / gas.moles()),
         None => (0.0, 0.0, if net_lift_n > 0.0 { 1.0 } else { 0.0 }),
@@ -169,6 +175,9 @@ pub fn card(world: &World, id: BodyId, index: u32) -> Option<BodyCard> {
         tilt_deg: axis.dot(up).clamp(-1.0, 1.0).acos().to_degrees(),
         terminal_speed_m_s: world.terminal_speed(id)?,
         gas,
+        air_velocity_m_s: air_velocity.to_array(),
+        air_speed_m_s: air_velocity.length(),
+        speed_through_air_m_s: (v - air_velocity).length(),
     })
 }
 

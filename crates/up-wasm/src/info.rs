@@ -104,6 +104,8 @@ pub struct Constants {
     pub scene: SceneLimits,
     /// Each live control's accepted values (`Engine::apply_live`).
     pub live: Vec<LiveRange>,
+    /// The air's strides and the ranges of the air tools (`air.rs`).
+    pub air: crate::air::AirLimits,
 }
 
 impl Constants {
@@ -135,6 +137,7 @@ impl Constants {
             colors,
             error_kinds: strings(&ERROR_KINDS),
             live: LiveSetting::ranges(),
+            air: crate::air::AirLimits::get(),
             scene: SceneLimits {
                 max_total_balloons: limits::MAX_TOTAL_BALLOONS as f64,
                 max_balloon_groups: limits::MAX_BALLOON_GROUPS as u32,

@@ -22,7 +22,7 @@ use crate::model_mesh::MeshBuffers;
 use crate::ribbons::RibbonTables;
 use crate::squash::SquashBuffers;
 use crate::stats::StageSums;
-use crate::{forces, gas, live, model_mesh, ribbons};
+use crate::{air, forces, gas, live, model_mesh, ribbons};
 
 pub use crate::limits::{
     CAPACITY, MAX_SPEED, MAX_SPIN, MAX_STEPS_PER_CALL, POSE_FLOATS, TREE_FLOATS,
@@ -66,6 +66,8 @@ pub struct State {
     pub squash: SquashBuffers,
     /// The frames sent lately, for the page's glTF export (`export.rs`).
     pub export: ExportRing,
+    /// The air's sources and samples the page read last (`air.rs`).
+    pub air: air::AirBuffers,
 }
 
 /// `Ok` when a velocity stays within `MAX_SPEED` and `MAX_SPIN`, else why not.
@@ -519,6 +521,30 @@ impl State {
     /// Holds point `point` of ribbon `index` and carries it toward `target`.
     pub fn grab_ribbon(&mut self, index: u32, point: u32, target: Vec3) -> Result<(), WasmError> {
         ribbons::grab_ribbon(self.loaded_mut()?, index, point, target)
+    }
+
+    /// Applies a command of the page's air tools to the running world (`air.rs`).
+    pub fn apply_air(&mut self, command: air::AirCommand) -> Result<(), WasmError> {
+        air::apply(self.loaded_mut()?, command)
+    }
+
+    /// Every air source's row into `air.sources`; returns how many.
+    pub fn write_air_sources(&mut self) -> Result<usize, WasmError> {
+        let world = &self.loaded.as_ref().ok_or(WasmError::NoWorld)?.built.world;
+        Ok(air::write_sources(world, &mut self.air.sources))
+    }
+
+    /// The air now on `dims` cells tiling the room into `air.grid`.
+    pub fn write_air_grid(&mut self, dims: [u32; 3]) -> Result<air::AirGrid, WasmError> {
+        let loaded = self.loaded.as_ref().ok_or(WasmError::NoWorld)?;
+        let bounds = loaded.built.room.bounds();
+        air::write_grid(&loaded.built.world, bounds, dims, &mut self.air.grid)
+    }
+
+    /// The air now at each of `points` into `air.points`; returns how many.
+    pub fn write_air_at(&mut self, points: &[f32]) -> Result<usize, WasmError> {
+        let world = &self.loaded.as_ref().ok_or(WasmError::NoWorld)?.built.world;
+        air::write_at(world, points, &mut self.air.points)
     }
 
     /// Whether each balloon model (one per group, in group order) is foil.

@@ -20,6 +20,7 @@ import { applyParams, paramsFromScene, type PanelParams } from "../scene/scenePa
 import type { Scene } from "../scene/sceneSchema";
 import { ShareLink } from "./shareLink";
 import { PhysicsView } from "./physicsView";
+import { AirView } from "./airView";
 import { FrameMeter } from "./frameMeter";
 import { PhotoMode } from "../render/photo/photoMode";
 import { photoHost } from "./photoHost";
@@ -47,6 +48,8 @@ export class App {
   readonly plot: FloatPlot;
   /** The selected balloon, force arrows, motion plots, teaching scenes. */
   readonly physics: PhysicsView;
+  /** Fans, vents, "show air" and the fan tool. */
+  readonly air: AirView;
   panel: Panel | null = null;
   readonly photo: PhotoMode;
   readonly recorder: ClipRecorder;
@@ -94,6 +97,7 @@ export class App {
         this.scene = JSON.parse(json) as Scene;
         this.link.set(JSON.stringify(this.scene));
       },
+      airField: (field) => this.air.takeField(field),
     });
     this.physics = new PhysicsView(this.stage.scene, document.body, this.bridge, this.stage.camera);
     this.controls = new Controls(this.stage.camera, this.stage.renderer.domElement, this.bridge, {
@@ -101,6 +105,7 @@ export class App {
       action: (a) => this.keyAction(a),
       placement: (on) => this.hud.setMode(on ? "Placement mode: click the floor to add a balloon · CTRL to go back" : ""),
     });
+    this.air = new AirView(this.stage.scene, this.stage.renderer.domElement, this.bridge, (x, y) => this.controls.floorPoint(x, y), (hint) => this.hud.setMode(hint));
     this.photo = new PhotoMode(photoHost(this));
     this.recorder = new ClipRecorder(this.stage.renderer.domElement, (on) => this.panel?.setRecording(on), (m) => this.messages.error(m));
   }
@@ -134,10 +139,12 @@ export class App {
     const roomChanged = this.world.setWorld(info);
     if (roomChanged) this.stage.fitToRoom(box.halfWidth, box.halfDepth, box.top);
     this.controls.setWorld(box, info.trees, this.firstWorld || roomChanged);
+    this.air.worldReady(info);
     this.firstWorld = false;
     if (!this.panel) {
       this.panel = new Panel(params, this.scene, info.constants, this.panelActions, Math.min(PANEL_MAX_BALLOONS, info.capacity));
       const assets = new URL("assets/", document.baseURI).href;
+      this.air.addPanel(this.panel.gui, info.constants);
       this.physics.addMenu(this.panel.gui, assets, () => this.messages.clear()).catch((e: Error) => this.messages.error(`The teaching scenes failed to load: ${e.message}`));
       // Threads only where memory can be shared; a new count restarts the engine on the scene shown.
       if (info.isolated) this.panel.addThreads(info.threads, Math.max(info.threads, Math.min(MAX_THREADS, navigator.hardwareConcurrency || 1)), (n) => this.bridge.restart(JSON.stringify(this.scene), n));
@@ -254,6 +261,7 @@ export class App {
     this.hud.frame(now);
     this.plot.draw();
     this.physics.update(this.world.assets, this.bridge.alpha(performance.timeOrigin + now));
+    this.air.update(dt);
     const { renderer, scene, camera } = this.stage;
     const renderStart = performance.now();
     if (this.photo.active) this.photo.render();

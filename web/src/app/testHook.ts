@@ -156,6 +156,8 @@ export function createTestHook(app: App) {
     version: () => bridge.current?.version ?? -1,
     /** The selected balloon, its card, the force arrows drawn, the motion plot, the caption, the teaching scenes. */
     physics: () => app.physics.snapshot(),
+    /** The air's sources, the fans and vents drawn, the fan tool, "show air"'s motes. */
+    air: () => app.air.snapshot(),
     sceneJson: () => JSON.stringify(app.scene),
     messages: () => messages.shown.slice(),
     camera: () => ({ position: camera.position.toArray(), target: controls.center().toArray() }),

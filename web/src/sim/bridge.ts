@@ -2,12 +2,15 @@
 // frame of poses, hands the previous buffer back (ping-pong), and tells how
 // far between the two steps of a frame the display is (interpolation).
 
-import type { EngineStats, LiveSetting, RibbonTables } from "./engine";
+import type { AirCommand, EngineStats, LiveSetting, RibbonTables } from "./engine";
+import type { AirField } from "./airLayout";
 import type { CensusSample, Frame, FromWorker, ToWorker, Vec3Tuple, WorldInfo } from "./protocol";
 import { frameViews } from "./frameLayout";
 import type { ForcesPayload } from "./forcesFrame";
 import { setEngineConstants } from "../scene/sceneSchema";
 import type { StepsMeasured } from "./stepMeter";
+
+const NO_AIR_SOURCES: Float32Array = new Float32Array(0);
 
 export interface BridgeEvents {
   ready(info: WorldInfo): void;
@@ -18,6 +21,8 @@ export interface BridgeEvents {
   error(message: string, fatal: boolean): void;
   /** The engine's scene after a live setting, as JSON. */
   scene(sceneJson: string): void;
+  /** The air sampled on a grid of the room (while "show air" is on). */
+  airField?(field: AirField): void;
 }
 
 export class SimBridge {
@@ -47,6 +52,8 @@ export class SimBridge {
   /** The newest frame's forces and selected body's card (null while nothing is probed). */
   forces: ForcesPayload | null = null;
   paused = false;
+  /** The newest frame's air sources (sim/airLayout.ts; empty: still air). */
+  airSources: Float32Array = new Float32Array(0);
   /** Validation requests waiting for the worker's answer, by id. */
   private readonly validations = new Map<number, (error: string | null) => void>();
   private nextValidation = 1;
@@ -100,6 +107,7 @@ export class SimBridge {
         if (msg.ribbons) this.ribbons = msg.ribbons;
         this.paused = msg.paused;
         this.forces = msg.forces ?? null;
+        this.airSources = msg.airSources ?? NO_AIR_SOURCES;
         this.events.frame(msg);
         // The previous frame's buffer goes back to the worker for refilling.
         if (old) this.send({ type: "return", buffer: old.buffer }, [old.buffer]);
@@ -131,6 +139,9 @@ export class SimBridge {
       case "gltf":
         this.exports.get(msg.id)?.(msg);
         this.exports.delete(msg.id);
+        break;
+      case "airField":
+        this.events.airField?.(msg.field);
         break;
     }
   }
@@ -264,6 +275,16 @@ export class SimBridge {
   /** A live setting for the running world, forwarded as it is (`Engine.applyLive`). */
   live(setting: LiveSetting): void {
     this.send({ type: "live", setting });
+  }
+
+  /** A command of the air tools for the running world, forwarded as it is (`Engine.applyAir`). */
+  air(command: AirCommand): void {
+    this.send({ type: "air", command });
+  }
+
+  /** Asks for the air's field every quarter second or so ("show air" on), or for none. */
+  setShowAir(on: boolean): void {
+    this.send({ type: "showAir", on });
   }
 
   dragTo(point: Vec3Tuple): void {

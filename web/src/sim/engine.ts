@@ -9,6 +9,7 @@
 import type * as Glue from "../../public/wasm/up_wasm";
 import { SQUASH_STRIDE } from "./frameLayout";
 
+export type { AirCommand, AirGrid, FanDef } from "../../public/wasm/up_wasm";
 export type { AdvanceReport, BodyCard, Constants, EngineStats, Finish, FloatCounts, LiveRange, LiveSetting, NamedColor, Scene, SceneLimits, WorldSummary } from "../../public/wasm/up_wasm";
 
 /** The glue module as `import()` returns it. */
@@ -409,6 +410,30 @@ export class Engine {
   /** What the engine says of the body at dense `index` now: mass, gas, lift, motion. */
   bodyCard(index: number): Glue.BodyCard {
     return this.call(() => this.e.body_card(index));
+  }
+
+  /** Applies a command of the air tools (add a fan, set its speed, remove it, open the door) to the running world. */
+  applyAir(command: Glue.AirCommand): void {
+    this.call(() => this.e.apply_air(command));
+  }
+
+  /** Every air source (`constants.air.source_stride` floats each, sim/airLayout.ts): a view, valid until the next call. */
+  airSources(): Float32Array {
+    const n = this.call(() => this.e.write_air_sources());
+    return new Float32Array(this.memory.buffer, this.e.air_sources_ptr(), n * this.constants.air.source_stride);
+  }
+
+  /** The air now on `nx`·`ny`·`nz` cells tiling the room: where, and the cells (a view, valid until the next call). */
+  airGrid(nx: number, ny: number, nz: number): { grid: Glue.AirGrid; cells: Float32Array } {
+    const grid = this.call(() => this.e.write_air_grid(nx, ny, nz));
+    const cells = new Float32Array(this.memory.buffer, this.e.air_grid_ptr(), nx * ny * nz * this.constants.air.grid_stride);
+    return { grid, cells };
+  }
+
+  /** The air's velocity now (m/s, x y z each) at `points` (m, x y z each): a view, valid until the next call. */
+  airAt(points: Float32Array): Float32Array {
+    const n = this.call(() => this.e.write_air_at(points));
+    return new Float32Array(this.memory.buffer, this.e.air_points_ptr(), n * 3);
   }
 
   stateHash(): bigint {

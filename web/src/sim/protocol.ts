@@ -4,10 +4,11 @@
 // transfers it; the main thread keeps the newest frame and hands the previous
 // buffer back. No typed array is allocated per frame on either side.
 
-import type { Constants, EngineStats, Finish, LiveSetting, ModelMesh, RibbonTables, RoomMesh, TreeNode } from "./engine";
+import type { AirCommand, Constants, EngineStats, Finish, LiveSetting, ModelMesh, RibbonTables, RoomMesh, TreeNode } from "./engine";
 import type { FloatSample } from "../ui/floatPlot";
 import type { ForcesPayload } from "./forcesFrame";
 import type { StepsMeasured } from "./stepMeter";
+import type { AirField } from "./airLayout";
 
 export type Vec3Tuple = [number, number, number];
 
@@ -45,6 +46,10 @@ export type ToWorker =
   | { type: "hash"; id: number }
   /** Asks for the last 10 s of frames sent, as a .glb; answered by `gltf` with the same `id`. */
   | { type: "exportGltf"; id: number };
+  /** A command of the air tools for the running world (`Engine.applyAir`), as the panel made it. */
+  | { type: "air"; command: AirCommand }
+  /** "Show air" on or off: the sampled field comes (`airField`) only while it is on. */
+  | { type: "showAir"; on: boolean };
 
 /** What the main thread needs to draw a freshly built world. */
 export interface WorldInfo {
@@ -106,6 +111,8 @@ export interface Frame {
   achievedRate: number;
   /** The probed forces and the selected body's card; only while a body is selected or all are shown. */
   forces?: ForcesPayload;
+  /** The air's sources now (sim/airLayout.ts); only while the room has any. */
+  airSources?: Float32Array;
 }
 
 /** Where the balloons floated at simulated time `t` (shares of all balloons), and their mean lift left (0–1). */
@@ -129,3 +136,5 @@ export type FromWorker =
   | { type: "hash"; id: number; hash: string; steps: number }
   /** The .glb of `exportGltf` request `id`, or why there is none. */
   | { type: "gltf"; id: number; glb: ArrayBuffer | null; error: string | null };
+  /** The air sampled on a grid of the room, every quarter second or so while "show air" is on. */
+  | { type: "airField"; field: AirField };

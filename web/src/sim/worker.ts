@@ -13,6 +13,8 @@ import type { FromWorker, ToWorker, WorldInfo } from "./protocol";
 import { TimeLapse, censusInterval } from "./timeLapse";
 import { ForceProbe, checkForceLayout } from "./forcesFrame";
 import { measureSteps } from "./stepMeter";
+import { AirSampler } from "./airSampler";
+import { checkAirLayout } from "./airLayout";
 
 /** Most steps taken in one tick; beyond that the simulation runs slow rather than spiral. */
 const MAX_STEPS_PER_TICK = 4;
@@ -76,6 +78,8 @@ class WorkerState {
 const state = new WorkerState();
 /** Whose forces the engine records, and the selected body. */
 const probe = new ForceProbe();
+/** The air's sources in the frames, and its field while shown. */
+const air = new AirSampler();
 
 function post(message: FromWorker, transfer: Transferable[] = []): void {
   scope.postMessage(message, transfer);
@@ -120,6 +124,7 @@ function load(sceneJson: string | null, sceneToml?: string, announce = true): Wo
   else state.engine.loadSceneJson(sceneJson);
   probe.worldRebuilt();
   const info = worldInfo(state.engine);
+  air.worldRebuilt(info.room.vertices);
   state.currentSceneJson = info.sceneJson;
   state.dtMs = info.dt * 1000;
   state.paletteSize = Math.max(1, info.palette.length);
@@ -185,6 +190,8 @@ function sendFrame(previous: Previous | null): void {
   };
   const forces = probe.collect(state.engine);
   if (forces) frame.forces = forces;
+  const airSources = air.sources(state.engine);
+  if (airSources) frame.airSources = airSources;
   if (state.versionSent !== state.version) {
     frame.colors = state.engine.colors().slice();
     frame.models = state.engine.models().slice();
@@ -194,7 +201,9 @@ function sendFrame(previous: Previous | null): void {
   state.dirty = false;
   // What the page was sent is what "Export last 10 s" writes.
   state.engine.recordExportFrame();
-  post(frame, forces ? [buffer, forces.rows.buffer] : [buffer]);
+  const transfer: Transferable[] = forces ? [buffer, forces.rows.buffer] : [buffer];
+  if (airSources) transfer.push(airSources.buffer);
+  post(frame, transfer);
 }
 
 /**
@@ -324,6 +333,8 @@ function tick(): void {
     if (previous) probe.stepped();
     census();
     if (previous || state.dirty) sendFrame(previous);
+    const field = state.engine ? air.sample(state.engine, t) : null;
+    if (field) post({ type: "airField", field }, [field.cells.buffer]);
     if (state.engine && t - state.lastStats > STATS_INTERVAL_MS) {
       const seconds = (t - state.lastStats) / 1000;
       post({ type: "stats", stats: state.engine.stats(), stepsPerSecond: state.lastStats > 0 ? state.stepsSinceStats / seconds : 0 });
@@ -361,6 +372,7 @@ function handle(msg: ToWorker): void {
         state.isolated = started.isolated;
         checkLayout(started.engine.constants);
         checkForceLayout(started.engine.constants);
+        checkAirLayout(started.engine.constants);
         return started.engine;
       });
       state.started
@@ -408,6 +420,9 @@ function handle(msg: ToWorker): void {
     case "debug":
       state.sendContacts = msg.on;
       state.dirty = true;
+      return;
+    case "showAir":
+      air.setShow(msg.on);
       return;
     case "return":
       state.freeBuffers.push(msg.buffer);
@@ -492,6 +507,11 @@ function handle(msg: ToWorker): void {
         break;
       case "dragTo":
         state.engine.dragTo(...msg.point);
+        break;
+      case "air":
+        state.engine.applyAir(msg.command);
+        air.changed();
+        state.dirty = true;
         break;
       case "release":
         state.engine.release();

@@ -1,5 +1,5 @@
 import { describe, expect, it } from "vitest";
-import { cardRows, gasText, newtons, scaleText, signed } from "./balloonCard";
+import { airText, cardRows, gasText, newtons, scaleText, signed } from "./balloonCard";
 import type { BodyCard } from "../sim/engine";
 
 const card: BodyCard = {
@@ -17,6 +17,9 @@ const card: BodyCard = {
   tilt_deg: 12.4,
   terminal_speed_m_s: 0.741,
   gas: "helium",
+  air_velocity_m_s: [0, 0, 0],
+  air_speed_m_s: 0,
+  speed_through_air_m_s: 0.612,
 };
 
 describe("the balloon card", () => {
@@ -29,6 +32,13 @@ describe("the balloon card", () => {
     expect(rows.speed).toBe("0.61 m/s (vertical +0.60)");
     expect(rows["terminal speed"]).toBe("0.74 m/s");
     expect(rows["height, tilt"]).toBe("1.23 m, 12°");
+    expect(rows["air here"]).toBe("still");
+  });
+
+  it("gives the air's speed at the balloon and the balloon's speed through it", () => {
+    const windy = { ...card, air_velocity_m_s: [1.2, 0, 0.5] as [number, number, number], air_speed_m_s: 1.3, speed_through_air_m_s: 0.84 };
+    expect(Object.fromEntries(cardRows(windy))["air here"]).toBe("1.30 m/s (the balloon through it 0.84 m/s)");
+    expect(airText({ air_speed_m_s: 0.004, speed_through_air_m_s: 0.2 })).toBe("still");
   });
 
   it("says a heavier-than-air balloon sinks, and names both gases when mixed", () => {

@@ -37,8 +37,15 @@ export function cardRows(card: BodyCard): [string, string][] {
     ["net lift", `${signed(lift, 3)} N${grams}: ${liftWord}`],
     ["speed", `${card.speed_m_s.toFixed(2)} m/s (vertical ${signed(card.vertical_speed_m_s, 2)})`],
     ["terminal speed", `${card.terminal_speed_m_s.toFixed(2)} m/s`],
+    ["air here", airText(card)],
     ["height, tilt", `${card.height_m.toFixed(2)} m, ${card.tilt_deg.toFixed(0)}°`],
   ];
+}
+
+/** The air line: the air's speed at the balloon and the balloon's speed through it (what its drag acts against), or "still". */
+export function airText(card: Pick<BodyCard, "air_speed_m_s" | "speed_through_air_m_s">): string {
+  if (card.air_speed_m_s < 0.005) return "still";
+  return `${card.air_speed_m_s.toFixed(2)} m/s (the balloon through it ${card.speed_through_air_m_s.toFixed(2)} m/s)`;
 }
 
 /** A force's size in newtons: three significant places ("0.0532 N"), to a ten-thousandth below a thousandth. */
