@@ -7,6 +7,7 @@
 
 mod bench;
 mod colliders;
+mod export_gltf;
 mod export_obj;
 mod fit_spheres;
 mod forecast;
@@ -69,6 +70,16 @@ enum Command {
     /// balloon_<colour>.mtl for every named colour. Blender imports scene.obj
     /// and room.obj as they are (File > Import > Wavefront (.obj), Y up).
     ExportObj(export_obj::ExportObjArgs),
+    /// Write a run as an animated glTF 2.0 binary (.glb) for Blender.
+    ///
+    /// Each balloon a node balloon-<id> (the id --out uses) with its mesh
+    /// and a PBR material of its finish, translation and rotation channels
+    /// at F frames a second (a scale channel where the gas shrinks it);
+    /// each ribbon a strip skinned to joints ribbon-<id>-<k>, its points;
+    /// weights as nodes weight-<id>; the room, a camera and the page's
+    /// lights. Keys start at 0; the scene's extras.up gives start_s and
+    /// sim_seconds_per_second.
+    ExportGltf(export_gltf::ExportGltfArgs),
     /// Fit a sphere tree to a closed OBJ mesh and write it as JSON.
     FitSpheres(fit_spheres::FitSpheresArgs),
     /// A long run checking health as it goes: finite, inside, overlap, memory.
@@ -94,6 +105,7 @@ fn main() -> ExitCode {
         Command::Colliders(args) => colliders::run(&args),
         Command::Validate(args) => validate::run(&args),
         Command::ExportObj(args) => export_obj::run(&args),
+        Command::ExportGltf(args) => export_gltf::run(&args),
         Command::FitSpheres(args) => fit_spheres::run(&args),
         Command::Soak(args) => soak::run(&args),
     };

@@ -4,6 +4,7 @@
 //! a few simulated hours as a time-lapse in a small room).
 
 mod body_hashes;
+mod export_gltf;
 mod forecast;
 mod probe;
 mod ribbons;
