@@ -157,7 +157,8 @@ test-determinism: build
 # where Blender is installed (make render installs it); skipped, saying so, where it is not.
 test-render:
 	@if command -v $(BLENDER) >/dev/null 2>&1; then \
-	  $(CARGO) build --release -p up-cli && python3 tools/render/test_render.py --blender $(BLENDER) --up target/release/up; \
+	  $(MAKE) --no-print-directory setup-blender && $(CARGO) build --release -p up-cli && \
+	  python3 tools/render/test_render.py --blender $(BLENDER) --up target/release/up; \
 	else echo "test-render: skipped, Blender is not installed (make render installs Debian's blender)"; fi
 
 test: lint test-rust test-web test-e2e test-determinism test-render
