@@ -66,6 +66,8 @@ def parse_args(argv):
         parser.error(f"--frames {args.frames}: frames count up from 0")
     if args.samples < 1 or args.width < 1 or args.height < 1 or args.fps < 1:
         parser.error("--samples, --size and --fps take positive numbers")
+    if args.last > args.first and (args.width % 2 or args.height % 2):
+        parser.error(f"--size {args.size}: the clip of several frames (H.264) needs an even width and height")
     return args
 
 
@@ -119,8 +121,11 @@ def gltf_cameras(path):
 
 
 def import_glb(path, fps):
+    try:
+        import numpy
+    except ImportError:
+        raise SystemExit("Blender's glTF importer needs numpy: apt-get install python3-numpy (make render does)")
     # Debian's Blender 3.4 importer still spells numpy.bool, which numpy 1.24 removed.
-    import numpy
 
     if "bool" not in vars(numpy):
         numpy.bool = bool
@@ -131,7 +136,7 @@ def import_glb(path, fps):
     bpy.ops.import_scene.gltf(filepath=path)
 
 
-def animation_range(scene):
+def animation_range():
     """First and last keyed frame over every imported action, or (0, 0) for a still scene."""
     ranges = [a.frame_range for a in bpy.data.actions]
     if not ranges:
@@ -385,7 +390,7 @@ def main():
     with quiet(not args.verbose):
         import_glb(args.glb, args.fps)
     scene = bpy.context.scene
-    first, last = animation_range(scene)
+    first, last = animation_range()
     if args.last > last:
         raise SystemExit(f"frame {args.last} is past the animation's end (frames {first}-{last} at {args.fps} fps): export more seconds")
     box = room_box(scene)
