@@ -31,6 +31,20 @@ def fail(message, output=""):
     sys.exit(1)
 
 
+def png_pixels(path):
+    """A PNG's compressed pixels (its IDAT chunks): equal for equal pictures, whatever the
+    metadata (Blender stamps each file with the time it was rendered)."""
+    with open(path, "rb") as f:
+        data = f.read()
+    pixels, at = b"", 8
+    while at < len(data):
+        length, kind = struct.unpack(">I4s", data[at:at + 8])
+        if kind == b"IDAT":
+            pixels += data[at + 8:at + 8 + length]
+        at += 12 + length
+    return pixels
+
+
 def render(blender, glb, out, frames):
     # Blender takes its Python's prefix from the first python3.x on PATH: one of the user's own
     # (this script's, under pyenv or a venv) would hide the system's numpy from its glTF importer.
@@ -85,9 +99,8 @@ def main():
 
         # Half a second apart the balloons have risen: Cycles' noise is the same each frame
         # (one seed), so only the motion tells the pictures apart.
-        with open(lines[0][4], "rb") as a, open(lines[-1][4], "rb") as b:
-            if a.read() == b.read():
-                fail("the first and last frames are the same picture: the animation did not play")
+        if png_pixels(lines[0][4]) == png_pixels(lines[-1][4]):
+            fail("the first and last frames are the same picture: the animation did not play")
 
         past = render(args.blender, glb, os.path.join(tmp, "past"), "900")
         if past.returncode == 0 or "past the animation's end" not in past.stderr + past.stdout:
