@@ -75,9 +75,7 @@ impl BinBuffer {
         let offset = self.bytes.len();
         data.append(&mut self.bytes);
         let length = self.bytes.len() - offset;
-        while self.bytes.len() % 4 != 0 {
-            self.bytes.push(0);
-        }
+        self.bytes.resize(length + offset + (4 - length % 4) % 4, 0);
         let view = root.push(json::buffer::View {
             buffer: Index::new(0),
             byte_length: USize64::from(length),
@@ -148,12 +146,12 @@ pub fn glb_bytes(json_text: &[u8], bin: &[u8]) -> Vec<u8> {
     out.extend((json_len as u32).to_le_bytes());
     out.extend(b"JSON");
     out.extend(json_text);
-    out.extend(std::iter::repeat(b' ').take(pad(json_text.len())));
+    out.resize(out.len() + pad(json_text.len()), b' ');
     if !bin.is_empty() {
         out.extend((bin_len as u32).to_le_bytes());
         out.extend(b"BIN\0");
         out.extend(bin);
-        out.extend(std::iter::repeat(0u8).take(pad(bin.len())));
+        out.resize(out.len() + pad(bin.len()), 0);
     }
     out
 }

@@ -79,10 +79,9 @@ pub fn balloon(name: String, finish: Finish, rgb: [f32; 3], age: f32) -> Materia
         }),
         ior: Some(ext::Ior {
             ior: ext::IndexOfRefraction(1.52),
-            ..Default::default()
+            extras: Default::default(),
         }),
         others,
-        ..Default::default()
     });
     material
 }

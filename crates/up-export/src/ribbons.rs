@@ -4,14 +4,17 @@
 //! coordinates; the strip (`ribbon-<id>-strip`, the flat 5 mm strip `up
 //! export-obj` writes, at the first frame) binds each of its two vertices
 //! at a point wholly to that point's joint. A weight at the free end is a
-//! small metal ball, a node `weight-<id>` under the last joint.
+//! small metal ball, a node `weight-<id>` under the last joint; a free end
+//! without one curls, as the page draws it: a helix of the page's radius,
+//! turns and length (web/src/render/ribbons.ts) hanging from the last joint,
+//! a node `ribbon-<id>-curl`.
 
 use glam::{Quat, Vec3};
 use gltf_json as json;
 use json::accessor::Type;
 use json::animation::Property;
 use json::mesh::Semantic;
-use json::{Index, Material, Node, Skin};
+use json::{Index, Material, Mesh, Node, Skin};
 use up_physics::ribbon::WEIGHT_RADIUS;
 use up_scene::scene_obj::ribbon_strip;
 
@@ -20,6 +23,35 @@ use crate::glb::Elements;
 use crate::looks::{linear_from_srgb, RibbonLook};
 use crate::materials::plain;
 use crate::recording::Recording;
+
+/// The page's curl at a free end: length, m, helix radius, m, and turns.
+const CURL_LENGTH: f32 = 0.18;
+const CURL_RADIUS: f32 = 0.011;
+const CURL_TURNS: f32 = 6.0;
+/// Samples along the curl.
+const CURL_SAMPLES: u32 = 96;
+
+/// The curl as a strip `width` wide wound on a helix about the vertical
+/// through its top, hanging down from the origin: positions, normals
+/// (outward from the axis), triangles.
+fn curl(width: f32) -> (Vec<Vec3>, Vec<Vec3>, Vec<[u32; 3]>) {
+    let (mut positions, mut normals, mut triangles) = (Vec::new(), Vec::new(), Vec::new());
+    let half = Vec3::new(0.0, 0.5 * width, 0.0);
+    for i in 0..=CURL_SAMPLES {
+        let along = i as f32 / CURL_SAMPLES as f32;
+        let angle = std::f32::consts::TAU * CURL_TURNS * along;
+        let out = Vec3::new(angle.cos(), 0.0, angle.sin());
+        // Starts at the origin: the axis is one radius from the free end.
+        let p = CURL_RADIUS * (out - Vec3::X) - Vec3::Y * (CURL_LENGTH * along);
+        positions.extend([p - half, p + half]);
+        normals.extend([out, out]);
+        if i > 0 {
+            let a = 2 * (i - 1);
+            triangles.extend([[a, a + 2, a + 1], [a + 1, a + 2, a + 3]]);
+        }
+    }
+    (positions, normals, triangles)
+}
 
 /// A UV sphere of `radius`: positions, normals, triangles.
 fn sphere(radius: f32) -> (Vec<Vec3>, Vec<Vec3>, Vec<[u32; 3]>) {
@@ -62,7 +94,11 @@ pub fn add_ribbons(b: &mut Builder, recording: &Recording) -> Vec<Index<Node>> {
         return Vec::new();
     };
     let mut roots = Vec::new();
-    let mut materials: Vec<([f32; 3], Index<Material>, Index<Material>)> = Vec::new();
+    // Made on first use, one per colour: a material no node draws is a validator's notice.
+    let mut strips: Vec<([f32; 3], Index<Material>)> = Vec::new();
+    let mut weights: Vec<([f32; 3], Index<Material>)> = Vec::new();
+    let mut curls: Vec<([f32; 3], Index<Mesh>)> = Vec::new();
+    let mut curl_surface = None;
     let mut offset = 0;
     for look in &recording.looks.ribbons {
         let n = look.points;
@@ -71,20 +107,16 @@ pub fn add_ribbons(b: &mut Builder, recording: &Recording) -> Vec<Index<Node>> {
         if n < 2 {
             continue;
         }
-        let (strip_material, weight_material) = match materials.iter().find(|m| m.0 == look.rgb) {
-            Some(&(_, s, w)) => (s, w),
-            None => {
-                let rgb = linear_from_srgb(look.rgb);
-                let hex = crate::document::hex_name(look.rgb);
-                let s = b.root.push(Material {
-                    double_sided: true,
-                    ..plain(format!("ribbon-{hex}"), rgb, 0.6, 0.0)
-                });
-                let w = b.root.push(plain(format!("weight-{hex}"), rgb, 0.25, 1.0));
-                materials.push((look.rgb, s, w));
-                (s, w)
-            }
-        };
+        let (rgb, hex) = (
+            linear_from_srgb(look.rgb),
+            crate::document::hex_name(look.rgb),
+        );
+        let strip_material = material_for(&mut strips, look.rgb, || {
+            b.root.push(Material {
+                double_sided: true,
+                ..plain(format!("ribbon-{hex}"), rgb, 0.6, 0.0)
+            })
+        });
         let bind = &first.ribbon_points[range.clone()];
         let id = look.balloon;
         let joints: Vec<Index<Node>> = (0..n)
@@ -99,7 +131,30 @@ pub fn add_ribbons(b: &mut Builder, recording: &Recording) -> Vec<Index<Node>> {
             })
             .collect();
         if look.weighted {
-            add_weight(b, joints[n - 1], id, weight_material);
+            let material = material_for(&mut weights, look.rgb, || {
+                b.root.push(plain(format!("weight-{hex}"), rgb, 0.25, 1.0))
+            });
+            add_weight(b, joints[n - 1], id, material);
+        } else {
+            let surface = *curl_surface.get_or_insert_with(|| {
+                let (positions, normals, triangles) = curl(recording.looks.ribbon_width);
+                b.surface(&positions, &normals, &triangles)
+            });
+            let mesh = match curls.iter().find(|(c, _)| *c == look.rgb) {
+                Some(&(_, mesh)) => mesh,
+                None => {
+                    let mesh = b.mesh(format!("ribbon-curl-{hex}"), surface, strip_material, &[]);
+                    curls.push((look.rgb, mesh));
+                    mesh
+                }
+            };
+            let node = b.root.push(Node {
+                name: Some(format!("ribbon-{id}-curl")),
+                mesh: Some(mesh),
+                ..Default::default()
+            });
+            let end = &mut b.root.nodes[joints[n - 1].value()];
+            end.children.get_or_insert_with(Vec::new).push(node);
         }
         let parent = b.root.push(Node {
             name: Some(format!("ribbon-{id}")),
@@ -118,6 +173,20 @@ pub fn add_ribbons(b: &mut Builder, recording: &Recording) -> Vec<Index<Node>> {
         ));
     }
     roots
+}
+
+/// The material of colour `rgb` in `made`, made by `make` the first time.
+fn material_for(
+    made: &mut Vec<([f32; 3], Index<Material>)>,
+    rgb: [f32; 3],
+    make: impl FnOnce() -> Index<Material>,
+) -> Index<Material> {
+    if let Some(&(_, m)) = made.iter().find(|(c, _)| *c == rgb) {
+        return m;
+    }
+    let m = make();
+    made.push((rgb, m));
+    m
 }
 
 /// The weight: a ball under the free end's joint, which carries it.
@@ -208,6 +277,19 @@ fn add_strip(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_curl_hangs_from_the_free_end_as_long_and_wide_as_the_page_draws_it() {
+        let (positions, normals, triangles) = curl(0.005);
+        let top = (positions[0] + positions[1]) * 0.5;
+        assert!(top.length() < 1e-6, "starts at the free end: {top}");
+        let last = positions.len() - 1;
+        let bottom = (positions[last] + positions[last - 1]) * 0.5;
+        assert!((bottom.y + CURL_LENGTH).abs() < 1e-6);
+        assert!((positions[1].y - positions[0].y - 0.005).abs() < 1e-6);
+        assert!(normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-5));
+        assert_eq!(triangles.len(), 2 * CURL_SAMPLES as usize);
+    }
 
     #[test]
     fn the_weight_ball_is_closed_and_round() {

@@ -34,7 +34,7 @@
 //!
 //! The files depend one way: `lib.rs` (the exports) → `state.rs` (the world
 //! and the page's buffers; one thin method per call) → the feature files
-//! (`forces`, `gas`, `live`, `model_mesh`, `ribbons`, `squash`, `contacts`,
+//! (`export`, `forces`, `gas`, `live`, `model_mesh`, `ribbons`, `squash`, `contacts`,
 //! `stats`), each free functions or a small buffer struct of its own on a
 //! `&World` or `&Loaded` (`loaded.rs`) → up-scene and up-physics. No feature
 //! file knows `State`; the numbers they share live in `limits.rs`. Physics
@@ -48,6 +48,7 @@ mod body_hashes;
 mod clock;
 mod contacts;
 mod error;
+mod export;
 mod forces;
 mod gas;
 mod info;
@@ -67,6 +68,7 @@ use wasm_bindgen::prelude::*;
 
 pub use contacts::{CONTACT_FLOATS, MAX_CONTACTS};
 pub use error::{CallError, WasmError, ERROR_KINDS};
+pub use export::EXPORT_SECONDS;
 pub use forces::{BodyCard, BodyGas, FORCE_FLOATS, PROBE_ALL, PROBE_OFF};
 pub use gas::{AdvanceReport, FloatCounts, GroupFloat, MAX_ADVANCE_S};
 pub use info::{Constants, EngineStats, NamedColor, SceneLimits, WorldSummary};
@@ -454,6 +456,19 @@ impl Engine {
     /// Lets go of the held body, which keeps its velocity (a throw).
     pub fn release(&mut self) -> Result<(), CallError> {
         named("release", self.state.release())
+    }
+
+    // ---- the glTF export (`export.rs`) ----
+
+    /// Records the world now into the export's ring (the last
+    /// `EXPORT_SECONDS` of simulated time): the worker calls it for each frame it sends.
+    pub fn record_export_frame(&mut self) -> Result<(), CallError> {
+        named("record_export_frame", self.state.record_export_frame())
+    }
+
+    /// The ring's frames as an animated glTF 2.0 binary (`.glb`), as `up export-gltf` writes one.
+    pub fn export_gltf(&self) -> Result<Vec<u8>, CallError> {
+        named("export_gltf", self.state.export.glb())
     }
 
     // ---- the force probe (`forces.rs`) ----

@@ -13,6 +13,7 @@ use up_scene::scene::Scene;
 
 use crate::contacts::write_contacts;
 use crate::error::{finite, WasmError};
+use crate::export::ExportRing;
 use crate::gas::{AdvanceReport, FloatCounts};
 use crate::info::{EngineStats, WorldSummary};
 use crate::live::LiveSetting;
@@ -63,6 +64,8 @@ pub struct State {
     pub forces: Vec<f32>,
     /// Each body's deepest dent since the page last read it, and what it read (`squash.rs`).
     pub squash: SquashBuffers,
+    /// The frames sent lately, for the page's glTF export (`export.rs`).
+    pub export: ExportRing,
 }
 
 /// `Ok` when a velocity stays within `MAX_SPEED` and `MAX_SPIN`, else why not.
@@ -120,6 +123,14 @@ impl State {
             shapes,
         });
         self.census = None;
+        self.export.clear();
+        Ok(())
+    }
+
+    /// Records the world now into the export's ring.
+    pub fn record_export_frame(&mut self) -> Result<(), WasmError> {
+        let loaded = self.loaded.as_ref().ok_or(WasmError::NoWorld)?;
+        self.export.record(loaded);
         Ok(())
     }
 

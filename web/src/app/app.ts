@@ -24,6 +24,7 @@ import { FrameMeter } from "./frameMeter";
 import { PhotoMode } from "../render/photo/photoMode";
 import { photoHost } from "./photoHost";
 import { ClipRecorder } from "../ui/recorder";
+import { downloadBlob, timestampName } from "../render/photo/download";
 import type { PageElements } from "./page";
 
 /** Most balloons the panel's slider offers (the engine's capacity may be higher). */
@@ -221,7 +222,18 @@ export class App {
     photo: () => this.photo.toggle(),
     savePhoto: () => this.photo.save(),
     record: () => this.recorder.toggle(),
+    exportGltf: () => void this.exportGltf(),
   };
+
+  /** Downloads the frames of the last 10 simulated seconds as an animated glTF binary, for Blender. */
+  private async exportGltf(): Promise<void> {
+    try {
+      const glb = await this.bridge.exportGltf();
+      downloadBlob(new Blob([glb], { type: "model/gltf-binary" }), timestampName("up", "glb"));
+    } catch (e) {
+      this.messages.error(`The glTF export failed: ${e instanceof Error ? e.message : String(e)}`);
+    }
+  }
 
   /** One animation frame: controls, the world from the newest physics frame, the HUD, the render. */
   private frame(now: number): void {

@@ -54,6 +54,8 @@ export class SimBridge {
   private readonly measurements: ((r: StepsMeasured) => void)[] = [];
   /** State hash requests waiting for the worker's answer, by id. */
   private readonly hashes = new Map<number, (answer: { hash: string; steps: number }) => void>();
+  /** glTF exports waiting for the worker's answer, by id. */
+  private readonly exports = new Map<number, (answer: { glb: ArrayBuffer | null; error: string | null }) => void>();
 
   constructor(private readonly events: BridgeEvents) {
     this.worker = this.startWorker();
@@ -126,6 +128,10 @@ export class SimBridge {
         this.hashes.get(msg.id)?.(msg);
         this.hashes.delete(msg.id);
         break;
+      case "gltf":
+        this.exports.get(msg.id)?.(msg);
+        this.exports.delete(msg.id);
+        break;
     }
   }
 
@@ -152,6 +158,8 @@ export class SimBridge {
     for (const answer of this.validations.values()) answer("the physics engine was restarted");
     this.validations.clear();
     this.hashes.clear();
+    for (const answer of this.exports.values()) answer({ glb: null, error: "the physics engine was restarted" });
+    this.exports.clear();
     this.current = null;
     this.worker = this.startWorker();
     this.restore = { paused: this.paused, rate: this.rate };
@@ -164,6 +172,15 @@ export class SimBridge {
     return new Promise((resolve) => {
       this.hashes.set(id, resolve);
       this.send({ type: "hash", id });
+    });
+  }
+
+  /** The last 10 s of frames the page was sent, as an animated glTF binary (.glb); rejects with the engine's reason. */
+  exportGltf(): Promise<ArrayBuffer> {
+    const id = this.nextValidation++;
+    return new Promise((resolve, reject) => {
+      this.exports.set(id, ({ glb, error }) => (glb ? resolve(glb) : reject(new Error(error ?? "no glTF"))));
+      this.send({ type: "exportGltf", id });
     });
   }
 

@@ -414,4 +414,14 @@ export class Engine {
   stateHash(): bigint {
     return this.e.state_hash();
   }
+
+  /** Records the world now into the glTF export's ring (the last 10 s of simulated time). */
+  recordExportFrame(): void {
+    this.call(() => this.e.record_export_frame());
+  }
+
+  /** The ring's frames as an animated glTF binary (.glb), as `up export-gltf` writes one. */
+  exportGltf(): Uint8Array {
+    return this.call(() => this.e.export_gltf());
+  }
 }

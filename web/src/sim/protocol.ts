@@ -42,7 +42,9 @@ export type ToWorker =
   /** Measurements: the scene from its start, `steps` steps timed one by one (sim/stepMeter.ts). */
   | { type: "measureSteps"; steps: number }
   /** Asks for the world's state hash and the steps taken since it was built; answered by `hash` with the same `id`. */
-  | { type: "hash"; id: number };
+  | { type: "hash"; id: number }
+  /** Asks for the last 10 s of frames sent, as a .glb; answered by `gltf` with the same `id`. */
+  | { type: "exportGltf"; id: number };
 
 /** What the main thread needs to draw a freshly built world. */
 export interface WorldInfo {
@@ -124,4 +126,6 @@ export type FromWorker =
   | { type: "validated"; id: number; error: string | null }
   | ({ type: "stepsMeasured" } & StepsMeasured)
   /** The world's state hash (16 hex digits, as the `up` CLI prints it) after `steps` steps. */
-  | { type: "hash"; id: number; hash: string; steps: number };
+  | { type: "hash"; id: number; hash: string; steps: number }
+  /** The .glb of `exportGltf` request `id`, or why there is none. */
+  | { type: "gltf"; id: number; glb: ArrayBuffer | null; error: string | null };

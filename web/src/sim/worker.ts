@@ -192,6 +192,8 @@ function sendFrame(previous: Previous | null): void {
     state.versionSent = state.version;
   }
   state.dirty = false;
+  // What the page was sent is what "Export last 10 s" writes.
+  state.engine.recordExportFrame();
   post(frame, forces ? [buffer, forces.rows.buffer] : [buffer]);
 }
 
@@ -389,6 +391,18 @@ function handle(msg: ToWorker): void {
     case "hash": {
       const e = state.engine;
       if (e) post({ type: "hash", id: msg.id, hash: BigInt.asUintN(64, e.stateHash()).toString(16).padStart(16, "0"), steps: state.steps });
+      return;
+    }
+    case "exportGltf": {
+      const e = state.engine;
+      try {
+        if (!e) throw new Error("the physics engine has not been started");
+        const bytes = e.exportGltf();
+        const glb = bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength) as ArrayBuffer;
+        post({ type: "gltf", id: msg.id, glb, error: null }, [glb]);
+      } catch (err) {
+        post({ type: "gltf", id: msg.id, glb: null, error: err instanceof Error ? err.message : String(err) });
+      }
       return;
     }
     case "debug":

@@ -75,6 +75,8 @@ export interface PanelActions {
   savePhoto(): void;
   /** Starts or stops recording a clip (R). */
   record(): void;
+  /** Downloads the last 10 s of the run as an animated glTF binary (.glb). */
+  exportGltf(): void;
 }
 
 export class Panel {
@@ -94,6 +96,7 @@ export class Panel {
     photo: () => this.actions.photo(),
     savePhoto: () => this.actions.savePhoto(),
     record: () => this.actions.record(),
+    exportGltf: () => this.actions.exportGltf(),
   };
   private readonly photoButton: ReturnType<GUI["add"]>;
   private readonly saveButton: ReturnType<GUI["add"]>;
@@ -159,6 +162,7 @@ export class Panel {
     this.photoButton = tag(media.add(this.buttons, "photo"), "photo").name("photo (P)");
     this.saveButton = tag(media.add(this.buttons, "savePhoto"), "savePhoto").name("save photo (PNG)").disable();
     this.recordButton = tag(media.add(this.buttons, "record"), "record").name("record (R)");
+    tag(media.add(this.buttons, "exportGltf"), "exportGltf").name("Export last 10 s (.glb)");
   }
 
   setPhoto(on: boolean): void {
