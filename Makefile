@@ -12,6 +12,8 @@
 #   make fuzz   run every cargo-fuzz target for FUZZ_SECONDS each (pinned nightly + cargo-fuzz);
 #               `make test` runs the targets over their committed corpus on stable
 #   make soak   the long run of issue 7: 10,000 balloons for an hour of simulated time
+#   make render a scene's run rendered by Blender's Cycles on the CPU, headless: PNG frames (and an
+#               MP4 of several) in renders/SCENE/; installs Debian's blender (not part of make test)
 # Every target installs what it needs, idempotently.
 
 SHELL := /bin/bash
@@ -35,7 +37,7 @@ RUST_SOURCES := $(shell find crates -name '*.rs' -o -name Cargo.toml) Cargo.toml
 export PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD := 1
 WEB_SOURCES := $(shell find web/src web/index.html web/vite.config.* web/tsconfig*.json web/scripts -type f 2>/dev/null) $(shell find assets -type f 2>/dev/null)
 
-.PHONY: run build test lint test-rust test-fuzz-corpus test-web test-e2e test-determinism bench bench-ribbons measure fuzz soak setup setup-rust setup-wasm-threads setup-web setup-browser setup-bench serve clean
+.PHONY: run build test lint test-rust test-fuzz-corpus test-web test-e2e test-determinism bench bench-ribbons measure fuzz soak setup setup-rust setup-wasm-threads setup-web setup-browser setup-bench setup-blender setup-pyflakes test-render render serve clean
 
 run: build
 	@echo "UP is being served on http://localhost:$(PORT)  (Ctrl-C stops it)"
@@ -115,7 +117,8 @@ web/dist/index.html: $(WASM_OUT) $(WASM_THREADS_OUT) $(WEB_SOURCES) web/node_mod
 serve:
 	cd web && npm run --silent serve -- --port $(PORT)
 
-lint: setup-rust
+lint: setup-rust setup-pyflakes
+	pyflakes3 tools/render
 	$(CARGO) fmt --all -- --check
 	$(CARGO) clippy --workspace --all-targets --release -- -D warnings
 	$(CARGO) fmt --manifest-path fuzz/Cargo.toml --all -- --check
@@ -150,7 +153,15 @@ test-determinism: build
 	node --test web/determinism/bodyHashes.test.mjs
 	node web/determinism/check.mjs
 
-test: lint test-rust test-web test-e2e test-determinism
+# The render script, run by Blender on a short export of the default room (tiny, few samples),
+# where Blender is installed (make render installs it); skipped, saying so, where it is not.
+test-render:
+	@if command -v $(BLENDER) >/dev/null 2>&1; then \
+	  $(MAKE) --no-print-directory setup-blender && $(CARGO) build --release -p up-cli && \
+	  python3 tools/render/test_render.py --blender $(BLENDER) --up target/release/up; \
+	else echo "test-render: skipped, Blender is not installed (make render installs Debian's blender)"; fi
+
+test: lint test-rust test-web test-e2e test-determinism test-render
 	@echo "make test: all suites passed"
 
 FUZZ_SECONDS ?= 300
@@ -191,6 +202,45 @@ fuzz: setup-wasm-threads
 
 soak: setup-rust
 	$(CARGO) run --release -p up-cli -- soak $(SOAK_ARGS)
+
+# Debian's blender for make render, with python3-numpy, which its glTF importer needs and the
+# package does not pull in. Never a download from elsewhere.
+BLENDER ?= blender
+setup-blender:
+	@command -v $(BLENDER) >/dev/null 2>&1 && dpkg -s python3-numpy >/dev/null 2>&1 || { \
+	  echo "Installing Debian's blender (and python3-numpy for its glTF importer) for make render"; \
+	  SUDO=$$( [ "$$(id -u)" = 0 ] || echo sudo ); \
+	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq blender python3-numpy >/dev/null; }
+
+# Debian's pyflakes for the render script's lint.
+setup-pyflakes:
+	@command -v pyflakes3 >/dev/null 2>&1 || { \
+	  SUDO=$$( [ "$$(id -u)" = 0 ] || echo sudo ); \
+	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq pyflakes3 >/dev/null; }
+
+# A scene's run (up export-gltf) rendered by Cycles on the CPU through tools/render/render_gltf.py:
+# Blender's glTF importer, then the page's photo lights and sky. FRAME=N renders one frame, FRAMES=A-B
+# several (and clip.mp4 of them), at FPS from the run's start; SECONDS is how much of the run is
+# exported (by default just enough for the last frame). CAMERA=home views it from the page's home
+# view rather than the file's camera. Frames and the .glb go to RENDER_DIR. Blender takes its
+# Python's prefix from the first python3.x on PATH: the system's, for its numpy.
+SCENE ?= assets/scenes/default.toml
+FPS ?= 30
+FRAME ?= 120
+FRAMES ?=
+SAMPLES ?= 64
+SIZE ?= 960x600
+CAMERA ?= file
+RENDER_DIR ?= renders/$(basename $(notdir $(SCENE)))
+render: setup-blender
+	$(CARGO) build --release -p up-cli
+	@frames='$(or $(FRAMES),$(FRAME))'; last=$${frames##*-}; \
+	seconds='$(SECONDS)'; [ -n "$$seconds" ] || seconds=$$(( last / $(FPS) + 1 )); \
+	mkdir -p $(RENDER_DIR); \
+	echo "Exporting $$seconds s of $(SCENE) at $(FPS) fps to $(RENDER_DIR)/run.glb"; \
+	target/release/up export-gltf $(SCENE) $(RENDER_DIR)/run.glb --seconds $$seconds --fps $(FPS); \
+	PATH=/usr/bin:$$PATH $(BLENDER) -b --factory-startup --python-exit-code 1 --python tools/render/render_gltf.py -- \
+	  --glb $(RENDER_DIR)/run.glb --out $(RENDER_DIR) --frames $$frames --samples $(SAMPLES) --size $(SIZE) --fps $(FPS) --camera $(CAMERA)
 
 clean:
 	$(CARGO) clean

@@ -1,13 +1,15 @@
 // Photo mode and clip recording, as a user does them: P pauses and path-traces
 // the scene drawn now until the samples add up, the picture is not the live
 // frame, save downloads a PNG of the canvas's size, and P again resumes the
-// simulation; R records the view and R again downloads a WebM clip.
+// simulation; R records the view and R again downloads a WebM clip, which is
+// never an empty file, however slowly the page draws.
 //
 // SwiftShader traces on the CPU: the photo test runs in a small page (its
 // cost is per pixel) with a generous bound, and writes how long each part
 // took into the report's annotations (measurements, not limits).
 
 import { readFileSync } from "node:fs";
+import type { Page } from "@playwright/test";
 import { expect, open, test } from "./fixtures";
 
 /** The photo test's page: small, since every sample costs SwiftShader per pixel. */
@@ -117,4 +119,84 @@ test("R records the view for 3 s, R again downloads a WebM clip", async ({ page 
   expect(Array.from(clip.subarray(0, 4))).toEqual(EBML_MAGIC);
   const saved = await page.evaluate(() => window.__up!.recording().saved);
   expect(saved).toEqual([{ type: "video/webm", bytes: clip.length }]);
+});
+
+/**
+ * Lets the page draw exactly one frame while its drawing is held (the hook's
+ * `holdDrawing`): the page at a frame a second or slower, as a loaded machine
+ * without a GPU draws a large scene.
+ */
+async function drawOneFrame(page: Page): Promise<void> {
+  await page.evaluate(
+    () =>
+      new Promise<void>((resolve) => {
+        const up = window.__up!;
+        const before = up.frames().drawn;
+        up.holdDrawing(false);
+        const check = () => {
+          if (up.frames().drawn > before) {
+            up.holdDrawing(true);
+            resolve();
+          } else requestAnimationFrame(check);
+        };
+        requestAnimationFrame(check);
+      }),
+  );
+}
+
+test("a clip on a page drawing a frame a second is never an empty file: it has its frames, or the page says there is nothing to save", async ({ page }, testInfo) => {
+  const note = (type: string, description: string) => testInfo.annotations.push({ type, description });
+  await open(page);
+  const downloads: Buffer[] = [];
+  page.on("download", (d) => void d.path().then((p) => p && downloads.push(readFileSync(p))));
+  await page.evaluate(() => window.__up!.holdDrawing(true));
+  const message = page.locator("#message");
+
+  // Three seconds at a frame a second.
+  await page.keyboard.press("r");
+  await page.waitForFunction(() => window.__up!.recording().recording);
+  for (let s = 0; s < 3; s++) {
+    await drawOneFrame(page);
+    await page.waitForTimeout(1000);
+  }
+  const downloading = page.waitForEvent("download");
+  await page.keyboard.press("r");
+  const clip = readFileSync((await (await downloading).path())!);
+  note("3 s clip at a frame a second, bytes", String(clip.length));
+  expect(Array.from(clip.subarray(0, 4))).toEqual(EBML_MAGIC);
+  expect(clip.length).toBeGreaterThan(1000);
+
+  // Stopped right after its one frame: a clip with it, or the page's word that it has none.
+  await page.keyboard.press("r");
+  await page.waitForFunction(() => window.__up!.recording().recording);
+  await drawOneFrame(page);
+  await page.keyboard.press("r");
+  await page.waitForFunction(() => {
+    const r = window.__up!.recording();
+    return r.saved.length + r.empty === 2;
+  });
+  const afterOne = await page.evaluate(() => window.__up!.recording());
+  if (afterOne.empty === 0) {
+    note("clip stopped right after one frame", `saved, ${afterOne.saved[1].bytes} bytes`);
+    expect(afterOne.saved[1].bytes).toBeGreaterThan(0);
+  } else {
+    note("clip stopped right after one frame", "nothing to save, the page said so");
+    await expect(message).toBeVisible();
+    await expect(message).toContainText("nothing was saved");
+  }
+
+  // No frame at all: nothing saved, and the page says why.
+  await page.keyboard.press("r");
+  await page.waitForFunction(() => window.__up!.recording().recording);
+  await page.waitForTimeout(2500);
+  await page.keyboard.press("r");
+  await page.waitForFunction((n) => window.__up!.recording().empty > n, afterOne.empty);
+  await expect(message).toBeVisible();
+  await expect(message).toContainText("nothing was saved");
+  const { saved } = await page.evaluate(() => window.__up!.recording());
+  expect(saved.length, "the frameless clip saved nothing").toBe(afterOne.saved.length);
+  // Every download the page made has bytes.
+  await expect.poll(() => downloads.length).toBe(saved.length);
+  expect(downloads.every((d) => d.length > 0)).toBe(true);
+  await page.evaluate(() => window.__up!.holdDrawing(false));
 });

@@ -11,8 +11,8 @@ export function photoTestHook(app: App) {
   return {
     /** Photo mode: on or off, whole samples so far, the last bake's ms, instances and triangles. */
     photo: () => ({ active: app.photo.active, samples: app.photo.samples, bake: { ...app.photo.lastBake } }),
-    /** Whether a clip is recording, and the clips saved so far (type, bytes). */
-    recording: () => ({ recording: app.recorder.recording, saved: app.recorder.saved.slice() }),
+    /** Whether a clip is recording, the clips saved so far (type, bytes), and the takes that had no frames to save. */
+    recording: () => ({ recording: app.recorder.recording, saved: app.recorder.saved.slice(), empty: app.recorder.empty }),
     /**
      * Draws the view once more (the photo so far, or a live frame) and keeps
      * its pixels as `name`; returns its size, mean luminance (0–255) and
