@@ -154,16 +154,17 @@ pub fn look_rotation(eye: Vec3, target: Vec3) -> Quat {
 }
 
 /// A camera standing in the room, 10 cm in from the walls in the direction
-/// the page's first view comes from (azimuth 0.6 rad), a little below the
-/// top of the walls, looking at the room's centre: inside, so that a
-/// renderer that draws both sides of the walls still sees the balloons.
+/// the page's first view comes from (azimuth 0.6 rad), at under half the
+/// room's top (below where a pyramid's slopes meet the walls), looking up at
+/// the room's centre: inside, so that a renderer that draws both sides of
+/// the walls and ceiling still sees the balloons.
 pub fn camera_pose(half_width: f32, half_depth: f32, top: f32) -> (Vec3, Quat) {
     let center = Vec3::new(0.0, top * 0.55, 0.0);
     let (sin, cos) = 0.6f32.sin_cos();
     let reach = ((half_width - 0.1) / sin)
         .min((half_depth - 0.1) / cos)
         .max(0.1);
-    let eye = center + Vec3::new(sin * reach, 0.15 * top, cos * reach);
+    let eye = center + Vec3::new(sin * reach, -0.1 * top, cos * reach);
     (eye, look_rotation(eye, center))
 }
 
@@ -223,7 +224,8 @@ mod tests {
     #[test]
     fn the_camera_stands_inside_the_room() {
         let (eye, _) = camera_pose(3.0, 3.0, 4.5);
-        assert!(eye.x.abs() < 3.0 && eye.z.abs() < 3.0 && eye.y > 0.0 && eye.y < 4.5);
+        assert!(eye.x.abs() < 3.0 && eye.z.abs() < 3.0 && eye.y > 0.0);
+        assert!(eye.y < 0.5 * 4.5, "below a pyramid's eaves: {eye}");
     }
 
     #[test]
