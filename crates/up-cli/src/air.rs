@@ -123,13 +123,7 @@ pub fn run(args: &AirArgs) -> Result<()> {
         .collect();
     let name = args.scene.display().to_string();
     let (fans, vents, draughts) = (scene.fans.len(), scene.vents.len(), scene.draughts.len());
-    println!(
-        "up air: {name} at t = {} s: {}, {}, {}",
-        args.t,
-        count(fans, "fan", "fans"),
-        count(vents, "vent", "vents"),
-        count(draughts, "draught", "draughts")
-    );
+    println!("up air: {name} at t = {} s: {}", args.t, sources(&scene));
     println!(
         "  {:>8} {:>8} {:>8}   {:>8} {:>8} {:>8}   {:>8}",
         "x m", "y m", "z m", "u_x m/s", "u_y m/s", "u_z m/s", "speed"
@@ -158,6 +152,16 @@ pub fn run(args: &AirArgs) -> Result<()> {
 
 fn format_point([x, y, z]: [f32; 3]) -> String {
     format!("{x},{y},{z}")
+}
+
+/// "1 fan, no vents, 3 draughts": a scene's sources of moving air.
+pub fn sources(scene: &Scene) -> String {
+    format!(
+        "{}, {}, {}",
+        count(scene.fans.len(), "fan", "fans"),
+        count(scene.vents.len(), "vent", "vents"),
+        count(scene.draughts.len(), "draught", "draughts")
+    )
 }
 
 /// "1 fan", "no vents", "3 draughts".

@@ -213,3 +213,32 @@ fn run_hours_writes_a_row_set_every_k_simulated_minutes() {
         assert!((t - 120.0 * k as f64).abs() < 0.05, "{times:?}");
     }
 }
+
+#[test]
+fn forecast_runs_with_the_scenes_moving_air_and_says_so() {
+    let dir = TempDir::new("forecast-air");
+    let still = write_scene(&dir);
+    let vented = dir.path("vented.toml");
+    let vent = "\n[[vents]]\nposition = [0.0, 2.4, 0.0]\nspeed_m_s = 3.0\non = [[60.0, 1e9]]\n";
+    std::fs::write(&vented, format!("{SCENE}{vent}")).unwrap();
+    let vented = vented.display().to_string();
+    let forecast = |scene: &str| {
+        let text = up_ok(&["forecast", scene, "--hours", "0.05", "--json"]);
+        (text.clone(), last_json(&text))
+    };
+    let (text, j) = forecast(&still);
+    assert!(text.contains("air ") && text.contains("still"), "{text}");
+    assert_eq!(
+        j["air"],
+        serde_json::json!({"fans": 0, "vents": 0, "draughts": 0})
+    );
+    let (text, j) = forecast(&vented);
+    assert!(
+        text.contains("no fans, 1 vent, no draughts (as the scene switches them)"),
+        "{text}"
+    );
+    assert_eq!(
+        j["air"],
+        serde_json::json!({"fans": 0, "vents": 1, "draughts": 0})
+    );
+}
