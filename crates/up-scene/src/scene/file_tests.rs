@@ -94,6 +94,8 @@ fn documented_full_example_parses_the_same_in_toml_and_json() {
     let from_json = Scene::from_json_str(&block("json"), "doc.json").unwrap();
     assert_eq!(from_toml, from_json);
     assert_eq!(from_toml.total_balloons(), 41);
+    let sources = (from_toml.fans.len(), from_toml.vents.len());
+    assert_eq!((sources, from_toml.draughts.len()), ((1, 1), 1));
     assert_eq!(
         from_toml.balloons[0].tied_ribbon(),
         Some(&RibbonSpec::default())
