@@ -149,6 +149,7 @@ test-e2e: setup-browser build
 test-determinism: build
 	node --test web/determinism/bodyHashes.test.mjs
 	node web/determinism/check.mjs
+	node web/determinism/check.mjs web/determinism/fan-scene.toml
 
 test: lint test-rust test-web test-e2e test-determinism
 	@echo "make test: all suites passed"
