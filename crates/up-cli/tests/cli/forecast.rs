@@ -252,3 +252,19 @@ fn forecast_says_which_moving_air_it_runs_with() {
         serde_json::json!({"fans": 0, "vents": 1, "draughts": 0})
     );
 }
+
+/// Still, the balloons sleep under the ceiling and the run jumps; once the
+/// vent blows, the balloon under it is blown down and stepped.
+#[test]
+fn forecast_with_a_vent_switched_on_blows_a_balloon_off_the_ceiling() {
+    let dir = TempDir::new("forecast-vent");
+    let (still, vented) = still_and_vented(&dir);
+    let (_, still) = short_forecast(&still);
+    let (_, blown) = short_forecast(&vented);
+    eprintln!(
+        "forecast steps and jumps: still {} and {}, with the vent {} and {}",
+        still["steps"], still["jumps"], blown["steps"], blown["jumps"]
+    );
+    let steps = |j: &serde_json::Value| j["steps"].as_u64().unwrap();
+    assert!(steps(&blown) > 2 * steps(&still), "{still}\n{blown}");
+}
