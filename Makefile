@@ -152,6 +152,7 @@ test-e2e: setup-browser build
 test-determinism: build
 	node --test web/determinism/bodyHashes.test.mjs
 	node web/determinism/check.mjs
+	node web/determinism/check.mjs web/determinism/fan-scene.toml
 
 # The render script, run by Blender on a short export of the default room (tiny, few samples),
 # where Blender is installed (make render installs it); skipped, saying so, where it is not.

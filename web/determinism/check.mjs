@@ -11,6 +11,10 @@
 // takes exactly the native run's number of steps and compares `state_hash`.
 // Its scene has ribbons, which the hash covers; the ribbon counts are
 // compared too where the CLI reports them (`ribbons` in its JSON).
+// `make test-determinism` runs it on scene.toml and again on fan-scene.toml,
+// the same kind of room with moving air (a sweeping fan, a vent and a
+// door's draught switched on and off), so that every drag against the air
+// is compared too.
 // Then the same with the threaded module (web/public/wasm/threads) on 1, 2
 // and 4 threads (UP_CHECK_THREADS=1,2,4), each in a process of its own (a
 // process holds one pool; web/sim-node/loadEngine.mjs loads it).

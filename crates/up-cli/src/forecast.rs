@@ -62,6 +62,17 @@ struct ForecastJson {
     wall_s: f64,
     steps: u64,
     jumps: u64,
+    /// The scene's sources of moving air, which blew through the run
+    /// (each switched by its `on` intervals).
+    air: AirSources,
+}
+
+/// How many of each source of moving air a scene has.
+#[derive(Debug, Serialize)]
+struct AirSources {
+    fans: usize,
+    vents: usize,
+    draughts: usize,
 }
 
 /// What one group did, times in hours from the start of the run; null: not within it.
@@ -211,7 +222,23 @@ pub fn run(args: &ForecastArgs) -> Result<()> {
         })
         .collect();
 
-    print_forecast(&args.scene.name(), hours, &forecasts, wall_s, steps, jumps);
+    let air = if scene.has_moving_air() {
+        format!(
+            "{} (as the scene switches them)",
+            crate::air::sources(&scene)
+        )
+    } else {
+        "still".to_string()
+    };
+    let run = RunFacts {
+        scene: args.scene.name(),
+        air,
+        hours,
+        wall_s,
+        steps,
+        jumps,
+    };
+    print_forecast(&run, &forecasts);
     if let Some(path) = &args.plot {
         let svg = plot_svg(&shares, hours)?;
         let mut file = AtomicFile::create(path).context("--plot")?;
@@ -226,6 +253,11 @@ pub fn run(args: &ForecastArgs) -> Result<()> {
             wall_s,
             steps,
             jumps,
+            air: AirSources {
+                fans: scene.fans.len(),
+                vents: scene.vents.len(),
+                draughts: scene.draughts.len(),
+            },
         };
         println!("{}", serde_json::to_string(&json)?);
     }
@@ -308,19 +340,32 @@ fn share_of(counts: &[GroupCensus], hours: f64) -> Shares {
     }
 }
 
-fn print_forecast(
-    scene: &str,
+/// What the table's head says about the run.
+struct RunFacts {
+    scene: String,
+    /// The moving air: "still", or its sources.
+    air: String,
     hours: f64,
-    groups: &[GroupForecast],
     wall_s: f64,
     steps: u64,
     jumps: u64,
-) {
+}
+
+fn print_forecast(run: &RunFacts, groups: &[GroupForecast]) {
+    let RunFacts {
+        scene,
+        air,
+        hours,
+        wall_s,
+        steps,
+        jumps,
+    } = run;
     let when = |t: Option<f64>| t.map_or_else(|| format!("> {hours} h"), |t| format!("{t:.2} h"));
     print_table(
         "up forecast",
         &[
             ("scene", scene.to_string()),
+            ("air", air.to_string()),
             ("simulated", format!("{hours} h")),
             ("wall clock", format!("{wall_s:.1} s")),
             ("steps", steps.to_string()),

@@ -5,6 +5,7 @@
 //! that cannot be read or written), with a message on standard error that
 //! starts with `error:`.
 
+mod air;
 mod bench;
 mod colliders;
 mod export_gltf;
@@ -54,6 +55,9 @@ enum Command {
     /// of a group of n; "> H h": not within the run; "never up": no balloon
     /// of the group reached the ceiling.
     Forecast(forecast::ForecastArgs),
+    /// Print the room's moving air (its fans, vents and draughts) at points:
+    /// the velocity, m/s, and the speed.
+    Air(air::AirArgs),
     /// Time the UP engine alone on a scene, with per-stage counters.
     Bench(bench::BenchArgs),
     /// Show the default balloon's sphere tree and mass properties.
@@ -101,6 +105,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Run(args) => run::run(&args),
         Command::Forecast(args) => forecast::run(&args),
+        Command::Air(args) => air::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::Colliders(args) => colliders::run(&args),
         Command::Validate(args) => validate::run(&args),

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::Args;
 use up_scene::build::build_world;
-use up_scene::scene::{CeilingKind, GasKind, Scene};
+use up_scene::scene::{CeilingKind, GasKind, JetSource, Scene};
 
 use crate::summary::print_table;
 
@@ -109,6 +109,71 @@ pub fn run(args: &ValidateArgs) -> Result<()> {
         })
         .collect();
     rows.extend(groups.iter().map(|(k, v)| (k.as_str(), v.clone())));
+    let sources = air_rows(&scene);
+    rows.extend(sources.iter().map(|(k, v)| (k.as_str(), v.clone())));
     print_table(&format!("{}: valid", args.scene.display()), &rows);
     Ok(())
+}
+
+/// A row per fan, vent and draught, with its kind's defaults filled in;
+/// none for still air.
+fn air_rows(scene: &Scene) -> Vec<(String, String)> {
+    let on = |intervals: &[[f64; 2]]| match intervals {
+        [] => "always on".to_string(),
+        _ => {
+            let list: Vec<String> = intervals
+                .iter()
+                .map(|[a, b]| format!("{a}–{b} s"))
+                .collect();
+            format!("on {}", list.join(", "))
+        }
+    };
+    let jets = scene.jets().map(|(at, source, spec)| {
+        let jet = spec.resolved(source);
+        let kind = match source {
+            JetSource::Fan => "fan",
+            JetSource::Vent => "vent",
+        };
+        let sweep = if spec.sweep_deg > 0.0 {
+            format!(
+                ", sweeping {}° every {} s",
+                spec.sweep_deg, spec.sweep_period_s
+            )
+        } else {
+            String::new()
+        };
+        let value = format!(
+            "{kind} at {:?} m blowing {:?}, {} m across at {} m/s{sweep}, {}",
+            jet.position,
+            jet.direction,
+            jet.diameter_m,
+            jet.speed_m_s,
+            on(&spec.on)
+        );
+        (format!("  {at}"), value)
+    });
+    let draughts = scene.draughts.iter().enumerate().map(|(i, d)| {
+        let value = format!(
+            "opening {:?} to {:?} m, air {:?} m/s through it, {}",
+            d.min,
+            d.max,
+            d.velocity_m_s,
+            on(&d.on)
+        );
+        (format!("  draughts[{i}]"), value)
+    });
+    let rows: Vec<(String, String)> = jets.chain(draughts).collect();
+    if rows.is_empty() {
+        return rows;
+    }
+    let title = (
+        "moving air".to_string(),
+        format!(
+            "{} fan(s), {} vent(s), {} draught(s) (up air SCENE --at X,Y,Z prints it)",
+            scene.fans.len(),
+            scene.vents.len(),
+            scene.draughts.len()
+        ),
+    );
+    std::iter::once(title).chain(rows).collect()
 }

@@ -32,7 +32,7 @@ fn height(world: &World, id: BodyId) -> f32 {
 }
 
 #[test]
-fn every_learn_scene_has_a_caption_and_the_menu_finds_four() {
+fn every_learn_scene_has_a_caption_and_the_menu_finds_five() {
     let dir = asset("");
     let mut names: Vec<String> = std::fs::read_dir(&dir)
         .unwrap()
@@ -44,6 +44,7 @@ fn every_learn_scene_has_a_caption_and_the_menu_finds_four() {
         names,
         [
             "learn-cold-room.toml",
+            "learn-fan-hover.toml",
             "learn-helium-and-air.toml",
             "learn-terminal-speed.toml",
             "learn-throw.toml"
@@ -69,6 +70,70 @@ fn the_single_balloon_climbs_at_its_terminal_speed() {
         (measured - predicted).abs() <= 0.02 * predicted,
         "rose at {measured} m/s, terminal speed {predicted} m/s"
     );
+}
+
+/// The fan's jet rises as fast as the balloon falls through still air at
+/// the height on its axis the caption says it hovers at, and faster where
+/// it starts.
+/// (That it then hovers there is the drag's to show: the physics tests'.)
+#[test]
+fn the_fan_blows_up_as_fast_as_the_balloon_falls_where_the_caption_says_it_hovers() {
+    let built = build("learn-fan-hover.toml");
+    let world = &built.world;
+    let id = world.body_ids()[0];
+    let sinks_at = world.terminal_speed(id).unwrap();
+    let start = world.center_of_mass(id).unwrap();
+    let fan = &world.air_flow().jets[0];
+    let rising = |y: f32| {
+        world
+            .air_velocity_at(Vec3::new(fan.outlet.x, y, fan.outlet.z))
+            .y
+    };
+    assert!(
+        rising(start.y) > 1.5 * sinks_at,
+        "it starts where the air lifts it"
+    );
+    // Bisection up the axis: the air slows with height past the core.
+    let (mut lo, mut hi) = (start.y, built.room.bounds().max.y);
+    assert!(
+        rising(hi) < sinks_at,
+        "the jet is slower than that under the ceiling"
+    );
+    for _ in 0..40 {
+        let mid = 0.5 * (lo + hi);
+        if rising(mid) > sinks_at {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let hover = 0.5 * (lo + hi);
+    println!(
+        "fan hover: sinks at {sinks_at:.3} m/s in still air; the jet rises that fast \
+         {hover:.3} m up, {:.3} m above the outlet",
+        hover - fan.outlet.y
+    );
+    let caption = &built_caption("learn-fan-hover.toml");
+    let said = format!("{:.2} m/s", sinks_at);
+    assert!(
+        caption.contains(&said),
+        "the caption gives {said}: {caption}"
+    );
+    let said = format!("{:.1} m up", hover);
+    assert!(
+        caption.contains(&said),
+        "the caption gives {said}: {caption}"
+    );
+    let radius = 0.5 * 0.28;
+    assert!(
+        hover + radius < built.room.bounds().max.y - 0.5,
+        "clear of the ceiling"
+    );
+}
+
+fn built_caption(name: &str) -> String {
+    let scene = Scene::from_path(asset(name)).unwrap();
+    scene.about.unwrap().caption
 }
 
 #[test]

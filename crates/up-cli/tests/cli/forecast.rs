@@ -213,3 +213,58 @@ fn run_hours_writes_a_row_set_every_k_simulated_minutes() {
         assert!((t - 120.0 * k as f64).abs() < 0.05, "{times:?}");
     }
 }
+
+/// `late.toml` (`SCENE`) as it is, and with a ceiling vent 0.6 m across
+/// over its balloons switched on a minute into the run.
+fn still_and_vented(dir: &TempDir) -> (String, String) {
+    let still = write_scene(dir);
+    let vented = dir.path("vented.toml");
+    let vent = "\n[[vents]]\nposition = [0.0, 2.4, 0.0]\ndiameter_m = 0.6\nspeed_m_s = 3.0\n\
+                on = [[60.0, 1e9]]\n";
+    std::fs::write(&vented, format!("{SCENE}{vent}")).unwrap();
+    (still, vented.display().to_string())
+}
+
+/// A short forecast's output and its JSON.
+fn short_forecast(scene: &str) -> (String, serde_json::Value) {
+    let text = up_ok(&["forecast", scene, "--hours", "0.05", "--json"]);
+    let json = last_json(&text);
+    (text, json)
+}
+
+#[test]
+fn forecast_says_which_moving_air_it_runs_with() {
+    let dir = TempDir::new("forecast-air");
+    let (still, vented) = still_and_vented(&dir);
+    let (text, still) = short_forecast(&still);
+    assert!(text.contains("air ") && text.contains("still"), "{text}");
+    assert_eq!(
+        still["air"],
+        serde_json::json!({"fans": 0, "vents": 0, "draughts": 0})
+    );
+    let (text, blown) = short_forecast(&vented);
+    assert!(
+        text.contains("no fans, 1 vent, no draughts (as the scene switches them)"),
+        "{text}"
+    );
+    assert_eq!(
+        blown["air"],
+        serde_json::json!({"fans": 0, "vents": 1, "draughts": 0})
+    );
+}
+
+/// Still, the balloons sleep under the ceiling and the run jumps; once the
+/// vent blows, the balloon under it is blown down and stepped.
+#[test]
+fn forecast_with_a_vent_switched_on_blows_a_balloon_off_the_ceiling() {
+    let dir = TempDir::new("forecast-vent");
+    let (still, vented) = still_and_vented(&dir);
+    let (_, still) = short_forecast(&still);
+    let (_, blown) = short_forecast(&vented);
+    eprintln!(
+        "forecast steps and jumps: still {} and {}, with the vent {} and {}",
+        still["steps"], still["jumps"], blown["steps"], blown["jumps"]
+    );
+    let steps = |j: &serde_json::Value| j["steps"].as_u64().unwrap();
+    assert!(steps(&blown) > 2 * steps(&still), "{still}\n{blown}");
+}

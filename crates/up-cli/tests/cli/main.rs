@@ -3,6 +3,7 @@
 //! Simulations stay short (a few balloons, at most a simulated second, or
 //! a few simulated hours as a time-lapse in a small room).
 
+mod air;
 mod body_hashes;
 mod export_gltf;
 mod forecast;

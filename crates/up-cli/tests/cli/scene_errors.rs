@@ -119,6 +119,8 @@ fn validate_accepts_every_example_and_rejects_bad_files() {
         "default.toml",
         "terminal-velocity.toml",
         "party-hall.toml",
+        "party-fans.toml",
+        "learn-fan-hover.toml",
         "thrown.toml",
         "two-gases.json",
         "mixed-room.toml",

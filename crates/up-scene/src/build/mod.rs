@@ -3,7 +3,8 @@
 //! filled with its gas (`gas_fill`: its group's envelope, its own leak
 //! factor, filled `filled_hours_before` h before the run), and with its
 //! group's ribbon tied at its knot (`ribbons::tie_ribbon`), its free end
-//! tied down where the group gives an anchor (`anchor::tie_down`).
+//! tied down where the group gives an anchor (`anchor::tie_down`); and the
+//! room's moving air, its fans, vents and draughts (`air`).
 //!
 //! Each body's `user_data` packs its group and colour:
 //! `group << 16 | colour`, where `colour` indexes `BuiltScene::colors`
@@ -21,6 +22,7 @@ use crate::scene::{parse_color, BalloonGroup, BalloonKind, CeilingKind, GasKind,
 use ribbons::{tie_ribbon, GroupRibbon};
 use room::{box_room, room_from_obj, Ceiling, RoomMesh};
 
+pub mod air;
 pub mod anchor;
 pub mod bench_scene;
 mod hang;
@@ -168,6 +170,11 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
     let mut def = world_def(scene);
     def.room = Some(room.to_trimesh());
     let mut world = World::new(def).map_err(physics)?;
+    air::check_air_in(scene, &room)?;
+    if scene.has_moving_air() {
+        // Before any body: still scenes build exactly as they did.
+        world.set_air_flow(air::air_flow(scene));
+    }
 
     let (colors, color_names, group_palette) = palette(scene)?;
     let bounds = room.bounds();
@@ -475,6 +482,8 @@ fn random_upright(rng: &mut SplitMix64, tilt_deg: f32, yaw_deg: f32) -> Quat {
     (Quat::from_axis_angle(axis, tilt) * Quat::from_rotation_y(yaw)).normalize()
 }
 
+#[cfg(test)]
+mod air_tests;
 #[cfg(test)]
 mod hang_tests;
 #[cfg(test)]

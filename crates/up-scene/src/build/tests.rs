@@ -168,6 +168,7 @@ fn example_scenes_build() {
         ("bouquet.toml", 6, 6),
         ("terminal-velocity.toml", 1, 0),
         ("party-hall.toml", 1000, 0),
+        ("party-fans.toml", 1000, 0),
         ("thrown.toml", 1, 0),
         ("two-gases.json", 18, 0),
         ("evening.toml", 43, 43),

@@ -156,6 +156,9 @@ impl Default for Scene {
                 ..BalloonGroup::default()
             }],
             air: AirSpec::default(),
+            fans: Vec::new(),
+            vents: Vec::new(),
+            draughts: Vec::new(),
             sim: SimSpec::default(),
             about: None,
             source: SceneSource::default(),

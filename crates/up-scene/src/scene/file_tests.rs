@@ -49,6 +49,7 @@ fn example_scenes_parse_and_validate() {
         "bouquet.toml",
         "terminal-velocity.toml",
         "party-hall.toml",
+        "party-fans.toml",
         "thrown.toml",
         "two-gases.json",
         "evening.toml",
@@ -61,6 +62,12 @@ fn example_scenes_parse_and_validate() {
     }
     let party = Scene::from_path(asset("party-hall.toml")).unwrap();
     assert_eq!(party.total_balloons(), 1000);
+    assert!(!party.has_moving_air());
+    // The same party with a sweeping fan and a ceiling vent.
+    let fans = Scene::from_path(asset("party-fans.toml")).unwrap();
+    assert_eq!(fans.balloons, party.balloons);
+    assert_eq!((fans.fans.len(), fans.vents.len()), (1, 1));
+    assert!(fans.fans[0].sweep_deg > 0.0);
     let thrown = Scene::from_path(asset("thrown.toml")).unwrap();
     assert_eq!(thrown.balloons[0].velocity, [30.0, 0.0, 0.0]);
 }
@@ -87,6 +94,8 @@ fn documented_full_example_parses_the_same_in_toml_and_json() {
     let from_json = Scene::from_json_str(&block("json"), "doc.json").unwrap();
     assert_eq!(from_toml, from_json);
     assert_eq!(from_toml.total_balloons(), 41);
+    let sources = (from_toml.fans.len(), from_toml.vents.len());
+    assert_eq!((sources, from_toml.draughts.len()), ((1, 1), 1));
     assert_eq!(
         from_toml.balloons[0].tied_ribbon(),
         Some(&RibbonSpec::default())

@@ -1,7 +1,9 @@
-//! Scene files: the room, groups of balloons, the air and the simulation
-//! settings, in TOML or JSON with one schema (docs/scene-format.md).
+//! Scene files: the room, groups of balloons, the air (still, or moved by
+//! fans, vents and draughts) and the simulation settings, in TOML or JSON
+//! with one schema (docs/scene-format.md).
 //!
-//! Every section and every key may be left out and takes its default; the
+//! Every section and every key may be left out and takes its default (but
+//! where a fan or vent is, and a draught's opening and velocity); the
 //! defaults are the original project's scene: a 6 m × 6 m room with 3 m walls
 //! and a pyramidal ceiling, 50 balloons in six colours released from the floor,
 //! each on a 1.5 m ribbon.
@@ -13,9 +15,11 @@
 //!
 //! One concern a file: the structs (`spec`), their defaults (`defaults`),
 //! reading text (`parse`) and files (`file`), the ranges (`validate`), the
-//! line of each key for messages (`lines`), and `[about]` (`about`).
+//! line of each key for messages (`lines`), `[about]` (`about`), and the
+//! sources of moving air with their defaults and ranges (`air_sources`).
 
 mod about;
+mod air_sources;
 mod defaults;
 mod file;
 mod lines;
@@ -25,6 +29,12 @@ mod validate;
 
 pub use crate::palette::parse_color;
 pub use about::{AboutSpec, MAX_CAPTION_CHARS, MAX_TITLE_CHARS};
+pub use air_sources::{
+    DraughtSpec, JetSource, JetSpec, ResolvedJet, DEFAULT_FAN_DIAMETER_M, DEFAULT_FAN_DIRECTION,
+    DEFAULT_FAN_SPEED_M_S, DEFAULT_SWEEP_PERIOD_S, DEFAULT_VENT_DIAMETER_M, DEFAULT_VENT_DIRECTION,
+    DEFAULT_VENT_SPEED_M_S, MAX_AIR_SOURCES, MAX_AIR_SPEED_M_S, MAX_JET_DIAMETER_M,
+    MAX_ON_INTERVALS, MAX_SWEEP_DEG, MAX_SWEEP_PERIOD_S, MIN_JET_DIAMETER_M,
+};
 pub use defaults::{
     DEFAULT_COLORS, DEFAULT_DIAMETER_M, DEFAULT_ENVELOPE_MASS_G_11IN, DEFAULT_FOIL_DIAMETER_M,
     DEFAULT_FOIL_ENVELOPE_MASS_G_18IN, DEFAULT_FOIL_VALVE_MASS_G, DEFAULT_KNOT_MASS_G,
@@ -44,6 +54,8 @@ pub use validate::{
     MIN_BALLOON_DIAMETER_M, MIN_ROOM_SIZE_M,
 };
 
+#[cfg(test)]
+mod air_sources_tests;
 #[cfg(test)]
 mod file_tests;
 #[cfg(test)]

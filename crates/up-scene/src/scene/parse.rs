@@ -156,3 +156,33 @@ pub(super) fn point<'de, D: serde::Deserializer<'de>>(
             ))
         })
 }
+
+/// `[x, y, z]` that must be given, exactly three numbers (as `point`).
+pub(super) fn xyz<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<[f32; 3], D::Error> {
+    let point = Vec::<f32>::deserialize(deserializer)?;
+    <[f32; 3]>::try_from(point.as_slice()).map_err(|_| {
+        serde::de::Error::custom(format!(
+            "expected [x, y, z], three numbers, found {}",
+            point.len()
+        ))
+    })
+}
+
+/// `[[start, end], ...]`, s, each exactly two numbers (as `pairs`).
+pub(super) fn intervals<'de, D: serde::Deserializer<'de>>(
+    deserializer: D,
+) -> Result<Vec<[f64; 2]>, D::Error> {
+    let intervals = Vec::<Vec<f64>>::deserialize(deserializer)?;
+    intervals
+        .into_iter()
+        .enumerate()
+        .map(|(i, interval)| {
+            <[f64; 2]>::try_from(interval.as_slice()).map_err(|_| {
+                serde::de::Error::custom(format!(
+                    "interval {i}: expected [start, end] in s, two numbers, found {}",
+                    interval.len()
+                ))
+            })
+        })
+        .collect()
+}

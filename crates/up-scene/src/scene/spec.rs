@@ -9,9 +9,9 @@ use std::path::PathBuf;
 use serde::{Deserialize, Serialize};
 
 use super::{
-    AboutSpec, KeyLines, DEFAULT_DIAMETER_M, DEFAULT_ENVELOPE_MASS_G_11IN, DEFAULT_FOIL_DIAMETER_M,
-    DEFAULT_FOIL_ENVELOPE_MASS_G_18IN, DEFAULT_FOIL_VALVE_MASS_G, DEFAULT_KNOT_MASS_G,
-    METRES_PER_INCH,
+    AboutSpec, DraughtSpec, JetSpec, KeyLines, DEFAULT_DIAMETER_M, DEFAULT_ENVELOPE_MASS_G_11IN,
+    DEFAULT_FOIL_DIAMETER_M, DEFAULT_FOIL_ENVELOPE_MASS_G_18IN, DEFAULT_FOIL_VALVE_MASS_G,
+    DEFAULT_KNOT_MASS_G, METRES_PER_INCH,
 };
 use crate::error::SceneError;
 
@@ -24,6 +24,15 @@ pub struct Scene {
     /// Groups of identical balloons (colours cycle within a group); at most 64.
     pub balloons: Vec<BalloonGroup>,
     pub air: AirSpec,
+    /// Fans blowing round jets (`air_sources`); at most 64.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub fans: Vec<JetSpec>,
+    /// Ceiling or wall vents: jets with a vent's defaults; at most 64.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub vents: Vec<JetSpec>,
+    /// Open doors and windows the air moves through; at most 64.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub draughts: Vec<DraughtSpec>,
     pub sim: SimSpec,
     /// A title and caption for a page (`about`); optional.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -379,6 +388,9 @@ impl PartialEq for Scene {
         self.room == other.room
             && self.balloons == other.balloons
             && self.air == other.air
+            && self.fans == other.fans
+            && self.vents == other.vents
+            && self.draughts == other.draughts
             && self.sim == other.sim
     }
 }

@@ -55,12 +55,18 @@ impl Scene {
     }
 }
 
-struct Checker<'a> {
-    scene: &'a Scene,
+/// Turns a bad value into an error that names its key, line and range.
+pub(super) struct Checker<'a> {
+    pub(super) scene: &'a Scene,
 }
 
 impl Checker<'_> {
-    fn fail(&self, key: &str, expected: impl Into<String>, found: impl Into<String>) -> SceneError {
+    pub(super) fn fail(
+        &self,
+        key: &str,
+        expected: impl Into<String>,
+        found: impl Into<String>,
+    ) -> SceneError {
         SceneError::Invalid {
             at: self.scene.locate(key),
             expected: expected.into(),
@@ -69,7 +75,7 @@ impl Checker<'_> {
     }
 
     /// `value` inside a world parameter's shared limit.
-    fn limit(&self, key: &str, value: f32, limit: &Limit) -> Result<(), SceneError> {
+    pub(super) fn limit(&self, key: &str, value: f32, limit: &Limit) -> Result<(), SceneError> {
         if limit.contains(value) {
             return Ok(());
         }
@@ -77,7 +83,7 @@ impl Checker<'_> {
     }
 
     /// `lo <= value <= hi` (or `lo < value` when `lo_open`), finite.
-    fn range(
+    pub(super) fn range(
         &self,
         key: &str,
         value: f32,
@@ -95,7 +101,13 @@ impl Checker<'_> {
         self.limit(key, value, &limit)
     }
 
-    fn vector(&self, key: &str, v: [f32; 3], max_len: f32, unit: &str) -> Result<(), SceneError> {
+    pub(super) fn vector(
+        &self,
+        key: &str,
+        v: [f32; 3],
+        max_len: f32,
+        unit: &str,
+    ) -> Result<(), SceneError> {
         let len = v.iter().map(|c| c * c).sum::<f32>().sqrt();
         if v.iter().all(|c| c.is_finite()) && len <= max_len {
             return Ok(());
@@ -142,6 +154,7 @@ fn validate(scene: &Scene) -> Result<(), SceneError> {
         "kPa",
     )?;
     check_schedule(&c, air)?;
+    super::air_sources::check(&c)?;
 
     let sim = &scene.sim;
     if sim.seed > MAX_SEED {
