@@ -8,7 +8,7 @@
 
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
-import { anyArrowHeld, orbitAngles, orbitPosition, stepOrbit, type ArrowState } from "./orbit";
+import { anyArrowHeld, orbitAngles, orbitPosition, portraitPullBack, stepOrbit, type ArrowState } from "./orbit";
 import { arrowDirection, clickSelection, mapKeyDown, mapPointerDown, type KeyAction } from "./input";
 import { LONG_PRESS_MS, Press, longPressPops, pointerKind, ribbonEndReach, type PointerKind } from "./gestures";
 import { pickBalloon, pickRibbonEnd, rayHorizontalPlane, type BodySphere, type Ray } from "../sim/pick";
@@ -93,7 +93,8 @@ export class Controls {
   /** The default view: outside the room, a little above, looking at its centre. */
   homeView(): void {
     const size = Math.max(this.room.halfWidth * 2, this.room.halfDepth * 2, this.room.top);
-    const distance = size * 1.3 + 1;
+    // A window taller than wide (a phone upright) sees less across: step back until the room's width fits.
+    const distance = (size * 1.3 + 1) * portraitPullBack(this.camera.aspect);
     // Just below the top of the walls: the ceiling, where the balloons gather, shows from inside.
     const p = orbitPosition(this.center(), { azimuth: 0.6, elevation: 0.03, distance });
     this.camera.up.set(0, 1, 0);
@@ -237,7 +238,8 @@ export class Controls {
     const action = mapPointerDown({ button: e.button, shiftKey: e.shiftKey, altKey: e.altKey, overBalloon: !!hit, overRibbonEnd, placementMode: this.placement });
     const selection = clickSelection(action, e.button);
     this.down = {
-      press: new Press(e.clientX, e.clientY, performance.now(), kind),
+      // The event's own time (performance.now()'s clock): a busy page may run this handler late.
+      press: new Press(e.clientX, e.clientY, e.timeStamp, kind),
       select: selection === "select" && hit ? hit.index : selection === "deselect" ? -1 : null,
       pop: action === "grab" && hit ? hit.index : null,
     };
@@ -262,8 +264,13 @@ export class Controls {
   /** The long-press timer ran out: pop the balloon held, if the press is still a long press. */
   private longPress(): void {
     this.longPressTimer = null;
+    this.popIfLongPress(performance.now());
+  }
+
+  /** Pops the balloon under the press if it has been held still long enough by `now` (ms). */
+  private popIfLongPress(now: number): void {
     const down = this.down;
-    if (!down || down.pop === null || !down.press.longPressDue(performance.now())) return;
+    if (!down || down.pop === null || !down.press.longPressDue(now)) return;
     down.press.takeLongPress();
     this.release();
     this.bridge.pop(down.pop);
@@ -289,6 +296,8 @@ export class Controls {
     const down = this.down;
     // Lifting one of two fingers ends the pinch; the press, if any, was dropped when the second came.
     if (!wasDown || this.pointers.size > 0) return;
+    // A page busy drawing may hand over the finger's lift before the overdue timer: the press's length decides.
+    if (e.type === "pointerup") this.popIfLongPress(e.timeStamp);
     this.cancelPress();
     const tap = !!down && e.type === "pointerup" && e.button === 0 && down.press.isTap(e.clientX, e.clientY);
     if (this.placement && tap) {

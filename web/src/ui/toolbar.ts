@@ -17,7 +17,7 @@ export type ToolbarAction = keyof ToolbarActions;
 
 /** Each button: its action, its mark, its word, and the key that does the same (the tooltip says so). */
 export const TOOLBAR_BUTTONS: { action: ToolbarAction; mark: string; label: string; key: string }[] = [
-  { action: "add", mark: "＋", label: "add", key: "CTRL" },
+  { action: "add", mark: "+", label: "add", key: "CTRL" },
   { action: "togglePause", mark: "❚❚", label: "pause", key: "space" },
   { action: "step", mark: "▸|", label: "step", key: "N" },
   { action: "photo", mark: "◉", label: "photo", key: "P" },
@@ -58,7 +58,7 @@ export class Toolbar {
   setPlacement(on: boolean): void {
     if (on === this.state.placement) return;
     this.state.placement = on;
-    this.press("add", on, on ? "✓" : "＋", on ? "done" : "add");
+    this.press("add", on, on ? "✓" : "+", on ? "done" : "add");
     this.buttons.get("togglePause")!.disabled = on;
     this.buttons.get("step")!.disabled = on;
   }
