@@ -53,7 +53,7 @@ test("on a phone, every interaction has a finger's way: orbit, add, drag, long p
   const grabbed = await reachableBalloon(page);
   expect(grabbed, "a balloon shows on the room").not.toBeNull();
   const before = (await page.evaluate((i) => window.__up!.balloonCenter(i), grabbed!.index))!;
-  await finger.drag(grabbed!, line(grabbed!, 0, 120, 12), 60);
+  await finger.drag(grabbed!, line(grabbed!, 0, 120, 6), 60);
   const after = (await page.evaluate((i) => window.__up!.balloonCenter(i), grabbed!.index))!;
   const moved = Math.hypot(...after.map((v, i) => v - before[i]));
   expect(moved, "the dragged balloon followed the finger, m").toBeGreaterThan(0.2);

@@ -1,6 +1,10 @@
 // A finger on the page, for the touch specs: Chromium's own touch input
 // (CDP Input.dispatchTouchEvent), which the page receives as pointer events
 // of type "touch", as from a phone's screen. Playwright's touchscreen only taps.
+// Each event carries the time the gesture means it to have (a tap 60 ms
+// long), not the time it was sent: Chromium answers each event only once
+// the page has taken it, which on a loaded machine drawing through
+// SwiftShader is a second or more, and a tap would read as a long press.
 
 import type { CDPSession, Page } from "@playwright/test";
 
@@ -11,6 +15,9 @@ export interface Point {
 
 /** A finger on `page`: down, along a path, held, up. */
 export class Finger {
+  /** The gesture's clock, s since the epoch, as CDP's `timestamp` reads it. */
+  private at = 0;
+
   private constructor(
     private readonly cdp: CDPSession,
     private readonly page: Page,
@@ -20,26 +27,24 @@ export class Finger {
     return new Finger(await page.context().newCDPSession(page), page);
   }
 
-  private touch(type: "touchStart" | "touchMove" | "touchEnd", points: Point[]): Promise<unknown> {
-    return this.cdp.send("Input.dispatchTouchEvent", { type, touchPoints: points.map((p, id) => ({ x: p.x, y: p.y, id })) });
+  /** One touch event, `afterMs` after the gesture's previous one (a touchStart begins the gesture's clock now). */
+  private async touch(type: "touchStart" | "touchMove" | "touchEnd", points: Point[], afterMs = 0): Promise<void> {
+    this.at = type === "touchStart" ? Date.now() / 1000 : this.at + afterMs / 1000;
+    if (afterMs > 0) await this.page.waitForTimeout(afterMs);
+    await this.cdp.send("Input.dispatchTouchEvent", { type, touchPoints: points.map((p, id) => ({ x: p.x, y: p.y, id })), timestamp: this.at });
   }
 
   /** Touches at `from`, moves along `path` (`stepMs` apart) and lifts at its end. */
   async drag(from: Point, path: Point[], stepMs = 50): Promise<void> {
     await this.touch("touchStart", [from]);
-    for (const p of path) {
-      await this.page.waitForTimeout(stepMs);
-      await this.touch("touchMove", [p]);
-    }
-    await this.page.waitForTimeout(stepMs);
-    await this.touch("touchEnd", []);
+    for (const p of path) await this.touch("touchMove", [p], stepMs);
+    await this.touch("touchEnd", [], stepMs);
   }
 
   /** Touches at `at`, holds still for `ms`, lifts. */
   async hold(at: Point, ms: number): Promise<void> {
     await this.touch("touchStart", [at]);
-    await this.page.waitForTimeout(ms);
-    await this.touch("touchEnd", []);
+    await this.touch("touchEnd", [], ms);
   }
 
   /** A quick tap at `at`. */
@@ -51,14 +56,14 @@ export class Finger {
   async twoFingers(a: Point, b: Point, da: Point, db: Point, steps = 8): Promise<void> {
     await this.touch("touchStart", [a, b]);
     for (let i = 1; i <= steps; i++) {
-      await this.page.waitForTimeout(40);
       const t = i / steps;
-      await this.touch("touchMove", [
+      const moved = [
         { x: a.x + da.x * t, y: a.y + da.y * t },
         { x: b.x + db.x * t, y: b.y + db.y * t },
-      ]);
+      ];
+      await this.touch("touchMove", moved, 40);
     }
-    await this.touch("touchEnd", []);
+    await this.touch("touchEnd", [], 40);
   }
 }
 

@@ -261,10 +261,19 @@ export class Controls {
     }
   }
 
-  /** The long-press timer ran out: pop the balloon held, if the press is still a long press. */
+  /**
+   * The long-press timer ran out: pop the balloon held, if the press is still
+   * a long press at the next animation frame. The browser hands over pointer
+   * moves just before a frame, so on a page drawing few frames a second the
+   * moves of a drag already under way arrive by then, and the drag is not
+   * taken for a long press.
+   */
   private longPress(): void {
     this.longPressTimer = null;
-    this.popIfLongPress(performance.now());
+    const down = this.down;
+    requestAnimationFrame(() => {
+      if (this.down === down) this.popIfLongPress(performance.now());
+    });
   }
 
   /** Pops the balloon under the press if it has been held still long enough by `now` (ms). */
