@@ -43,8 +43,23 @@ try {
     for (const slowdown of [rate, 1]) {
       for (let r = 0; r < runs; r++) {
         const { page, context } = await phonePage("", slowdown);
-        const t = await page.evaluate(() => window.__up.firstDraw());
-        results.push({ slowdown, firstPaintMs: Math.round(t.firstPaint), firstDrawMs: Math.round(t.firstDrawAt), afterPaintMs: Math.round(t.firstDrawAt - t.firstPaint) });
+        const t = await page.evaluate(() => {
+          const fetched = (re) => performance.getEntriesByType("resource").find((e) => re.test(e.name))?.responseEnd ?? null;
+          return { ...window.__up.firstDraw(), wasmFetch: fetched(/up_wasm[^/]*\.wasm$/), modelFetch: fetched(/\.obj$/) };
+        });
+        const ms = (x) => (x === null ? null : Math.round(x));
+        results.push({
+          slowdown,
+          firstPaintMs: ms(t.firstPaint),
+          stageMs: ms(t.stageMs),
+          wasmFetchMs: ms(t.wasmFetch),
+          modelFetchMs: ms(t.modelFetch),
+          engineMs: ms(t.engineAt),
+          modelMs: ms(t.assetsAt),
+          firstDrawMs: ms(t.firstDrawAt),
+          firstRenderCallMs: ms(t.firstRenderMs),
+          afterPaintMs: ms(t.firstDrawAt - t.firstPaint),
+        });
         await context.close();
       }
     }

@@ -61,6 +61,8 @@ export class App {
   private readonly governor: CrowdGovernor | null;
   /** When the first frame with balloons was drawn, ms on the page's clock (null before). */
   firstDrawAt: number | null = null;
+  /** When the engine's first world and the balloon model were ready, and the first render call took how long, ms (where the first draw's time goes). */
+  readonly startup = { stageMs: 0, engineAt: null as number | null, assetsAt: null as number | null, firstRenderMs: null as number | null };
   /** The engine's description of the world shown (null until the first is ready). */
   info: WorldInfo | null = null;
   /** The scene shown, as the engine read it (every default written out); its live settings as the engine last took them. */
@@ -88,7 +90,9 @@ export class App {
     });
     this.governor = this.budget.lighter ? new CrowdGovernor(this.budget.crowdAbove) : null;
     this.layout = new PageLayout(document.body);
+    const stageStart = performance.now();
     this.stage = createStage(page.app, this.budget);
+    this.startup.stageMs = performance.now() - stageStart;
     this.world = new WorldView(this.stage.scene);
     this.hud = new Hud(page.hud);
     this.hud.setCost(costText(this.budget));
@@ -150,7 +154,10 @@ export class App {
     const initialJson = this.link.takeInitial();
     this.world
       .loadAssets(new URL("assets/", document.baseURI).href)
-      .then(() => this.world.balloons?.setCrowdAbove(this.budget.crowdAbove))
+      .then(() => {
+        this.startup.assetsAt = performance.now();
+        this.world.balloons?.setCrowdAbove(this.budget.crowdAbove);
+      })
       .catch((e: Error) => this.messages.fatal("The balloon model failed to load", e.message));
     const { threads, error } = requestedThreads(location.search, navigator.hardwareConcurrency);
     if (error) this.messages.error(error);
@@ -172,6 +179,7 @@ export class App {
   }
 
   private worldReady(info: WorldInfo): void {
+    this.startup.engineAt ??= performance.now();
     this.info = info;
     this.plot.clear();
     this.link.pending = false;
@@ -307,7 +315,10 @@ export class App {
     this.frameMeter.record(renderStart - workStart, renderEnd - renderStart);
     if (withBalloons) {
       this.frames.drawn++;
-      this.firstDrawAt ??= performance.now();
+      if (this.firstDrawAt === null) {
+        this.firstDrawAt = performance.now();
+        this.startup.firstRenderMs = renderEnd - renderStart;
+      }
     }
     requestAnimationFrame((t) => this.frame(t));
   }

@@ -82,7 +82,7 @@ export function createTestHook(app: App) {
       return ms;
     },
     /** The first paint and the first frame drawn with balloons, ms on the page's clock (null: not yet). */
-    firstDraw: () => ({ firstPaint: performance.getEntriesByName("first-paint")[0]?.startTime ?? null, firstDrawAt: app.firstDrawAt }),
+    firstDraw: () => ({ firstPaint: performance.getEntriesByName("first-paint")[0]?.startTime ?? null, firstDrawAt: app.firstDrawAt, ...app.startup }),
     /** Ribbons in the current frame, and those the renderer draws. */
     ribbonCount: () => bridge.ribbons.bodies.length,
     ribbonsDrawn: () => world.ribbons?.count ?? 0,
