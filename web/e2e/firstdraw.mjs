@@ -5,14 +5,16 @@
 // `npm run build`:
 //
 //   node e2e/firstdraw.mjs [--runs 3] [--rate 4]
-//   node e2e/firstdraw.mjs --crowd        the balloons' share of a frame by count (full mesh), same profile
+//   --dist DIR     serves another build than dist/
 //
 // SwiftShader draws on this machine's CPU: the figures bound a phone's from
 // above (a phone's GPU draws the frames), and say nothing of its frame rate.
 
-import { launchChromium, TEST_PATH, base64url } from "./browser.mjs";
+import { launchChromium, TEST_PATH } from "./browser.mjs";
 import { PHONE } from "./devices.mjs";
-import { serveDist } from "./serve.mjs";
+import { dirname, join, resolve } from "node:path";
+import { fileURLToPath } from "node:url";
+import { preview } from "vite";
 
 const args = process.argv.slice(2);
 const arg = (name, fallback) => {
@@ -21,61 +23,53 @@ const arg = (name, fallback) => {
 };
 const runs = arg("runs", 3);
 const rate = arg("rate", 4);
-const crowd = args.includes("--crowd");
+const distAt = args.indexOf("--dist");
+const dist = distAt >= 0 ? resolve(args[distAt + 1]) : undefined;
 
-const server = await serveDist();
+const vite = await preview({
+  root: join(dirname(fileURLToPath(import.meta.url)), ".."),
+  ...(dist ? { build: { outDir: dist } } : {}),
+  logLevel: "warn",
+  preview: { host: "127.0.0.1", port: 0, strictPort: true, open: false },
+});
+const server = { url: vite.resolvedUrls.local[0], close: () => vite.close() };
 const browser = await launchChromium();
 
-/** A phone page with the CPU slowed `rate`×, opened at `hash`, ready. */
-async function phonePage(hash, slowdown) {
+/** A phone page on the default scene with the CPU slowed `slowdown`×, ready. */
+async function phonePage(slowdown) {
   const context = await browser.newContext(PHONE);
   const page = await context.newPage();
   const cdp = await context.newCDPSession(page);
   await cdp.send("Emulation.setCPUThrottlingRate", { rate: slowdown });
-  await page.goto(server.url + TEST_PATH + hash);
+  await page.goto(server.url + TEST_PATH);
   await page.waitForFunction(() => window.__up?.ready(), null, { timeout: 300_000, polling: 100 });
   return { page, context };
 }
 
+// Times on the page's clock, ms: its first paint, the stage built (ms it took), the balloon
+// model's file in, the engine's first world and the model ready, the first frame with
+// balloons (and its render call's ms), and that frame after the first paint.
+const ms = (x) => (x === null || x === undefined ? null : Math.round(x));
 try {
-  if (!crowd) {
-    const results = [];
-    for (const slowdown of [rate, 1]) {
-      for (let r = 0; r < runs; r++) {
-        const { page, context } = await phonePage("", slowdown);
-        const t = await page.evaluate(() => {
-          const fetched = (re) => performance.getEntriesByType("resource").find((e) => re.test(e.name))?.responseEnd ?? null;
-          return { ...window.__up.firstDraw(), wasmFetch: fetched(/up_wasm[^/]*\.wasm$/), modelFetch: fetched(/\.obj$/) };
-        });
-        const ms = (x) => (x === null ? null : Math.round(x));
-        results.push({
-          slowdown,
-          firstPaintMs: ms(t.firstPaint),
-          stageMs: ms(t.stageMs),
-          wasmFetchMs: ms(t.wasmFetch),
-          modelFetchMs: ms(t.modelFetch),
-          engineMs: ms(t.engineAt),
-          modelMs: ms(t.assetsAt),
-          firstDrawMs: ms(t.firstDrawAt),
-          firstRenderCallMs: ms(t.firstRenderMs),
-          afterPaintMs: ms(t.firstDrawAt - t.firstPaint),
-        });
-        await context.close();
-      }
-    }
-    for (const x of results) console.log(JSON.stringify(x));
-  } else {
-    // Full mesh at each count: ms per frame with the balloons, and without them (the room, its shadows).
-    for (const n of [50, 150, 300, 500]) {
-      const hash = `#scene=${base64url(JSON.stringify({ balloons: [{ count: n }] }))}`;
-      const { page, context } = await phonePage(hash, rate);
-      await page.evaluate(() => window.__up.holdDrawing(true));
-      await page.evaluate(() => window.__up.setCrowdAbove(1e9));
-      const full = await page.evaluate(() => window.__up.timeDraws(4));
-      const room = await page.evaluate(() => window.__up.timeDraws(4, true));
-      await page.evaluate(() => window.__up.setCrowdAbove(0));
-      const light = await page.evaluate(() => window.__up.timeDraws(4));
-      console.log(JSON.stringify({ balloons: n, fullMeshMs: +full.toFixed(1), crowdMeshMs: +light.toFixed(1), roomOnlyMs: +room.toFixed(1) }));
+  for (const slowdown of [rate, 1]) {
+    for (let r = 0; r < runs; r++) {
+      const { page, context } = await phonePage(slowdown);
+      const t = await page.evaluate(() => ({
+        ...window.__up.firstDraw(),
+        modelFetch: performance.getEntriesByType("resource").find((e) => /\.obj$/.test(e.name))?.responseEnd,
+      }));
+      const row = {
+        slowdown,
+        firstPaintMs: ms(t.firstPaint),
+        stageMs: ms(t.stageMs),
+        modelFileMs: ms(t.modelFetch),
+        engineMs: ms(t.engineAt),
+        modelMs: ms(t.assetsAt),
+        firstDrawMs: ms(t.firstDrawAt),
+        firstRenderCallMs: ms(t.firstRenderMs),
+        afterPaintMs: ms(t.firstDrawAt - t.firstPaint),
+      };
+      console.log(JSON.stringify(row));
       await context.close();
     }
   }

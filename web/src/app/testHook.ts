@@ -61,26 +61,6 @@ export function createTestHook(app: App) {
     }),
     /** What a frame may cost here (drawingBudget.ts) and whether the crowd mesh draws the balloons now. */
     budget: () => ({ ...app.budget, crowdDrawn: world.balloons?.crowdDrawn ?? false, hud: document.getElementById("hud-cost")?.textContent ?? "" }),
-    /** Measurements (e2e/firstdraw.mjs --crowd): the count above which the crowd mesh draws the balloons. */
-    setCrowdAbove: (count: number) => world.balloons?.setCrowdAbove(count),
-    /**
-     * Measurements: ms to draw `frames` frames as they stand (each waited on
-     * by the GPU), the balloons shown or hidden: the balloons' share of a frame.
-     */
-    timeDraws(frames: number, hideBalloons = false) {
-      const balloons = world.balloons;
-      if (hideBalloons && balloons) balloons.setVisible(false);
-      const gl = renderer.getContext();
-      gl.finish();
-      const t0 = performance.now();
-      for (let i = 0; i < frames; i++) {
-        renderer.render(scene, camera);
-        gl.finish();
-      }
-      const ms = (performance.now() - t0) / frames;
-      if (hideBalloons && balloons) balloons.setVisible(true);
-      return ms;
-    },
     /** The first paint and the first frame drawn with balloons, ms on the page's clock (null: not yet). */
     firstDraw: () => ({ firstPaint: performance.getEntriesByName("first-paint")[0]?.startTime ?? null, firstDrawAt: app.firstDrawAt, ...app.startup }),
     /** Ribbons in the current frame, and those the renderer draws. */

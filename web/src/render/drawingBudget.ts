@@ -32,9 +32,10 @@ export const SMALL_SCREEN_SIDE = 1100;
 export const FULL_BUDGET: DrawingBudget = { lighter: false, shadowMapSize: 2048, pixelRatioCap: 2, crowdAbove: CROWD_BALLOONS };
 
 /**
- * The lighter budget. The crowd count is where, in Chromium's phone emulation
- * at 4× CPU slowdown (e2e/firstdraw.mjs --crowd), frames with the full mesh
- * fell below 30 per second; docs/perf-log.md has the figures.
+ * The lighter budget. Its crowd count is a starting point, a third of the
+ * desktop's: SwiftShader's draws on the test machines say nothing of a
+ * phone's GPU (docs/perf-log.md), so the count the page keeps is the one
+ * `CrowdGovernor` picks by measuring the device's own frames.
  */
 export const LIGHT_BUDGET: DrawingBudget = { lighter: true, shadowMapSize: 1024, pixelRatioCap: 1.5, crowdAbove: 150 };
 
