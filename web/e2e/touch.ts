@@ -51,20 +51,6 @@ export class Finger {
   async tap(at: Point): Promise<void> {
     await this.hold(at, 60);
   }
-
-  /** Two fingers from `a` and `b`, each moved by its own offset over `steps` steps: a pinch, a spread or a two-finger pan. */
-  async twoFingers(a: Point, b: Point, da: Point, db: Point, steps = 8): Promise<void> {
-    await this.touch("touchStart", [a, b]);
-    for (let i = 1; i <= steps; i++) {
-      const t = i / steps;
-      const moved = [
-        { x: a.x + da.x * t, y: a.y + da.y * t },
-        { x: b.x + db.x * t, y: b.y + db.y * t },
-      ];
-      await this.touch("touchMove", moved, 40);
-    }
-    await this.touch("touchEnd", [], 40);
-  }
 }
 
 /** Points `n` steps from `from` by `(dx, dy)` in all. */
