@@ -29,8 +29,10 @@ describe("a press", () => {
     expect(drag.dragged).toBe(true);
     expect(drag.isTap(100, 100)).toBe(false);
 
-    // The same wobble is a drag for a mouse.
+    // The same wobble is a drag for a mouse, whose click may move 5 px.
     expect(new Press(100, 100, 0, "mouse").isTap(108, 104)).toBe(false);
+    expect(new Press(100, 100, 0, "mouse").isTap(103, 104)).toBe(true);
+    expect(new Press(100, 100, 0, "mouse").isTap(106, 100)).toBe(false);
   });
 
   it("is a long press when a finger is held still long enough, once", () => {
