@@ -1,5 +1,5 @@
 // The page's layout as a visitor sees it at 960×600, 1280×800 and 1920×1080:
-// the HUD, the panel, the float plot, the help line, the toolbar and a scene's caption
+// the HUD, the panel, the float plot, the help line and a scene's caption
 // (and, with a balloon selected, its card, its motion plot and the arrows'
 // legend) each keep their own place: none covers another or runs off the
 // window. And the default page loads without a console error or warning.
@@ -98,7 +98,7 @@ test("the default page loads without console errors or warnings, its overlays ap
   // A few frames drawn: shadows, materials and the plot have run once.
   await page.waitForFunction(() => window.__up!.frames().drawn > 10, null, { timeout: 60_000 });
   expect.soft(said, "console errors and warnings on load").toEqual([]);
-  await expectApart(page, ["HUD", "panel", "float plot", "help line", "toolbar"]);
+  await expectApart(page, ["HUD", "panel", "float plot", "help line"]);
 });
 
 /** One balloon held still mid-room (no gravity), under a caption as long as a teaching scene's. */
@@ -119,7 +119,7 @@ test("a scene's caption, and a selected balloon's card, motion plot and legend, 
   await page.setViewportSize({ width: 1280, height: 800 });
   await open(page, sceneHash(CAPTION_SCENE));
   await expect(page.locator("#scene-caption")).toContainText("Where the words go");
-  await expectApart(page, ["HUD", "panel", "float plot", "help line", "toolbar", "caption"]);
+  await expectApart(page, ["HUD", "panel", "float plot", "help line", "caption"]);
 
   await page.setViewportSize({ width: 1280, height: 800 });
   const at = await page.evaluate(() => {
@@ -128,6 +128,6 @@ test("a scene's caption, and a selected balloon's card, motion plot and legend, 
   });
   await page.mouse.click(at.x, at.y);
   await page.waitForFunction(() => window.__up!.physics().cardShown);
-  await expectApart(page, ["HUD", "panel", "help line", "toolbar", "caption", "card", "motion plot", "legend"]);
+  await expectApart(page, ["HUD", "panel", "help line", "caption", "card", "motion plot", "legend"]);
   expect(consoleErrors).toEqual([]);
 });
