@@ -74,7 +74,7 @@ export async function pause(page: Page): Promise<void> {
   await page.waitForTimeout(600);
 }
 
-/** Hides the HUD, the help line and the float plot, which change on their own (the FPS, the clock): screenshots then compare the 3D view only. */
+/** Hides the HUD, the help line, the float plot and the toolbar, which change on their own (the FPS, the clock): screenshots then compare the 3D view only. */
 export async function hideOverlays(page: Page): Promise<void> {
-  await page.addStyleTag({ content: "#hud, #help, #float-plot { visibility: hidden !important; }" });
+  await page.addStyleTag({ content: "#hud, #help, #float-plot, #toolbar { visibility: hidden !important; }" });
 }

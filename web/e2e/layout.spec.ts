@@ -23,6 +23,7 @@ const OVERLAYS: Record<string, string> = {
   card: "#balloon-card",
   "motion plot": "#motion-plot",
   legend: "#force-legend",
+  toolbar: "#toolbar",
 };
 
 interface Box {

@@ -81,6 +81,8 @@ test("P path-traces the scene, save downloads a PNG of the canvas's size, P agai
 
   // Save: a PNG of the canvas's size.
   // Each frame traces a tile: the click alone has taken 30 s here.
+  // A window this small has the compact layout: the panel is folded behind its title until opened.
+  await page.locator(".lil-gui.lil-root > .lil-title").click({ timeout: 180_000 });
   const downloading = page.waitForEvent("download", { timeout: 180_000 });
   await page.locator('[data-key="savePhoto"] button').click({ timeout: 180_000 });
   const download = await downloading;

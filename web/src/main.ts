@@ -2,6 +2,7 @@
 // and the end-to-end tests' hook on pages opened with `?test`.
 
 import "./style.css";
+import "./layout.css";
 import { App } from "./app/app";
 import { pageElements } from "./app/page";
 import { hasWebGL } from "./render/stage";

@@ -1,6 +1,6 @@
 // The app: the stage and the world drawn on it, the physics worker, the
-// controls, the HUD, the panel and the share link, and what each of them does
-// to the others. The parts live in render/, sim/, ui/ and scene/; this class
+// controls, the HUD, the panel, the toolbar, the layout and the share link,
+// and what each of them does to the others. The parts live in render/, sim/, ui/ and scene/; this class
 // only holds them and routes their events.
 
 import { createStage, type Stage } from "../render/stage";
@@ -26,6 +26,9 @@ import { PhotoMode } from "../render/photo/photoMode";
 import { photoHost } from "./photoHost";
 import { ClipRecorder } from "../ui/recorder";
 import { downloadBlob, timestampName } from "../render/photo/download";
+import { PageLayout } from "../ui/layout";
+import { Toolbar } from "../ui/toolbar";
+import { CrowdGovernor, costText, drawingBudget, type DrawingBudget } from "../render/drawingBudget";
 import type { PageElements } from "./page";
 
 /** Most balloons the panel's slider offers (the engine's capacity may be higher). */
@@ -53,6 +56,17 @@ export class App {
   panel: Panel | null = null;
   readonly photo: PhotoMode;
   readonly recorder: ClipRecorder;
+  /** The layout by the window's size (compact on a phone or a tablet). */
+  readonly layout: PageLayout;
+  /** The buttons under the room: add, pause, step, photo, record. */
+  readonly toolbar: Toolbar;
+  /** What a frame may cost on this device; `governor` lowers its crowd count while frames are slow. */
+  readonly budget: DrawingBudget;
+  private readonly governor: CrowdGovernor | null;
+  /** When the first frame with balloons was drawn, ms on the page's clock (null before). */
+  firstDrawAt: number | null = null;
+  /** When the engine's first world and the balloon model were ready, and the first render call took how long, ms (where the first draw's time goes). */
+  readonly startup = { stageMs: 0, engineAt: null as number | null, assetsAt: null as number | null, firstRenderMs: null as number | null };
   /** The engine's description of the world shown (null until the first is ready). */
   info: WorldInfo | null = null;
   /** The scene shown, as the engine read it (every default written out); its live settings as the engine last took them. */
@@ -74,9 +88,18 @@ export class App {
   private lastFrameTime = performance.now();
 
   constructor(private readonly page: PageElements) {
-    this.stage = createStage(page.app);
+    this.budget = drawingBudget({
+      coarsePointer: window.matchMedia("(pointer: coarse)").matches,
+      screenShortSide: Math.min(window.screen.width, window.screen.height),
+    });
+    this.governor = this.budget.lighter ? new CrowdGovernor(this.budget.crowdAbove) : null;
+    this.layout = new PageLayout(document.body);
+    const stageStart = performance.now();
+    this.stage = createStage(page.app, this.budget);
+    this.startup.stageMs = performance.now() - stageStart;
     this.world = new WorldView(this.stage.scene);
     this.hud = new Hud(page.hud);
+    this.hud.setCost(costText(this.budget));
     this.messages = new Messages(page.message, page.fatal);
     this.link = new ShareLink(this.messages);
     this.plot = new FloatPlot(document.body);
@@ -84,6 +107,7 @@ export class App {
       ready: (info) => this.worldReady(info),
       frame: () => {
         this.panel?.setPaused(this.bridge.paused);
+        this.toolbar.setPaused(this.bridge.paused);
         this.world.takeFrame(this.bridge);
       },
       stats: (stats, stepsPerSecond) => {
@@ -103,11 +127,32 @@ export class App {
     this.controls = new Controls(this.stage.camera, this.stage.renderer.domElement, this.bridge, {
       select: (index) => this.physics.select(index),
       action: (a) => this.keyAction(a),
-      placement: (on) => this.hud.setMode(on ? "Placement mode: click the floor to add a balloon · CTRL to go back" : ""),
+      placement: (on) => {
+        this.hud.setMode(on ? "Placement mode: tap or click the floor to add a balloon · add (CTRL) to go back" : "");
+        this.toolbar.setPlacement(on);
+      },
+      touched: () => this.layout.markHelpRead(),
     });
     this.air = new AirView(this.stage.scene, this.stage.renderer.domElement, this.bridge, (x, y) => this.controls.floorPoint(x, y), (hint) => this.hud.setMode(hint));
+    const band = document.getElementById("bottom-band") ?? document.body;
+    this.toolbar = new Toolbar(band, {
+      add: () => this.controls.setPlacement(!this.controls.placement),
+      togglePause: () => this.togglePause(),
+      step: () => this.bridge.singleStep(),
+      photo: () => this.photo.toggle(),
+      record: () => this.recorder.toggle(),
+    });
+    // In the compact layout the help line is a button: a tap says it has been read, and the float plot takes its place.
+    document.getElementById("help")?.addEventListener("click", () => this.layout.markHelpRead());
     this.photo = new PhotoMode(photoHost(this));
-    this.recorder = new ClipRecorder(this.stage.renderer.domElement, (on) => this.panel?.setRecording(on), (m) => this.messages.error(m));
+    this.recorder = new ClipRecorder(
+      this.stage.renderer.domElement,
+      (on) => {
+        this.panel?.setRecording(on);
+        this.toolbar.setRecording(on);
+      },
+      (m) => this.messages.error(m),
+    );
   }
 
   /** Loads the balloon model and the engine (with the linked scene, if any) and starts drawing. */
@@ -115,11 +160,22 @@ export class App {
     const initialJson = this.link.takeInitial();
     this.world
       .loadAssets(new URL("assets/", document.baseURI).href)
+      .then(() => {
+        this.startup.assetsAt = performance.now();
+        this.world.balloons?.setCrowdAbove(this.budget.crowdAbove);
+      })
       .catch((e: Error) => this.messages.fatal("The balloon model failed to load", e.message));
     const { threads, error } = requestedThreads(location.search, navigator.hardwareConcurrency);
     if (error) this.messages.error(error);
     this.bridge.init(new URL("wasm/up_wasm.wasm", document.baseURI).href, initialJson, threads);
-    window.addEventListener("resize", () => this.stage.resize());
+    window.addEventListener("resize", () => {
+      this.stage.resize();
+      this.layout.resize();
+    });
+    // A window that becomes compact folds the panel; one that widens unfolds it.
+    this.layout.onChange((layout, changed) => {
+      if (changed && this.panel) this.panel.gui.open(!layout.compact);
+    });
     requestAnimationFrame((now) => this.frame(now));
   }
 
@@ -129,6 +185,7 @@ export class App {
   }
 
   private worldReady(info: WorldInfo): void {
+    this.startup.engineAt ??= performance.now();
     this.info = info;
     this.plot.clear();
     this.link.pending = false;
@@ -148,6 +205,8 @@ export class App {
       this.physics.addMenu(this.panel.gui, assets, () => this.messages.clear()).catch((e: Error) => this.messages.error(`The teaching scenes failed to load: ${e.message}`));
       // Threads only where memory can be shared; a new count restarts the engine on the scene shown.
       if (info.isolated) this.panel.addThreads(info.threads, Math.max(info.threads, Math.min(MAX_THREADS, navigator.hardwareConcurrency || 1)), (n) => this.bridge.restart(JSON.stringify(this.scene), n));
+      // On a phone or a tablet the panel starts folded behind its title, a shared scene's page too.
+      if (this.layout.layout.compact) this.panel.gui.close();
     } else this.panel.set(params, this.scene);
     this.hud.setThreads(info.threads, info.isolated);
     // A teaching scene's address is the scene the engine read from its file.
@@ -171,7 +230,7 @@ export class App {
     const bridge = this.bridge;
     bridge.setPaused(!bridge.paused);
     this.panel?.setPaused(bridge.paused);
-    this.hud.setMode(bridge.paused ? "Paused · space to resume, N to step" : "");
+    this.hud.setMode(bridge.paused ? "Paused · play (space) resumes, step (N) steps" : "");
   }
 
   /** Debug view on or off; contacts come from the worker only while it is on. */
@@ -250,13 +309,18 @@ export class App {
       return;
     }
     const workStart = performance.now();
-    const dt = Math.min(0.1, (now - this.lastFrameTime) / 1000);
+    const intervalMs = now - this.lastFrameTime;
+    const dt = Math.min(0.1, intervalMs / 1000);
     this.lastFrameTime = now;
     // In photo mode the camera stays where the photo was taken.
     if (!this.photo.active) this.controls.update(dt);
     const withBalloons = this.world.update(this.bridge, performance.timeOrigin + now);
     const current = this.bridge.current;
-    if (withBalloons && current) this.hud.setCount(current.count);
+    if (withBalloons && current) {
+      this.hud.setCount(current.count);
+      this.judgeCost(intervalMs, current.count);
+    }
+    this.layout.setSelected(!!this.bridge.forces?.card);
     if (current) this.hud.setClock(current);
     this.hud.frame(now);
     this.plot.draw();
@@ -269,7 +333,23 @@ export class App {
     const renderEnd = performance.now();
     this.frames.renderMs += renderEnd - renderStart;
     this.frameMeter.record(renderStart - workStart, renderEnd - renderStart);
-    if (withBalloons) this.frames.drawn++;
+    if (withBalloons) {
+      this.frames.drawn++;
+      if (this.firstDrawAt === null) {
+        this.firstDrawAt = performance.now();
+        this.startup.firstRenderMs = renderEnd - renderStart;
+      }
+    }
     requestAnimationFrame((t) => this.frame(t));
+  }
+
+  /** On a lighter budget: slow frames with the full balloon mesh move the crowd mesh's count down (drawingBudget.ts). */
+  private judgeCost(intervalMs: number, count: number): void {
+    if (!this.governor || this.photo.active) return;
+    const lowered = this.governor.frame(intervalMs, count);
+    if (lowered === null) return;
+    this.budget.crowdAbove = lowered;
+    this.world.balloons?.setCrowdAbove(lowered);
+    this.hud.setCost(costText(this.budget));
   }
 }

@@ -43,11 +43,13 @@ export function photoHost(app: App): PhotoHost {
     setPaused(paused) {
       app.bridge.setPaused(paused);
       app.panel?.setPaused(paused);
+      app.toolbar.setPaused(paused);
     },
     error: (message) => app.messages.error(message),
     changed(state) {
       app.hud.setPhoto(state.active ? state.samples : null);
       app.panel?.setPhoto(state.active);
+      app.toolbar.setPhoto(state.active);
     },
   };
 }

@@ -52,6 +52,17 @@ export function createTestHook(app: App) {
       total: bridge.current?.contactTotal ?? 0,
     }),
     placement: () => controls.placement,
+    /** The layout (layout.ts), whose turn the bottom corner is, whether the panel is folded and the HUD opened. */
+    layout: () => ({
+      ...app.layout.layout,
+      bottom: app.layout.bottom,
+      panelClosed: app.panel?.gui.domElement.classList.contains("lil-closed") ?? null,
+      hudExpanded: app.hud.expanded,
+    }),
+    /** What a frame may cost here (drawingBudget.ts) and whether the crowd mesh draws the balloons now. */
+    budget: () => ({ ...app.budget, crowdDrawn: world.balloons?.crowdDrawn ?? false, hud: document.getElementById("hud-cost")?.textContent ?? "" }),
+    /** The first paint and the first frame drawn with balloons, ms on the page's clock (null: not yet). */
+    firstDraw: () => ({ firstPaint: performance.getEntriesByName("first-paint")[0]?.startTime ?? null, firstDrawAt: app.firstDrawAt, ...app.startup }),
     /** Ribbons in the current frame, and those the renderer draws. */
     ribbonCount: () => bridge.ribbons.bodies.length,
     ribbonsDrawn: () => world.ribbons?.count ?? 0,

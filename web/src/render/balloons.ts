@@ -136,6 +136,8 @@ export class Balloons {
   private palette: THREE.Color[] = [];
   private readonly scratchColor = new THREE.Color();
   private drawnCount = 0;
+  /** Balloons above which the crowd geometry draws them (a small device's page lowers it: drawingBudget.ts). */
+  private crowdAbove = CROWD_BALLOONS;
 
   constructor(private readonly assets: BalloonAssets) {
     this.squash = this.makeSquash(this.capacity);
@@ -201,6 +203,17 @@ export class Balloons {
     this.setBodies(this.colors, this.models);
   }
 
+  /** Draws with the crowd geometry above `count` balloons from now on. */
+  setCrowdAbove(count: number): void {
+    this.crowdAbove = count;
+    for (const { mesh } of this.meshes) mesh.geometry = mesh.count > count ? this.assets.crowdGeometry : this.assets.geometry;
+  }
+
+  /** Whether the crowd geometry draws the balloons now. */
+  get crowdDrawn(): boolean {
+    return this.meshes.some(({ mesh }) => mesh.geometry === this.assets.crowdGeometry);
+  }
+
   get finishOverride(): Finish | null {
     return this.override;
   }
@@ -228,7 +241,7 @@ export class Balloons {
       for (let i = 0; i < count; i++) mesh.setColorAt(i, this.palette[colors[i]] ?? this.scratchColor.set(1, 1, 1));
       if (mesh.instanceColor) mesh.instanceColor.needsUpdate = true;
       mesh.count = count;
-      mesh.geometry = count > CROWD_BALLOONS ? this.assets.crowdGeometry : this.assets.geometry;
+      mesh.geometry = count > this.crowdAbove ? this.assets.crowdGeometry : this.assets.geometry;
     }
     this.dents.reset(count);
     this.foil?.setBodies(colors, models, this.palette);

@@ -25,9 +25,15 @@ export function hasWebGL(): boolean {
   }
 }
 
-export function createStage(container: HTMLElement): Stage {
+/** What the stage may spend (drawingBudget.ts): device pixels per CSS pixel and the shadow map's size. */
+export interface StageBudget {
+  pixelRatioCap: number;
+  shadowMapSize: number;
+}
+
+export function createStage(container: HTMLElement, budget: StageBudget = { pixelRatioCap: 2, shadowMapSize: 2048 }): Stage {
   const renderer = new THREE.WebGLRenderer({ antialias: true, powerPreference: "high-performance" });
-  renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
+  renderer.setPixelRatio(Math.min(window.devicePixelRatio, budget.pixelRatioCap));
   renderer.outputColorSpace = THREE.SRGBColorSpace;
   renderer.toneMapping = THREE.ACESFilmicToneMapping;
   renderer.toneMappingExposure = 1.0;
@@ -51,6 +57,7 @@ export function createStage(container: HTMLElement): Stage {
   const camera = new THREE.PerspectiveCamera(45, 1, 0.05, 500);
 
   const lights = addLiveLights(scene);
+  lights.sun.shadow.mapSize.set(budget.shadowMapSize, budget.shadowMapSize);
 
   function fitToRoom(halfWidth: number, halfDepth: number, height: number): void {
     lights.fit({ halfWidth, halfDepth, top: height });

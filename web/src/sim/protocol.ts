@@ -45,7 +45,7 @@ export type ToWorker =
   /** Asks for the world's state hash and the steps taken since it was built; answered by `hash` with the same `id`. */
   | { type: "hash"; id: number }
   /** Asks for the last 10 s of frames sent, as a .glb; answered by `gltf` with the same `id`. */
-  | { type: "exportGltf"; id: number };
+  | { type: "exportGltf"; id: number }
   /** A command of the air tools for the running world (`Engine.applyAir`), as the panel made it. */
   | { type: "air"; command: AirCommand }
   /** "Show air" on or off: the sampled field comes (`airField`) only while it is on. */
@@ -135,6 +135,6 @@ export type FromWorker =
   /** The world's state hash (16 hex digits, as the `up` CLI prints it) after `steps` steps. */
   | { type: "hash"; id: number; hash: string; steps: number }
   /** The .glb of `exportGltf` request `id`, or why there is none. */
-  | { type: "gltf"; id: number; glb: ArrayBuffer | null; error: string | null };
+  | { type: "gltf"; id: number; glb: ArrayBuffer | null; error: string | null }
   /** The air sampled on a grid of the room, every quarter second or so while "show air" is on. */
   | { type: "airField"; field: AirField };

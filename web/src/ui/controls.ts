@@ -2,12 +2,15 @@
 // centre of the room, OrbitControls for the mouse, CTRL placement mode (the
 // camera below the room looking up, a click adds a balloon on the floor),
 // grab / drag / throw / pop of balloons, and grab / drag of a ribbon by its
-// free end.
+// free end. Pointer events throughout, so a finger or a pen does what the
+// mouse does (gestures.ts tells a tap from a drag and a long press, which
+// pops; OrbitControls' touch: one finger orbits, two pinch and pan).
 
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
-import { anyArrowHeld, orbitAngles, orbitPosition, stepOrbit, type ArrowState } from "./orbit";
-import { arrowDirection, clickSelection, isClick, mapKeyDown, mapPointerDown, type KeyAction } from "./input";
+import { anyArrowHeld, orbitAngles, orbitPosition, portraitPullBack, stepOrbit, type ArrowState } from "./orbit";
+import { arrowDirection, clickSelection, mapKeyDown, mapPointerDown, type KeyAction } from "./input";
+import { LONG_PRESS_MS, Press, longPressPops, pointerKind, ribbonEndReach, type PointerKind } from "./gestures";
 import { pickBalloon, pickRibbonEnd, rayHorizontalPlane, type BodySphere, type Ray } from "../sim/pick";
 import type { SimBridge } from "../sim/bridge";
 import type { TreeNode } from "../sim/engine";
@@ -19,10 +22,12 @@ export interface ControlEvents {
   placement(on: boolean): void;
   /** A click selected body `index` of the current frame, or empty space (-1). */
   select(index: number): void;
+  /** A pointer went down on the room: the visitor has found the gestures (the compact layout's help line gives way). */
+  touched(): void;
 }
 
-/** How near the pointer, in CSS pixels, a ribbon's free end is grabbed. */
-export const RIBBON_END_PIXELS = 8;
+/** How near the mouse, in CSS pixels, a ribbon's free end is grabbed (a finger reaches farther: gestures.ts). */
+export const RIBBON_END_PIXELS = ribbonEndReach("mouse");
 
 interface RoomBox {
   halfWidth: number;
@@ -43,7 +48,11 @@ export class Controls {
   private readonly raycaster = new THREE.Raycaster();
   private readonly ndc = new THREE.Vector2();
   private readonly hitPoint = new THREE.Vector3();
-  private down: { x: number; y: number; select: number | null } | null = null;
+  /** The press under way on the room (the primary pointer's), and what a tap on it selects. */
+  private down: { press: Press; select: number | null; pop: number | null } | null = null;
+  /** Pointers down on the room now: a second one makes the gesture OrbitControls' pinch and pan. */
+  private readonly pointers = new Set<number>();
+  private longPressTimer: ReturnType<typeof setTimeout> | null = null;
 
   constructor(
     private readonly camera: THREE.PerspectiveCamera,
@@ -84,7 +93,8 @@ export class Controls {
   /** The default view: outside the room, a little above, looking at its centre. */
   homeView(): void {
     const size = Math.max(this.room.halfWidth * 2, this.room.halfDepth * 2, this.room.top);
-    const distance = size * 1.3 + 1;
+    // A window taller than wide (a phone upright) sees less across: step back until the room's width fits.
+    const distance = (size * 1.3 + 1) * portraitPullBack(this.camera.aspect);
     // Just below the top of the walls: the ceiling, where the balloons gather, shows from inside.
     const p = orbitPosition(this.center(), { azimuth: 0.6, elevation: 0.03, distance });
     this.camera.up.set(0, 1, 0);
@@ -188,13 +198,13 @@ export class Controls {
     return pickBalloon(this.ray(clientX, clientY), b.curr, b.current.count, this.roots, this.leaves, b.models, b.scales);
   }
 
-  /** The ribbon free end within `RIBBON_END_PIXELS` of the pointer, if any. */
-  private pickRibbonEnd(clientX: number, clientY: number) {
+  /** The ribbon free end within reach of the pointer (`ribbonEndReach`), if any. */
+  private pickRibbonEnd(clientX: number, clientY: number, kind: PointerKind) {
     const b = this.bridge;
     if (!b.current || b.ribbons.bodies.length === 0) return null;
     const height = this.canvas.getBoundingClientRect().height || 1;
     const radiansPerPixel = (2 * Math.tan(THREE.MathUtils.degToRad(this.camera.fov / 2))) / height;
-    return pickRibbonEnd(this.ray(clientX, clientY), b.ribbonsCurr, b.ribbons.offsets, radiansPerPixel, RIBBON_END_PIXELS);
+    return pickRibbonEnd(this.ray(clientX, clientY), b.ribbonsCurr, b.ribbons.offsets, radiansPerPixel, ribbonEndReach(kind));
   }
 
   /** Starts dragging on the plane facing the camera through `point`. */
@@ -208,20 +218,39 @@ export class Controls {
   }
 
   private pointerDown(e: PointerEvent): void {
+    this.events.touched();
+    // A primary pointer is the first of its kind down: any left from before lost their up event.
+    if (e.isPrimary) this.pointers.clear();
+    this.pointers.add(e.pointerId);
+    if (this.pointers.size > 1) {
+      // A second finger: pinch and pan. Whatever the first one began (a grab, a tap, a long press) is dropped.
+      this.cancelPress();
+      this.release();
+      if (!this.placement) this.orbit.enabled = true;
+      return;
+    }
+    const kind = pointerKind(e.pointerType);
     const picking = !this.placement && e.button === 0;
     const hit = picking ? this.pick(e.clientX, e.clientY) : null;
-    const end = picking ? this.pickRibbonEnd(e.clientX, e.clientY) : null;
+    const end = picking ? this.pickRibbonEnd(e.clientX, e.clientY, kind) : null;
     // A free end hidden behind a balloon is not grabbed through it.
     const overRibbonEnd = !!end && (!hit || end.distance <= hit.distance);
     const action = mapPointerDown({ button: e.button, shiftKey: e.shiftKey, altKey: e.altKey, overBalloon: !!hit, overRibbonEnd, placementMode: this.placement });
     const selection = clickSelection(action, e.button);
-    this.down = { x: e.clientX, y: e.clientY, select: selection === "select" && hit ? hit.index : selection === "deselect" ? -1 : null };
+    this.down = {
+      // The event's own time (performance.now()'s clock): a busy page may run this handler late.
+      press: new Press(e.clientX, e.clientY, e.timeStamp, kind),
+      select: selection === "select" && hit ? hit.index : selection === "deselect" ? -1 : null,
+      pop: action === "grab" && hit ? hit.index : null,
+    };
     if (action === "grabRibbon" && end) {
       this.startDrag(e, end.position);
       this.bridge.grabRibbon(end.ribbon, end.point, end.position);
     } else if (action === "grab" && hit) {
       this.startDrag(e, hit.point);
       this.bridge.grab(hit.index, hit.point);
+      // A finger or a pen held still on a balloon pops it (the mouse's shift-click).
+      if (longPressPops(kind)) this.longPressTimer = setTimeout(() => this.longPress(), LONG_PRESS_MS);
     } else if (action === "pop" && hit) {
       this.orbit.enabled = false;
       this.bridge.pop(hit.index);
@@ -232,7 +261,38 @@ export class Controls {
     }
   }
 
+  /**
+   * The long-press timer ran out: pop the balloon held, if the press is still
+   * a long press at the next animation frame. The browser hands over pointer
+   * moves just before a frame, so on a page drawing few frames a second the
+   * moves of a drag already under way arrive by then, and the drag is not
+   * taken for a long press.
+   */
+  private longPress(): void {
+    this.longPressTimer = null;
+    const down = this.down;
+    requestAnimationFrame(() => {
+      if (this.down === down) this.popIfLongPress(performance.now());
+    });
+  }
+
+  /** Pops the balloon under the press if it has been held still long enough by `now` (ms). */
+  private popIfLongPress(now: number): void {
+    const down = this.down;
+    if (!down || down.pop === null || !down.press.longPressDue(now)) return;
+    down.press.takeLongPress();
+    this.release();
+    this.bridge.pop(down.pop);
+  }
+
+  private cancelPress(): void {
+    if (this.longPressTimer !== null) clearTimeout(this.longPressTimer);
+    this.longPressTimer = null;
+    this.down = null;
+  }
+
   private pointerMove(e: PointerEvent): void {
+    if (this.down && this.pointers.size === 1) this.down.press.move(e.clientX, e.clientY);
     if (!this.grabbing) return;
     const r = this.ray(e.clientX, e.clientY);
     const ray = new THREE.Ray(new THREE.Vector3(...r.origin), new THREE.Vector3(...r.direction));
@@ -241,13 +301,19 @@ export class Controls {
   }
 
   private pointerUp(e: PointerEvent): void {
+    const wasDown = this.pointers.delete(e.pointerId);
     const down = this.down;
-    this.down = null;
-    if (this.placement && down && e.type === "pointerup" && e.button === 0 && isClick(e.clientX - down.x, e.clientY - down.y)) {
+    // Lifting one of two fingers ends the pinch; the press, if any, was dropped when the second came.
+    if (!wasDown || this.pointers.size > 0) return;
+    // A page busy drawing may hand over the finger's lift before the overdue timer: the press's length decides.
+    if (e.type === "pointerup") this.popIfLongPress(e.timeStamp);
+    this.cancelPress();
+    const tap = !!down && e.type === "pointerup" && e.button === 0 && down.press.isTap(e.clientX, e.clientY);
+    if (this.placement && tap) {
       const p = this.floorPoint(e.clientX, e.clientY);
       if (p) this.bridge.addOnFloor(p[0], p[2]);
     }
-    if (down && down.select !== null && e.type === "pointerup" && isClick(e.clientX - down.x, e.clientY - down.y)) this.events.select(down.select);
+    if (tap && down.select !== null) this.events.select(down.select);
     this.release();
     if (!this.placement) this.orbit.enabled = true;
   }

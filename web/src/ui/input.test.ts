@@ -1,5 +1,5 @@
 import { describe, expect, it } from "vitest";
-import { arrowDirection, clickSelection, isClick, mapKeyDown, mapPointerDown } from "./input";
+import { arrowDirection, clickSelection, mapKeyDown, mapPointerDown } from "./input";
 
 const pointer = { button: 0, shiftKey: false, altKey: false, overBalloon: false, placementMode: false };
 
@@ -66,12 +66,6 @@ describe("pointer mapping", () => {
     expect(mapPointerDown(pointer)).toBe("camera");
     expect(mapPointerDown({ ...pointer, overBalloon: true, button: 2 })).toBe("camera");
     expect(mapPointerDown({ ...pointer, shiftKey: true })).toBe("camera");
-  });
-
-  it("tells a click from a drag", () => {
-    expect(isClick(0, 0)).toBe(true);
-    expect(isClick(3, 4)).toBe(true);
-    expect(isClick(6, 0)).toBe(false);
   });
 });
 

@@ -97,13 +97,6 @@ export function mapPointerDown(e: PointerFields): PointerAction {
   return "camera";
 }
 
-/** A press that moved less than this many CSS pixels is a click, not a drag. */
-export const CLICK_SLOP_PX = 5;
-
-export function isClick(dx: number, dy: number): boolean {
-  return Math.hypot(dx, dy) <= CLICK_SLOP_PX;
-}
-
 /**
  * What a left click (a press released without a drag) does to the
  * selection: on a balloon (its press grabbed it) it selects that balloon, on

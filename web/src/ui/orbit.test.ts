@@ -4,6 +4,7 @@ import {
   clampElevation,
   orbitAngles,
   orbitPosition,
+  portraitPullBack,
   stepOrbit,
   wrapAngle,
 } from "./orbit";
@@ -63,5 +64,18 @@ describe("orbit maths", () => {
 
   it("handles a camera sitting on the centre", () => {
     expect(orbitAngles(center, center)).toEqual({ azimuth: 0, elevation: 0, distance: 0 });
+  });
+});
+
+describe("the home view in a portrait window", () => {
+  it("stands where it stands in a landscape window, and farther back as the window narrows", () => {
+    expect(portraitPullBack(1.6)).toBe(1);
+    expect(portraitPullBack(1)).toBe(1);
+    const phone = portraitPullBack(390 / 844);
+    expect(phone).toBeGreaterThan(1.5);
+    expect(phone).toBeLessThan(2);
+    expect(portraitPullBack(0.75)).toBeLessThan(phone);
+    // A sliver of a window does not send the camera out of sight.
+    expect(portraitPullBack(0.01)).toBe(portraitPullBack(0.3));
   });
 });

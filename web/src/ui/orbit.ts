@@ -86,3 +86,12 @@ export function stepOrbit(angles: OrbitAngles, keys: ArrowState, dt: number, rat
 export function anyArrowHeld(keys: ArrowState): boolean {
   return keys.left || keys.right || keys.up || keys.down;
 }
+
+/**
+ * How much farther the home view stands back in a window of `aspect` (width
+ * over height): 1 for a landscape window, growing as the window narrows (the
+ * field of view is vertical, so the room's width is what a portrait cuts).
+ */
+export function portraitPullBack(aspect: number): number {
+  return aspect >= 1 ? 1 : Math.pow(1 / Math.max(0.3, aspect), 0.75);
+}
