@@ -14,6 +14,7 @@ use serde::{Deserialize, Serialize};
 use tsify_next::Tsify;
 use up_physics::air::{Draught, Jet, JetKind, Schedule, Sweep, SPIN_UP_S};
 use up_physics::World;
+use up_scene::scene::{DraughtSpec, JetSpec};
 
 use crate::error::{finite, WasmError};
 use crate::loaded::Loaded;
@@ -158,6 +159,11 @@ pub struct AirGrid {
 pub fn apply(loaded: &mut Loaded, command: AirCommand) -> Result<(), WasmError> {
     let world = &mut loaded.built.world;
     let mut flow = world.air_flow().clone();
+    // The scene mirrors every change, so that a rebuilt world and a share
+    // link keep the page's fans: its jets list fans then vents, as the
+    // world's do (`up_scene::build::air`).
+    let scene = &mut loaded.scene;
+    let scene_fans = scene.fans.len();
     let count = flow.jets.len() + flow.draughts.len();
     match command {
         AirCommand::AddFan { fan } => {
@@ -167,7 +173,8 @@ pub fn apply(loaded: &mut Loaded, command: AirCommand) -> Result<(), WasmError> 
                 )));
             }
             let jet = fan_jet(&fan, loaded.built.room.bounds())?;
-            flow.jets.push(jet);
+            flow.jets.insert(scene_fans, jet);
+            scene.fans.push(fan_spec(&fan));
         }
         AirCommand::SetFanSpeed { fan, speed_m_s } => {
             finite("set_fan_speed", &[speed_m_s])?;
@@ -176,10 +183,19 @@ pub fn apply(loaded: &mut Loaded, command: AirCommand) -> Result<(), WasmError> 
             // The scene's own range (`Jet::validate`), named as the page knows it.
             jet.validate()
                 .map_err(|e| WasmError::OutOfRange(format!("set_fan_speed: {e}")))?;
+            if let Some(spec) = scene_jet(scene, fan) {
+                spec.speed_m_s = Some(speed_m_s);
+            }
         }
         AirCommand::RemoveFan { fan } => {
             jet_mut(&mut flow.jets, fan)?;
             flow.jets.remove(fan as usize);
+            let i = fan as usize;
+            if i < scene_fans {
+                scene.fans.remove(i);
+            } else if i - scene_fans < scene.vents.len() {
+                scene.vents.remove(i - scene_fans);
+            }
         }
         AirCommand::OpenDoor { seconds } => {
             finite("open_door", &[seconds])?;
@@ -197,7 +213,16 @@ pub fn apply(loaded: &mut Loaded, command: AirCommand) -> Result<(), WasmError> 
                     "open_door: the room has {count} air sources, the page's most"
                 )));
             }
-            let door = door(&loaded.scene.room, loaded.built.room.bounds(), now, seconds);
+            let door = door(&scene.room, loaded.built.room.bounds(), now, seconds);
+            scene
+                .draughts
+                .retain(|d| !has_ended(&Schedule { on: d.on.clone() }, now));
+            scene.draughts.push(DraughtSpec {
+                min: door.min.to_array(),
+                max: door.max.to_array(),
+                velocity_m_s: door.velocity.to_array(),
+                on: door.schedule.on.clone(),
+            });
             flow.draughts.push(door);
         }
     }
@@ -240,6 +265,29 @@ fn fan_jet(fan: &FanDef, bounds: up_geom::Aabb) -> Result<Jet, WasmError> {
     jet.validate()
         .map_err(|e| WasmError::OutOfRange(format!("add_fan: {e}")))?;
     Ok(jet)
+}
+
+/// A placed fan as the scene writes it.
+fn fan_spec(fan: &FanDef) -> JetSpec {
+    JetSpec {
+        position: fan.position,
+        direction: Some(fan.direction),
+        diameter_m: Some(fan.diameter_m),
+        speed_m_s: Some(fan.speed_m_s),
+        sweep_deg: fan.sweep_deg,
+        sweep_period_s: fan.sweep_period_s,
+        on: Vec::new(),
+    }
+}
+
+/// The scene's entry of the world's jet `fan`, if the scene lists it.
+fn scene_jet(scene: &mut up_scene::scene::Scene, fan: u32) -> Option<&mut JetSpec> {
+    let (i, fans) = (fan as usize, scene.fans.len());
+    if i < fans {
+        scene.fans.get_mut(i)
+    } else {
+        scene.vents.get_mut(i - fans)
+    }
 }
 
 /// Jet `fan`, or `OutOfRange` naming how many there are.

@@ -302,3 +302,38 @@ fn commands_read_as_the_page_writes_them() {
     assert_eq!(door, AirCommand::OpenDoor { seconds: 10.0 });
     assert!(serde_json::from_str::<AirCommand>(r#"{"command": "open_window"}"#).is_err());
 }
+
+#[test]
+fn the_scene_keeps_the_page_s_fans_so_a_rebuilt_world_has_the_same_air() {
+    // A scene with a vent of its own: a placed fan goes among the fans, before it.
+    let mut s = State::default();
+    s.load_json(r#"{"balloons": [{"count": 3}], "vents": [{"position": [1.0, 3.0, 1.0]}]}"#)
+        .expect("a room with a vent builds");
+    s.apply_air(fan([0.0, 1.0, -2.0], [0.0, 0.0, 1.0])).unwrap();
+    s.apply_air(fan([1.0, 1.0, -2.0], [1.0, 0.0, 1.0])).unwrap();
+    s.apply_air(AirCommand::SetFanSpeed {
+        fan: 1,
+        speed_m_s: 5.5,
+    })
+    .unwrap();
+    s.apply_air(AirCommand::SetFanSpeed {
+        fan: 2,
+        speed_m_s: 1.5,
+    })
+    .unwrap();
+    s.apply_air(AirCommand::RemoveFan { fan: 0 }).unwrap();
+    s.apply_air(AirCommand::OpenDoor { seconds: 10.0 }).unwrap();
+    let flow = s.world().unwrap().air_flow().clone();
+    assert_eq!(flow.jets.len(), 2);
+    assert_eq!(flow.draughts.len(), 1);
+    assert_eq!((flow.jets[0].kind, flow.jets[0].speed), (JetKind::Fan, 5.5));
+    assert_eq!(
+        (flow.jets[1].kind, flow.jets[1].speed),
+        (JetKind::Vent, 1.5)
+    );
+
+    let json = s.scene_json().unwrap();
+    let mut rebuilt = State::default();
+    rebuilt.load_json(&json).expect("the page's scene builds");
+    assert_eq!(rebuilt.world().unwrap().air_flow(), &flow);
+}

@@ -117,7 +117,7 @@ export class App {
       census: (sample) => this.plot.push(sample),
       error: (message, fatal) => this.engineError(message, fatal),
       scene: (json) => {
-        // A live setting taken: the scene (and its link) say so.
+        // A live setting or an air tool's change taken: the scene (and its link) say so.
         this.scene = JSON.parse(json) as Scene;
         this.link.set(JSON.stringify(this.scene));
       },

@@ -512,6 +512,9 @@ function handle(msg: ToWorker): void {
         state.engine.applyAir(msg.command);
         air.changed();
         state.dirty = true;
+        // The scene holds the page's fans: a rebuilt world and the share link keep them.
+        state.currentSceneJson = state.engine.sceneJson();
+        post({ type: "scene", sceneJson: state.currentSceneJson });
         break;
       case "release":
         state.engine.release();

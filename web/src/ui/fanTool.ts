@@ -8,7 +8,7 @@
 
 import type { Vec3 } from "../sim/airLayout";
 import { FAN_DIAMETER_M, FAN_OUTLET_HEIGHT_M, defaultFanAim, fanAimFromDrag } from "./fanPlacement";
-import { isClick } from "./input";
+import { pointerKind, tapSlop } from "./gestures";
 
 export interface FanToolEvents {
   /** A fan to add: its floor point (x, z) and its aim. */
@@ -84,7 +84,7 @@ export class FanTool {
     if (!p || e.pointerId !== p.id) return;
     e.stopImmediatePropagation();
     this.press = null;
-    const click = isClick(e.clientX - p.x, e.clientY - p.y);
+    const click = Math.hypot(e.clientX - p.x, e.clientY - p.y) <= tapSlop(pointerKind(e.pointerType));
     if (click && this.events.pick(p.at)) return;
     this.events.place(p.at, click ? defaultFanAim(p.at, this.center) : this.aim(p.at, p.end));
   }
