@@ -261,3 +261,34 @@ fn the_birthday_table_ends_with_its_tied_balloons_over_the_chairs_and_none_in_th
         }
     }
 }
+
+#[test]
+fn a_weighted_ribbon_let_down_onto_a_table_lies_on_its_top() {
+    // A 40 g weight on a 0.25 m ribbon outweighs an 11″ balloon's lift: the
+    // balloon sinks until the weight rests on the top, and stays there.
+    let text = format!(
+        "{TABLE}[[balloons]]\ncount = 1\ntilt_deg = 0\n\
+         spawn = {{ min = [-0.2, 1.2, -0.2], max = [0.3, 1.2, 0.3] }}\n\
+         [balloons.ribbon]\nlength_m = 0.25\nweight_g = 40\n"
+    );
+    let mut built = build(&text);
+    let ribbon = built.world.ribbon_ids()[0];
+    let start = *built.world.ribbon_points(ribbon).unwrap().last().unwrap();
+    assert!(start.y > 0.8, "{start}: the weight starts over the top");
+    let mut lowest = f32::INFINITY;
+    for _ in 0..(8 * 60) {
+        built.world.step();
+        let end = *built.world.ribbon_points(ribbon).unwrap().last().unwrap();
+        lowest = lowest.min(end.y);
+    }
+    let end = *built.world.ribbon_points(ribbon).unwrap().last().unwrap();
+    let weight = up_physics::ribbon::WEIGHT_RADIUS;
+    println!(
+        "the weight ends at {end}, lowest {lowest:.4} m (the top at 0.75, its radius {weight})"
+    );
+    assert!(lowest > 0.75 + weight - 0.005, "through the top: {lowest}");
+    assert!(
+        (end.y - (0.75 + weight)).abs() < 0.005,
+        "{end}: not resting on the top"
+    );
+}
