@@ -111,6 +111,22 @@ pub fn run(args: &ValidateArgs) -> Result<()> {
     rows.extend(groups.iter().map(|(k, v)| (k.as_str(), v.clone())));
     let sources = air_rows(&scene);
     rows.extend(sources.iter().map(|(k, v)| (k.as_str(), v.clone())));
+    let furniture: Vec<(String, String)> = scene
+        .furniture
+        .iter()
+        .zip(&built.furniture)
+        .enumerate()
+        .map(|(i, (spec, piece))| {
+            let size = spec
+                .resolved_size()
+                .map_or(String::new(), |[w, h, d]| format!(" {w} × {h} × {d} m"));
+            let at = format!("at {:?}, turned {}°", spec.position, spec.yaw_deg);
+            let count = piece.triangles.len();
+            let value = format!("{}{size} {at}; {count} triangles", piece.label);
+            (format!("furniture {i}"), value)
+        })
+        .collect();
+    rows.extend(furniture.iter().map(|(k, v)| (k.as_str(), v.clone())));
     print_table(&format!("{}: valid", args.scene.display()), &rows);
     Ok(())
 }

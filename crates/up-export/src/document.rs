@@ -126,7 +126,8 @@ fn add_balloons(b: &mut Builder, recording: &Recording) -> Vec<Index<Node>> {
 }
 
 /// The room: floor, walls and ceiling (faces told apart by their inward
-/// normals, as the page does), flat-shaded, under one node `room`.
+/// normals, as the page does), and the furniture standing in it, in oak
+/// (render/furniture.ts), flat-shaded, under one node `room`.
 fn add_room(b: &mut Builder, recording: &Recording) -> Index<Node> {
     let looks = &recording.looks;
     // sRGB: the floor's oak planks on average, the walls', the ceiling's (room.ts).
@@ -168,6 +169,27 @@ fn add_room(b: &mut Builder, recording: &Recording) -> Index<Node> {
         let surface = b.surface(&positions, &normals, &triangles);
         let mesh = b.mesh(format!("room-{name}"), surface, material, &[]);
         let node = b.node(format!("room-{name}"), Vec3::ZERO, Quat::IDENTITY);
+        b.root.nodes[node.value()].mesh = Some(mesh);
+        children.push(node);
+    }
+    if !looks.furniture_triangles.is_empty() {
+        let (mut positions, mut normals, mut triangles) = (Vec::new(), Vec::new(), Vec::new());
+        for t in &looks.furniture_triangles {
+            let [a, c, d] = t.map(|i| looks.furniture_vertices[i as usize]);
+            let base = positions.len() as u32;
+            positions.extend([a, c, d]);
+            normals.extend([(c - a).cross(d - a).normalize_or_zero(); 3]);
+            triangles.push([base, base + 1, base + 2]);
+        }
+        let material = b.root.push(plain(
+            "furniture".into(),
+            linear_from_hex(0x96623a),
+            0.5,
+            0.0,
+        ));
+        let surface = b.surface(&positions, &normals, &triangles);
+        let mesh = b.mesh("furniture".into(), surface, material, &[]);
+        let node = b.node("furniture".into(), Vec3::ZERO, Quat::IDENTITY);
         b.root.nodes[node.value()].mesh = Some(mesh);
         children.push(node);
     }

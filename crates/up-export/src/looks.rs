@@ -49,6 +49,9 @@ pub struct SceneLooks {
     pub room_vertices: Vec<Vec3>,
     /// Wound so that their normals point into the room.
     pub room_triangles: Vec<[u32; 3]>,
+    /// Every piece of furniture's surface, world frame, normals outward.
+    pub furniture_vertices: Vec<Vec3>,
+    pub furniture_triangles: Vec<[u32; 3]>,
     /// m: the flat strip a ribbon is drawn as.
     pub ribbon_width: f32,
 }
@@ -103,6 +106,12 @@ impl SceneLooks {
             ribbons,
             room_vertices: built.room.vertices().to_vec(),
             room_triangles: built.room.triangles().to_vec(),
+            furniture_vertices: built
+                .furniture
+                .iter()
+                .flat_map(|p| p.vertices.iter().copied())
+                .collect(),
+            furniture_triangles: furniture_triangles(built),
             ribbon_width: RIBBON_WIDTH,
         }
     }
@@ -151,6 +160,17 @@ pub fn look_rotation(eye: Vec3, target: Vec3) -> Quat {
     let right = up.cross(back).normalize();
     let up = back.cross(right);
     Quat::from_mat3(&Mat3::from_cols(right, up, back)).normalize()
+}
+
+/// The pieces' triangles, indexing their vertices laid one piece after another.
+fn furniture_triangles(built: &BuiltScene) -> Vec<[u32; 3]> {
+    let mut base = 0u32;
+    let mut out = Vec::new();
+    for piece in &built.furniture {
+        out.extend(piece.triangles.iter().map(|t| t.map(|k| k + base)));
+        base += piece.vertices.len() as u32;
+    }
+    out
 }
 
 /// A camera standing in the room, 10 cm in from the walls in the direction

@@ -52,6 +52,7 @@ mod contacts;
 mod error;
 mod export;
 mod forces;
+mod furniture;
 mod gas;
 mod info;
 mod limits;

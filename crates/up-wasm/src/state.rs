@@ -560,8 +560,8 @@ impl State {
 }
 
 /// `Ok` when the page can hold `scene` (what `Scene`'s own validation does
-/// not know): at most `CAPACITY` balloons, and a box room (a mesh room names
-/// a file the browser cannot read).
+/// not know): at most `CAPACITY` balloons, a box room and furniture made by
+/// kind (a mesh room or piece names a file the browser cannot read).
 pub fn check_for_browser(scene: &Scene) -> Result<(), WasmError> {
     let total = scene.total_balloons();
     if total > CAPACITY as u64 {
@@ -576,7 +576,7 @@ pub fn check_for_browser(scene: &Scene) -> Result<(), WasmError> {
             scene.source.name
         )));
     }
-    Ok(())
+    crate::furniture::check_for_browser(scene)
 }
 
 /// Reads and checks a scene in JSON as `load_json` would, without building it.

@@ -4,6 +4,7 @@
 
 import * as THREE from "three";
 import { buildRoom } from "./room";
+import { buildFurniture } from "./furniture";
 import { Balloons, loadBalloonAssets, type BalloonAssets } from "./balloons";
 import { DebugView } from "./debugView";
 import { Ribbons } from "./ribbons";
@@ -19,6 +20,8 @@ export class WorldView {
   assets: BalloonAssets | null = null;
   private room: THREE.Group | null = null;
   private roomKey = "";
+  private furniture: THREE.Mesh | null = null;
+  private furnitureKey = "";
   private info: WorldInfo | null = null;
   /** Frame version whose colours and models the balloons show (-1: none yet). */
   private drawnVersion = -1;
@@ -50,6 +53,16 @@ export class WorldView {
       this.room = buildRoom(info.room);
       this.scene.add(this.room);
       this.roomKey = roomKey;
+    }
+    const furnitureKey = info.furniture.vertices.join(",");
+    if (furnitureKey !== this.furnitureKey) {
+      if (this.furniture) {
+        this.scene.remove(this.furniture);
+        this.furniture.geometry.dispose();
+      }
+      this.furniture = buildFurniture(info.furniture);
+      if (this.furniture) this.scene.add(this.furniture);
+      this.furnitureKey = furnitureKey;
     }
     this.debug.setTrees(info.trees);
     if (!this.ribbons) {

@@ -42,6 +42,14 @@ export interface RoomMesh {
   triangles: Uint32Array;
 }
 
+/** The furniture's pieces together, world frame (the triangles the engine collides with). */
+export interface FurnitureMesh {
+  /** x, y, z per vertex, m. */
+  vertices: Float32Array;
+  /** Three per triangle, counter-clockwise seen from outside; empty without furniture. */
+  triangles: Uint32Array;
+}
+
 /** A balloon model's surface, body frame (the frame the poses place). */
 export interface ModelMesh {
   /** x, y, z per vertex (`constants.mesh_vertex_stride`). */
@@ -340,6 +348,13 @@ export class Engine {
     return {
       vertices: new Float32Array(buffer, this.e.room_vertices_ptr(), nv).slice(),
       triangles: new Uint32Array(buffer, this.e.room_triangles_ptr(), nt).slice(),
+    };
+  }
+
+  furniture(): FurnitureMesh {
+    return {
+      vertices: this.call(() => this.e.furniture_vertices()),
+      triangles: this.call(() => this.e.furniture_triangles()),
     };
   }
 

@@ -1,6 +1,7 @@
 // The page's glTF export ("Export last 10 s (.glb)", up-export in the built
 // engine, the code `up export-gltf` runs) passes the Khronos validator with
-// no error on the default room, a bouquet and a room with foil balloons.
+// no error on the default room, a bouquet, a room with foil balloons and
+// the birthday table with its furniture.
 // Needs the wasm build.
 
 import { readFileSync } from "node:fs";
@@ -32,6 +33,7 @@ describe("the exported .glb passes the Khronos validator", () => {
     ["the default room", () => engine.loadDefaultScene(), ["KHR_materials_sheen"]],
     ["a bouquet", () => engine.loadSceneToml(scene("bouquet.toml")), ["KHR_materials_clearcoat"]],
     ["an evening with foil balloons", () => engine.loadSceneToml(scene("evening.toml")), ["KHR_materials_transmission"]],
+    ["a birthday table with its chairs", () => engine.loadSceneToml(scene("birthday.toml")), ["KHR_materials_clearcoat"]],
   ];
   for (const [name, load, extensions] of cases) {
     it(name, async () => {

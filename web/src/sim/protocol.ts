@@ -4,7 +4,7 @@
 // transfers it; the main thread keeps the newest frame and hands the previous
 // buffer back. No typed array is allocated per frame on either side.
 
-import type { AirCommand, Constants, EngineStats, Finish, LiveSetting, ModelMesh, RibbonTables, RoomMesh, TreeNode } from "./engine";
+import type { AirCommand, Constants, EngineStats, Finish, FurnitureMesh, LiveSetting, ModelMesh, RibbonTables, RoomMesh, TreeNode } from "./engine";
 import type { FloatSample } from "../ui/floatPlot";
 import type { ForcesPayload } from "./forcesFrame";
 import type { StepsMeasured } from "./stepMeter";
@@ -57,6 +57,8 @@ export interface WorldInfo {
   sceneJson: string;
   defaultSceneJson: string;
   room: RoomMesh;
+  /** The tables, chairs and meshes standing in the room. */
+  furniture: FurnitureMesh;
   /** Sphere tree of each balloon model, root first (debug view, picking). */
   trees: TreeNode[][];
   /** Linear RGB 0–1 of each colour index. */

@@ -99,6 +99,7 @@ function worldInfo(e: Engine): WorldInfo {
     sceneJson: e.sceneJson(),
     defaultSceneJson: e.defaultSceneJson(),
     room: e.room(),
+    furniture: e.furniture(),
     trees,
     palette: info.colors,
     colorNames: info.color_names,

@@ -7,6 +7,7 @@ mod air;
 mod body_hashes;
 mod export_gltf;
 mod forecast;
+mod furniture;
 mod probe;
 mod ribbons;
 mod run;

@@ -3,8 +3,9 @@
 //! filled with its gas (`gas_fill`: its group's envelope, its own leak
 //! factor, filled `filled_hours_before` h before the run), and with its
 //! group's ribbon tied at its knot (`ribbons::tie_ribbon`), its free end
-//! tied down where the group gives an anchor (`anchor::tie_down`); and the
-//! room's moving air, its fans, vents and draughts (`air`).
+//! tied down where the group gives an anchor (`anchor::tie_down`); the
+//! room's moving air, its fans, vents and draughts (`air`); and the
+//! furniture standing in it, collided with as the room is (`furniture`).
 //!
 //! Each body's `user_data` packs its group and colour:
 //! `group << 16 | colour`, where `colour` indexes `BuiltScene::colors`
@@ -25,6 +26,7 @@ use room::{box_room, room_from_obj, Ceiling, RoomMesh};
 pub mod air;
 pub mod anchor;
 pub mod bench_scene;
+pub mod furniture;
 mod hang;
 pub mod ribbons;
 pub mod room;
@@ -45,6 +47,9 @@ const ROOM_MARGIN: f32 = 0.01;
 pub struct BuiltScene {
     pub world: World,
     pub room: RoomMesh,
+    /// The furniture, in the scene's order: its triangles are in the
+    /// world's room mesh too (`furniture::room_with_furniture`).
+    pub furniture: Vec<furniture::FurniturePiece>,
     /// One per balloon group, in the scene's order.
     pub balloon_models: Vec<BalloonModel>,
     /// RGB in 0–1, indexed by `color_index(user_data)`.
@@ -167,8 +172,9 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
         file: scene.source.name.clone(),
         source,
     };
+    let furniture = furniture::build_furniture(scene, &room)?;
     let mut def = world_def(scene);
-    def.room = Some(room.to_trimesh());
+    def.room = Some(furniture::room_with_furniture(scene, &room, &furniture)?);
     let mut world = World::new(def).map_err(physics)?;
     air::check_air_in(scene, &room)?;
     if scene.has_moving_air() {
@@ -180,6 +186,7 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
     let bounds = room.bounds();
     let inside = |p: Vec3| room.contains_point(p);
     let mut occupied = Occupancy::default();
+    furniture::reserve(&furniture, &mut occupied);
     let mut rng = SplitMix64::new(scene.sim.seed);
     let mut balloon_models = Vec::with_capacity(scene.balloons.len());
     let mut group_bodies = Vec::with_capacity(scene.balloons.len());
@@ -296,6 +303,7 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
     Ok(BuiltScene {
         world,
         room,
+        furniture,
         balloon_models,
         colors,
         color_names,

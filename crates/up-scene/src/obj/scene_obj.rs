@@ -1,7 +1,8 @@
 //! A whole scene as one Wavefront OBJ with its MTL, for Blender and other
 //! tools (`up export-obj`): every balloon where the world has it, and every
 //! ribbon as a thin flat strip along its points, each an OBJ object of its
-//! own with a material of its colour. The room is `obj_export::export_room_obj`.
+//! own with a material of its colour, and every piece of furniture, flat
+//! shaded in one wood material. The room is `obj_export::export_room_obj`.
 //!
 //! Balloons are the group's model mesh placed at the body's pose and size (smooth
 //! normals); a ribbon is a strip `RIBBON_WIDTH` wide whose flat side is
@@ -134,6 +135,38 @@ fn push_material(mtl: &mut String, name: &str, rgb: [f32; 3], shine: bool) {
     );
 }
 
+/// The furniture's material: a mid oak, sRGB.
+const WOOD_RGB: [f32; 3] = [0.55, 0.36, 0.2];
+
+/// A piece's triangles flat shaded: three vertices and a face normal each.
+fn flat_object<'a>(
+    name: String,
+    material: &'a str,
+    vertices: &[Vec3],
+    triangles: &[[u32; 3]],
+    corners: &'a mut Vec<[u32; 3]>,
+) -> ObjObject<'a> {
+    let mut object_vertices = Vec::with_capacity(3 * triangles.len());
+    let mut normals = Vec::with_capacity(3 * triangles.len());
+    corners.clear();
+    for t in triangles {
+        let [a, b, c] = t.map(|i| vertices[i as usize]);
+        let n = (b - a).cross(c - a).normalize_or_zero();
+        let base = object_vertices.len() as u32;
+        object_vertices.extend([a, b, c]);
+        normals.extend([n; 3]);
+        corners.push([base, base + 1, base + 2]);
+    }
+    ObjObject {
+        name,
+        material,
+        smooth: false,
+        vertices: object_vertices,
+        normals,
+        triangles: corners,
+    }
+}
+
 /// The OBJ and MTL text of the scene as the world has it now; the OBJ
 /// names `mtllib`.
 pub fn scene_obj_text(built: &BuiltScene, mtllib: &str) -> (String, String) {
@@ -151,9 +184,10 @@ pub fn scene_obj_text(built: &BuiltScene, mtllib: &str) -> (String, String) {
     let _ = writeln!(
         obj,
         "# UP scene: metres, +Y up, origin at the centre of the floor\n\
-         # {} balloons, {} ribbons\nmtllib {mtllib}",
+         # {} balloons, {} ribbons, {} pieces of furniture\nmtllib {mtllib}",
         world.body_count(),
-        world.ribbon_count()
+        world.ribbon_count(),
+        built.furniture.len()
     );
     // OBJ indices count from 1 over the whole file.
     let mut next = (1u32, 1u32);
@@ -208,6 +242,24 @@ pub fn scene_obj_text(built: &BuiltScene, mtllib: &str) -> (String, String) {
             triangles: &strip.triangles,
         };
         object.write(&mut obj, &mut next);
+    }
+    let mut corners = Vec::new();
+    for (i, piece) in built.furniture.iter().enumerate() {
+        let material = use_material(&mut mtl, "furniture_wood".into(), WOOD_RGB, false);
+        let label: String = piece
+            .label
+            .chars()
+            .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+            .collect();
+        let name = format!("furniture_{i}_{label}");
+        flat_object(
+            name,
+            &material,
+            &piece.vertices,
+            &piece.triangles,
+            &mut corners,
+        )
+        .write(&mut obj, &mut next);
     }
     (obj, mtl)
 }
@@ -324,5 +376,35 @@ mod tests {
             .fold(f32::INFINITY, f32::min);
         assert!(nearest < 1e-5, "{nearest} m");
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn the_scene_obj_has_each_piece_of_furniture_where_it_stands_in_wood() {
+        let text = "[[furniture]]\nkind = \"table\"\nposition = [1, 0, 0]\n\
+                    [[furniture]]\nkind = \"chair\"\nposition = [-1, 0, 0]\n";
+        let built = build_world(&Scene::from_toml_str(text, "t.toml").unwrap()).unwrap();
+        let (obj, mtl) = scene_obj_text(&built, "scene.mtl");
+        assert!(mtl.contains("newmtl furniture_wood"), "{mtl}");
+        assert!(obj.contains("o furniture_0_table") && obj.contains("o furniture_1_chair"));
+        let (models, _) = tobj::load_obj_buf(
+            &mut std::io::Cursor::new(obj),
+            &tobj::LoadOptions::default(),
+            |_| Ok((Vec::new(), Default::default())),
+        )
+        .unwrap();
+        let table = models
+            .iter()
+            .find(|m| m.name == "furniture_0_table")
+            .unwrap();
+        let piece = &built.furniture[0];
+        assert_eq!(table.mesh.indices.len(), 3 * piece.triangles.len());
+        let xs = table.mesh.positions.chunks_exact(3).map(|p| p[0]);
+        let (lo, hi) = xs.fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), x| {
+            (lo.min(x), hi.max(x))
+        });
+        assert!(
+            (lo - 0.4).abs() < 1e-5 && (hi - 1.6).abs() < 1e-5,
+            "{lo} to {hi}"
+        );
     }
 }

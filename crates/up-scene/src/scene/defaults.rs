@@ -159,6 +159,7 @@ impl Default for Scene {
             fans: Vec::new(),
             vents: Vec::new(),
             draughts: Vec::new(),
+            furniture: Vec::new(),
             sim: SimSpec::default(),
             about: None,
             source: SceneSource::default(),

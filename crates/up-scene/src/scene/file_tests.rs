@@ -55,6 +55,7 @@ fn example_scenes_parse_and_validate() {
         "evening.toml",
         "tied.toml",
         "mixed-room.toml",
+        "birthday.toml",
     ];
     for name in names {
         let scene = Scene::from_path(asset(name)).unwrap_or_else(|e| panic!("{e}"));

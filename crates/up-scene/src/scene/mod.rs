@@ -16,12 +16,14 @@
 //! One concern a file: the structs (`spec`), their defaults (`defaults`),
 //! reading text (`parse`) and files (`file`), the ranges (`validate`), the
 //! line of each key for messages (`lines`), `[about]` (`about`), and the
-//! sources of moving air with their defaults and ranges (`air_sources`).
+//! sources of moving air with their defaults and ranges (`air_sources`),
+//! and the furniture standing in the room (`furniture`).
 
 mod about;
 mod air_sources;
 mod defaults;
 mod file;
+mod furniture;
 mod lines;
 mod parse;
 mod spec;
@@ -42,6 +44,10 @@ pub use defaults::{
     DEFAULT_RIBBON_SEGMENTS, DEFAULT_SOURCE_NAME, METRES_PER_INCH,
 };
 pub use file::MAX_SCENE_BYTES;
+pub use furniture::{
+    FurnitureKind, FurnitureSpec, DEFAULT_CHAIR_SIZE_M, DEFAULT_TABLE_SIZE_M, MAX_FURNITURE,
+    MAX_FURNITURE_SIZE_M, MIN_FURNITURE_SIZE_M,
+};
 pub use lines::KeyLines;
 pub use spec::{
     AirSpec, BalloonGroup, BalloonKind, CeilingKind, Finish, GasKind, RibbonSpec, RoomSpec, Scene,

@@ -9,9 +9,9 @@ use std::path::PathBuf;
 use serde::{Deserialize, Serialize};
 
 use super::{
-    AboutSpec, DraughtSpec, JetSpec, KeyLines, DEFAULT_DIAMETER_M, DEFAULT_ENVELOPE_MASS_G_11IN,
-    DEFAULT_FOIL_DIAMETER_M, DEFAULT_FOIL_ENVELOPE_MASS_G_18IN, DEFAULT_FOIL_VALVE_MASS_G,
-    DEFAULT_KNOT_MASS_G, METRES_PER_INCH,
+    AboutSpec, DraughtSpec, FurnitureSpec, JetSpec, KeyLines, DEFAULT_DIAMETER_M,
+    DEFAULT_ENVELOPE_MASS_G_11IN, DEFAULT_FOIL_DIAMETER_M, DEFAULT_FOIL_ENVELOPE_MASS_G_18IN,
+    DEFAULT_FOIL_VALVE_MASS_G, DEFAULT_KNOT_MASS_G, METRES_PER_INCH,
 };
 use crate::error::SceneError;
 
@@ -33,6 +33,9 @@ pub struct Scene {
     /// Open doors and windows the air moves through; at most 64.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub draughts: Vec<DraughtSpec>,
+    /// Tables, chairs and meshes standing in the room (`furniture`); at most 64.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub furniture: Vec<FurnitureSpec>,
     pub sim: SimSpec,
     /// A title and caption for a page (`about`); optional.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -391,6 +394,7 @@ impl PartialEq for Scene {
             && self.fans == other.fans
             && self.vents == other.vents
             && self.draughts == other.draughts
+            && self.furniture == other.furniture
             && self.sim == other.sim
     }
 }

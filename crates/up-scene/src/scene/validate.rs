@@ -155,6 +155,7 @@ fn validate(scene: &Scene) -> Result<(), SceneError> {
     )?;
     check_schedule(&c, air)?;
     super::air_sources::check(&c)?;
+    super::furniture::check(&c)?;
 
     let sim = &scene.sim;
     if sim.seed > MAX_SEED {
