@@ -340,6 +340,11 @@ export class App {
     this.air.update(dt);
     const { renderer, scene, camera } = this.stage;
     const renderStart = performance.now();
+    // Nothing is drawn on the hidden canvas: frames drawn there would queue up on a software GPU unseen.
+    if (!withBalloons && this.firstDrawAt === null) {
+      requestAnimationFrame((t) => this.frame(t));
+      return;
+    }
     if (this.photo.active) this.photo.render();
     else renderer.render(scene, camera);
     const renderEnd = performance.now();
