@@ -1,4 +1,7 @@
+import { fileURLToPath } from "node:url";
 import { defineConfig } from "vitest/config";
+// The ".js" names keep Vite's config loader from warning about extensionless imports (they resolve to the .ts files).
+import { balloonMeshPlugin } from "./scripts/balloonMeshPlugin.js";
 
 // Cross-origin isolation: without it a page has no SharedArrayBuffer, and the
 // engine's threads (Web Workers sharing the module's memory) cannot start.
@@ -9,9 +12,11 @@ const ISOLATION_HEADERS = {
 };
 
 // Vite's own bundles go to dist/static so they never mix with public/assets
-// (the balloon OBJ/MTL and the scenes copied from ../assets).
+// (the balloon OBJ/MTL and the scenes copied from ../assets); the balloon
+// model baked from them goes to assets/ beside them.
 export default defineConfig({
   base: "./",
+  plugins: [balloonMeshPlugin(fileURLToPath(new URL("../assets", import.meta.url)))],
   build: {
     assetsDir: "static",
     target: "es2022",

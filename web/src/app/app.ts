@@ -65,8 +65,8 @@ export class App {
   private readonly governor: CrowdGovernor | null;
   /** When the first frame with balloons was drawn, ms on the page's clock (null before). */
   firstDrawAt: number | null = null;
-  /** When the engine's first world and the balloon model were ready, and the first render call took how long, ms (where the first draw's time goes). */
-  readonly startup = { stageMs: 0, engineAt: null as number | null, assetsAt: null as number | null, firstRenderMs: null as number | null };
+  /** When the app started (its bundle run, its stage built), the engine's first world and the balloon model were ready, and the first render call took how long, ms (where the first draw's time goes). */
+  readonly startup = { stageMs: 0, startAt: null as number | null, engineAt: null as number | null, assetsAt: null as number | null, firstRenderMs: null as number | null };
   /** The engine's description of the world shown (null until the first is ready). */
   info: WorldInfo | null = null;
   /** The scene shown, as the engine read it (every default written out); its live settings as the engine last took them. */
@@ -94,15 +94,9 @@ export class App {
     });
     this.governor = this.budget.lighter ? new CrowdGovernor(this.budget.crowdAbove) : null;
     this.layout = new PageLayout(document.body);
-    const stageStart = performance.now();
-    this.stage = createStage(page.app, this.budget);
-    this.startup.stageMs = performance.now() - stageStart;
-    this.world = new WorldView(this.stage.scene);
-    this.hud = new Hud(page.hud);
-    this.hud.setCost(costText(this.budget));
     this.messages = new Messages(page.message, page.fatal);
     this.link = new ShareLink(this.messages);
-    this.plot = new FloatPlot(document.body);
+    // The engine first: its worker fetches, compiles and builds the world while this thread builds the stage.
     this.bridge = new SimBridge({
       ready: (info) => this.worldReady(info),
       frame: () => {
@@ -123,6 +117,21 @@ export class App {
       },
       airField: (field) => this.air.takeField(field),
     });
+    const { threads, error: threadsError } = requestedThreads(location.search, navigator.hardwareConcurrency);
+    this.bridge.init(new URL("wasm/up_wasm.wasm", document.baseURI).href, this.link.takeInitial(), threads);
+    const stageStart = performance.now();
+    this.stage = createStage(page.app, this.budget);
+    this.startup.stageMs = performance.now() - stageStart;
+    // Hidden until its first frame with balloons: a browser that composites in software (SwiftShader,
+    // the phone's stand-in) reads a shown WebGL canvas back at each frame, which holds this thread
+    // until the GPU has done all it was given (the environment map's passes take seconds there),
+    // and the model and the engine's worker would wait behind it (docs/perf-log.md).
+    this.stage.renderer.domElement.style.visibility = "hidden";
+    this.world = new WorldView(this.stage.scene);
+    this.hud = new Hud(page.hud);
+    this.hud.setCost(costText(this.budget));
+    if (threadsError) this.messages.error(threadsError);
+    this.plot = new FloatPlot(document.body);
     this.physics = new PhysicsView(this.stage.scene, document.body, this.bridge, this.stage.camera);
     this.controls = new Controls(this.stage.camera, this.stage.renderer.domElement, this.bridge, {
       select: (index) => this.physics.select(index),
@@ -155,19 +164,22 @@ export class App {
     );
   }
 
-  /** Loads the balloon model and the engine (with the linked scene, if any) and starts drawing. */
+  /**
+   * Reads the balloon model (preloaded by index.html) and starts drawing;
+   * the engine has been starting since the constructor. The first frame
+   * waits for the model: drawing a frame can hold this thread until the GPU
+   * has drawn it (for seconds on a software rasterizer), and the model's
+   * few milliseconds of reading would wait behind it.
+   */
   start(): void {
-    const initialJson = this.link.takeInitial();
-    this.world
+    this.startup.startAt = performance.now();
+    const assets = this.world
       .loadAssets(new URL("assets/", document.baseURI).href)
       .then(() => {
         this.startup.assetsAt = performance.now();
         this.world.balloons?.setCrowdAbove(this.budget.crowdAbove);
       })
       .catch((e: Error) => this.messages.fatal("The balloon model failed to load", e.message));
-    const { threads, error } = requestedThreads(location.search, navigator.hardwareConcurrency);
-    if (error) this.messages.error(error);
-    this.bridge.init(new URL("wasm/up_wasm.wasm", document.baseURI).href, initialJson, threads);
     window.addEventListener("resize", () => {
       this.stage.resize();
       this.layout.resize();
@@ -176,7 +188,7 @@ export class App {
     this.layout.onChange((layout, changed) => {
       if (changed && this.panel) this.panel.gui.open(!layout.compact);
     });
-    requestAnimationFrame((now) => this.frame(now));
+    void assets.then(() => requestAnimationFrame((now) => this.frame(now)));
   }
 
   /** Whether the engine and the balloon model are in and balloons have been drawn. */
@@ -328,6 +340,11 @@ export class App {
     this.air.update(dt);
     const { renderer, scene, camera } = this.stage;
     const renderStart = performance.now();
+    // Nothing is drawn on the hidden canvas: frames drawn there would queue up on a software GPU unseen.
+    if (!withBalloons && this.firstDrawAt === null) {
+      requestAnimationFrame((t) => this.frame(t));
+      return;
+    }
     if (this.photo.active) this.photo.render();
     else renderer.render(scene, camera);
     const renderEnd = performance.now();
@@ -336,6 +353,7 @@ export class App {
     if (withBalloons) {
       this.frames.drawn++;
       if (this.firstDrawAt === null) {
+        this.stage.renderer.domElement.style.visibility = "";
         this.firstDrawAt = performance.now();
         this.startup.firstRenderMs = renderEnd - renderStart;
       }

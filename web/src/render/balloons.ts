@@ -1,4 +1,5 @@
-// The balloons: an InstancedMesh of assets/balloon.obj per finish drawn
+// The balloons: an InstancedMesh of assets/balloon.obj (baked at build time:
+// balloonMeshFile.ts) per finish drawn
 // (finishes.ts: latex, pearl, foil; MeshPhysicalMaterial lit by the
 // environment map), each instance tinted with its colour from the per-colour
 // MTL files. Every mesh holds every body in dense order and draws those of
@@ -9,9 +10,7 @@
 // meshes draw them at size 0.
 
 import * as THREE from "three";
-import { OBJLoader } from "three/examples/jsm/loaders/OBJLoader.js";
-import { mergeGeometries, mergeVertices } from "three/examples/jsm/utils/BufferGeometryUtils.js";
-import { colorNameOfMtlFile, parseMtl } from "./mtl";
+import { BALLOON_MESH_FILE, decodeBalloonMesh, type BalloonMesh } from "./balloonMeshFile";
 import { writeInstanceMatrices } from "./poseMath";
 import { CROWD_BALLOONS, revolutionProfile, thinProfile } from "./crowdLod";
 import { FoilBalloons } from "./foilBalloons";
@@ -34,37 +33,24 @@ export interface BalloonAssets {
   mtlColors: Map<string, [number, number, number]>;
 }
 
-/** Loads the balloon OBJ and the per-colour MTL files listed in the asset manifest. */
-export async function loadBalloonAssets(base: string): Promise<BalloonAssets> {
-  const manifestResponse = await fetch(`${base}manifest.json`);
-  if (!manifestResponse.ok) throw new Error(`cannot load ${base}manifest.json: HTTP ${manifestResponse.status}`);
-  const manifest = (await manifestResponse.json()) as { files: string[] };
-  const objFile = manifest.files.find((f) => /(^|\/)balloon\.obj$/i.test(f)) ?? manifest.files.find((f) => f.endsWith(".obj"));
-  if (!objFile) throw new Error("the balloon model (assets/balloon.obj) is missing");
-  const objResponse = await fetch(base + objFile);
-  if (!objResponse.ok) throw new Error(`cannot load ${objFile}: HTTP ${objResponse.status}`);
-  const group = new OBJLoader().parse(await objResponse.text());
+/** The balloon model's file (balloonMeshFile.ts) under `base`, fetched at once; index.html preloads it. */
+export async function fetchBalloonMesh(base: string): Promise<BalloonMesh> {
+  const response = await fetch(base + BALLOON_MESH_FILE);
+  if (!response.ok) throw new Error(`cannot load ${base}${BALLOON_MESH_FILE}: HTTP ${response.status}`);
+  return decodeBalloonMesh(await response.arrayBuffer());
+}
 
-  const parts: THREE.BufferGeometry[] = [];
-  group.traverse((o) => {
-    if ((o as THREE.Mesh).isMesh) {
-      const g = (o as THREE.Mesh).geometry.clone();
-      g.deleteAttribute("uv");
-      for (const name of Object.keys(g.attributes)) if (name !== "position" && name !== "normal") g.deleteAttribute(name);
-      parts.push(g);
-    }
-  });
-  if (parts.length === 0) throw new Error(`${objFile} has no faces`);
-  let geometry = parts.length === 1 ? parts[0] : mergeGeometries(parts, false)!;
-  // Welded vertices give smooth normals: latex has no facets.
-  geometry.deleteAttribute("normal");
-  geometry = mergeVertices(geometry, 1e-5);
-  geometry.computeVertexNormals();
+/** The balloon's geometries and colours from its baked mesh. */
+export function balloonAssetsOf(mesh: BalloonMesh): BalloonAssets {
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute("position", new THREE.BufferAttribute(mesh.positions, 3));
+  geometry.setAttribute("normal", new THREE.BufferAttribute(mesh.normals, 3));
+  geometry.setIndex(new THREE.BufferAttribute(mesh.index, 1));
   geometry.computeBoundingBox();
   geometry.computeBoundingSphere();
   const box = geometry.boundingBox!;
   const diameter = Math.max(box.max.x - box.min.x, box.max.z - box.min.z);
-  const profile = thinProfile(revolutionProfile(geometry.getAttribute("position").array), CROWD_RING_STEP);
+  const profile = thinProfile(revolutionProfile(mesh.positions), CROWD_RING_STEP);
   const crowdGeometry = new THREE.LatheGeometry(
     profile.map(([r, y]) => new THREE.Vector2(r, y)),
     CROWD_SEGMENTS,
@@ -73,21 +59,12 @@ export async function loadBalloonAssets(base: string): Promise<BalloonAssets> {
   // The finishes' normal maps (neck pleats, knot, creases) need the same uv on both.
   addLatexUv(geometry);
   addLatexUv(crowdGeometry);
+  return { geometry, crowdGeometry, diameter, mtlColors: new Map(Object.entries(mesh.colors)) };
+}
 
-  const mtlColors = new Map<string, [number, number, number]>();
-  await Promise.all(
-    manifest.files
-      .filter((f) => f.endsWith(".mtl"))
-      .map(async (f) => {
-        const response = await fetch(base + f);
-        if (!response.ok) return;
-        const materials = parseMtl(await response.text());
-        const name = colorNameOfMtlFile(f);
-        const kd = materials.find((m) => m.kd)?.kd;
-        if (name && kd) mtlColors.set(name, kd);
-      }),
-  );
-  return { geometry, crowdGeometry, diameter, mtlColors };
+/** Loads the balloon model and its colours (one baked file: balloonMeshFile.ts). */
+export async function loadBalloonAssets(base: string): Promise<BalloonAssets> {
+  return balloonAssetsOf(await fetchBalloonMesh(base));
 }
 
 /**

@@ -61,12 +61,12 @@ impl Draught {
             None
         } else {
             let jet = self.jet();
-            Some(JetNow {
-                outlet: jet.outlet,
-                aim: jet.direction,
-                diameter: jet.diameter,
-                speed: jet.speed * level,
-            })
+            Some(JetNow::new(
+                jet.outlet,
+                jet.direction,
+                jet.diameter,
+                jet.speed * level,
+            ))
         };
         DraughtNow {
             min: self.min,
