@@ -30,6 +30,7 @@
 use std::ops::Range;
 
 use glam::Vec3;
+use up_geom::Aabb;
 
 use super::collide::NearTriangle;
 use super::lane_group::RibbonLanes;
@@ -215,6 +216,31 @@ pub(crate) struct RibbonStage {
     pub touched: Vec<crate::body::BodyId>,
     /// Per body (dense): its ribbon still moves faster than the sleep speed.
     pub moving: Vec<bool>,
+    /// The sleeping ribbons' boxes, for the wake pass.
+    pub point_boxes: PointBoxes,
+}
+
+/// Per ribbon slot: its points' box as the last step it was solved left
+/// them (None: not known), which stays right while its balloon sleeps.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct PointBoxes(Vec<Option<Aabb>>);
+
+impl PointBoxes {
+    /// `ribbon`'s points' box, slot `slot`'s kept box or found and kept.
+    pub fn of(&mut self, slot: u32, ribbon: &Ribbon) -> Aabb {
+        let slot = slot as usize;
+        if self.0.len() <= slot {
+            self.0.resize(slot + 1, None);
+        }
+        *self.0[slot].get_or_insert_with(|| Aabb::from_points(&ribbon.points))
+    }
+
+    /// Forgets slot `slot`'s box: its ribbon's points changed.
+    pub fn forget(&mut self, slot: u32) {
+        if let Some(kept) = self.0.get_mut(slot as usize) {
+            *kept = None;
+        }
+    }
 }
 
 /// The awake ribbons as the solver's `ribbons` part of each substep.

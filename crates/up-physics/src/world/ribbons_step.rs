@@ -49,21 +49,25 @@ impl World {
         // A few restless bodies are tested against each ribbon directly:
         // a grid's cells would cost more to walk than they spare.
         let few = stage.awake_bodies.len() <= FEW_RESTLESS;
-        let restless = &mut stage.nearby.restless;
         if !few {
+            let restless = &mut stage.nearby.restless;
             restless.build(&stage.bound_center, &stage.bound_radius);
         }
         let mut touched = std::mem::take(&mut stage.touched);
-        let found = &mut stage.found;
         touched.clear();
-        for (_, ribbon) in self.ribbons.iter() {
+        for (id, ribbon) in self.ribbons.iter() {
             let Some(i) = self.handles.dense(ribbon.body) else {
                 continue;
             };
             if b.awake[i] {
                 continue;
             }
-            let aabb = Aabb::from_points(&ribbon.points).expanded(ribbon.radius(ribbon.segments()));
+            // A sleeper's ribbon has not moved since its box was kept.
+            let aabb = stage
+                .point_boxes
+                .of(id.index, ribbon)
+                .expanded(ribbon.radius(ribbon.segments()));
+            let (restless, found) = (&mut stage.nearby.restless, &mut stage.found);
             found.clear();
             let (centers, radii) = (&stage.bound_center, &stage.bound_radius);
             if few {
@@ -212,6 +216,7 @@ impl World {
             ribbon.points[0] = self.bodies.center[i] + arm;
             ribbon.velocities[0] =
                 self.bodies.linear_velocity[i] + self.bodies.angular_velocity[i].cross(arm);
+            stage.point_boxes.forget(r.slot);
             if !ribbon.points.iter().all(|p| p.is_finite()) {
                 self.stages.faults.non_finite.push(i);
                 continue;
