@@ -64,8 +64,9 @@ fn leaf_spheres(
 }
 
 impl BodySpheres {
-    /// Places every body's bound at `states`' poses, and its leaves too if
-    /// `all_leaves`.
+    /// Places the bounds of the bodies the ribbons may touch (every body's,
+    /// or only those in `input.bodies` when they are few) at `states`'
+    /// poses, and every body's leaves too if `all_leaves`.
     pub fn place(&mut self, input: &SubstepInput, states: &[BodyState], all_leaves: bool) {
         // The bodies (the states may hold more: the solver keeps its buffers).
         let n = input.centers.len();
@@ -81,6 +82,14 @@ impl BodySpheres {
                 radius: root.radius * scale,
             }
         };
+        if !all_leaves && 2 * input.bodies.len() < n {
+            // Only the ribbons' candidates are read: a few ribbons among
+            // many bodies (a lone balloon awake in a time-lapse) place few.
+            for &b in input.bodies {
+                self.bounds[b as usize] = bound(b as usize);
+            }
+            return;
+        }
         if !all_leaves {
             fill_chunks(&mut self.bounds, BODY_CHUNK, |first, run| {
                 for (k, out) in run.iter_mut().enumerate() {

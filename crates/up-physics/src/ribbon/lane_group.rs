@@ -5,8 +5,10 @@
 //! (`lane_substep`), with no branch on a ribbon and no allocation once the
 //! buffers have grown to the scene.
 //!
-//! Packed once a step from the `ActiveRibbon`s that `World::prepare_ribbons`
-//! filled, unpacked into them once a step for `World::finish_ribbons`. A
+//! Packed once a step, straight from the world's ribbons, as
+//! `World::prepare_ribbons` readies them (`RibbonLanes::add`), and their
+//! points handed back once a step in `World::finish_ribbons`
+//! (`RibbonLanes::take_out`). A
 //! group short of four ribbons fills its spare lanes with copies of its
 //! first: they compute harmless numbers that nothing reads.
 
@@ -20,7 +22,7 @@ use super::chain::ChainRows;
 use super::collide::NearBalloon;
 use super::lane_pushes::NearSlot;
 use super::solve::ActiveRibbon;
-use super::MAX_SEGMENTS;
+use super::{Ribbon, MAX_SEGMENTS};
 use crate::solver::lanes::{set, F4, LANES, M4, V4};
 
 /// A ribbon's lane, what is not laid out across the lanes: its balloon, what
@@ -117,14 +119,20 @@ impl LaneGroup {
         self.h = 0.0;
     }
 
-    /// Puts `r` in the next lane.
-    fn add(&mut self, r: &ActiveRibbon) {
+    /// Puts `r`, whose points are `ribbon`'s, in the next lane: an anchored
+    /// end where it is tied, still; a held point of no inverse mass.
+    fn add(&mut self, r: &ActiveRibbon, ribbon: &Ribbon) {
         let l = self.live;
         self.live += 1;
-        for (i, (p, v)) in r.points.iter().zip(&r.velocities).enumerate() {
+        let n = ribbon.points.len() - 1;
+        for (i, (p, v)) in ribbon.points.iter().zip(&ribbon.velocities).enumerate() {
             self.points[i].set_lane(l, *p);
             self.velocities[i].set_lane(l, *v);
-            set(&mut self.inv_mass[i], l, r.inv_mass[i]);
+            set(&mut self.inv_mass[i], l, r.inv_mass(i, n));
+        }
+        if let Some(anchor) = r.anchor {
+            self.points[n].set_lane(l, anchor);
+            self.velocities[n].set_lane(l, Vec3::ZERO);
         }
         set(&mut self.segment_length, l, r.segment_length);
         for k in 0..3 {
@@ -183,9 +191,15 @@ impl LaneGroup {
         }
     }
 
-    /// Lane `l`'s points, velocities and step back into `r`.
-    fn take_out(&self, l: usize, r: &mut ActiveRibbon) {
-        for (i, (p, v)) in r.points.iter_mut().zip(&mut r.velocities).enumerate() {
+    /// Lane `l`'s points and velocities back into `ribbon`, its step's
+    /// impulses into `r`.
+    fn take_out(&self, l: usize, r: &mut ActiveRibbon, ribbon: &mut Ribbon) {
+        for (i, (p, v)) in ribbon
+            .points
+            .iter_mut()
+            .zip(&mut ribbon.velocities)
+            .enumerate()
+        {
             *p = self.points[i].lane(l);
             *v = self.velocities[i].lane(l);
         }
@@ -224,39 +238,49 @@ impl RibbonLanes {
         self.used == 0
     }
 
-    /// Lays out `active` in groups, in their order: each ribbon goes to the
-    /// latest group of its segment count with a free lane.
-    pub fn pack(&mut self, active: &[ActiveRibbon]) {
+    /// Empties the groups for the step's ribbons.
+    pub fn begin(&mut self) {
         self.used = 0;
         self.order.clear();
         self.filling.clear();
         self.filling.resize(MAX_SEGMENTS as usize + 1, u32::MAX);
-        for r in active {
-            let segments = r.points.len() - 1;
-            let mut g = self.filling[segments];
-            if g == u32::MAX || self.groups[g as usize].live == LANES {
-                g = self.used as u32;
-                if self.groups.len() == self.used {
-                    self.groups.push(LaneGroup::default());
-                }
-                self.used += 1;
-                self.groups[g as usize].begin(segments);
-                self.filling[segments] = g;
+    }
+
+    /// Lays out the next awake ribbon `r`, whose points are `ribbon`'s: in
+    /// the latest group of its segment count with a free lane.
+    pub fn add(&mut self, r: &ActiveRibbon, ribbon: &Ribbon) {
+        let segments = ribbon.points.len() - 1;
+        let mut g = self.filling[segments];
+        if g == u32::MAX || self.groups[g as usize].live == LANES {
+            g = self.used as u32;
+            if self.groups.len() == self.used {
+                self.groups.push(LaneGroup::default());
             }
-            let group = &mut self.groups[g as usize];
-            self.order.push((g, group.live as u32));
-            group.add(r);
+            self.used += 1;
+            self.groups[g as usize].begin(segments);
+            self.filling[segments] = g;
         }
+        let group = &mut self.groups[g as usize];
+        self.order.push((g, group.live as u32));
+        group.add(r, ribbon);
+    }
+
+    /// Pads the groups once every awake ribbon is added.
+    pub fn finish_packing(&mut self) {
         for group in &mut self.groups[..self.used] {
             group.pad();
         }
     }
 
-    /// Hands the points back to `active` (as packed) and empties the groups.
-    pub fn unpack(&mut self, active: &mut [ActiveRibbon]) {
-        for (r, &(g, l)) in active.iter_mut().zip(&self.order) {
-            self.groups[g as usize].take_out(l as usize, r);
-        }
+    /// Hands the `k`th awake ribbon's points back to `ribbon` (as added),
+    /// its step's impulses to `r`.
+    pub fn take_out(&self, k: usize, r: &mut ActiveRibbon, ribbon: &mut Ribbon) {
+        let (g, l) = self.order[k];
+        self.groups[g as usize].take_out(l as usize, r, ribbon);
+    }
+
+    /// Empties the groups once their points are handed back.
+    pub fn clear(&mut self) {
         self.used = 0;
         self.order.clear();
     }

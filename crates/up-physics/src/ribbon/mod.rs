@@ -151,15 +151,6 @@ impl Ribbon {
         self.segment_length * self.segments() as f32
     }
 
-    /// Mass of point `i` (`i ≥ 1`), kg.
-    pub fn mass(&self, i: usize) -> f32 {
-        if i == self.segments() {
-            self.end_mass
-        } else {
-            self.point_mass
-        }
-    }
-
     /// Collision radius of point `i`, m.
     pub fn radius(&self, i: usize) -> f32 {
         if i == self.segments() && self.weight > 0.0 {

@@ -30,6 +30,7 @@
 use std::ops::Range;
 
 use glam::Vec3;
+use up_geom::Aabb;
 
 use super::collide::NearTriangle;
 use super::lane_group::RibbonLanes;
@@ -58,8 +59,9 @@ pub(super) const CHAIN_TOLERANCE: f32 = 2e-3;
 /// Lane groups one task takes (64 ribbons).
 const GROUP_CHUNK: usize = 16;
 
-/// An awake ribbon during the step, its points taken from the world's; the
-/// substeps solve it in a lane of a `lane_group::LaneGroup`.
+/// An awake ribbon during the step: what its lane in a
+/// `lane_group::LaneGroup` is packed with besides its points (which go
+/// straight from the world's ribbon into the lanes and back).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct ActiveRibbon {
     /// Its slot in the world's ribbons.
@@ -72,10 +74,12 @@ pub(crate) struct ActiveRibbon {
     pub origin: Vec3,
     /// The knot from the centre of mass, world frame at the step's start, m.
     pub arm0: Vec3,
-    pub points: Vec<Vec3>,
-    pub velocities: Vec<Vec3>,
-    /// Per point: inverse mass (0 for a held point; unused at the knot).
-    pub inv_mass: Vec<f32>,
+    /// Inverse mass of the points between the ends and of the end (0: a
+    /// point of no mass), kg⁻¹; a held point's is 0 in the lanes.
+    pub(super) inv_point_mass: f32,
+    pub(super) inv_end_mass: f32,
+    /// Where the end is tied (`Ribbon::anchor`): held there.
+    pub(super) anchor: Option<Vec3>,
     /// Drag across and along the ribbon (½·ρ·C∞·A, kg/m), and across at low
     /// Reynolds numbers: the drag factor times the speed is
     /// `drag[0]·|v| + drag[2]` (a viscous force, linear in the speed); of
@@ -120,33 +124,47 @@ fn drag_at(ribbon: &Ribbon, i: usize, air_density: f32) -> [f32; 3] {
     [across, along, viscous]
 }
 
+/// `1 / m`, or 0 for no mass.
+fn inverse(m: f32) -> f32 {
+    if m > 0.0 {
+        1.0 / m
+    } else {
+        0.0
+    }
+}
+
 impl ActiveRibbon {
-    /// Takes `ribbon`'s points for the step (`give_back` returns them).
-    pub fn take(&mut self, ribbon: &mut Ribbon, air_density: f32) {
+    /// Readies the step's figures of `ribbon` (its points are packed apart).
+    pub fn take(&mut self, ribbon: &Ribbon, air_density: f32) {
         self.step_impulse = Vec3::ZERO;
         self.substeps = 0;
         self.air_speed = 0.0;
         self.segment_length = ribbon.segment_length;
         let n = ribbon.segments();
-        self.inv_mass.clear();
-        for i in 0..=n {
-            let m = if i == 0 { 0.0 } else { ribbon.mass(i) };
-            self.inv_mass.push(if m > 0.0 { 1.0 / m } else { 0.0 });
-        }
+        self.inv_point_mass = inverse(ribbon.point_mass);
+        self.inv_end_mass = inverse(ribbon.end_mass);
+        self.anchor = ribbon.anchor;
         self.drag_mid = drag_at(ribbon, 1, air_density);
         self.drag_end = drag_at(ribbon, n, air_density);
         self.end_radius = ribbon.radius(n);
-        // Last: a ribbon without its points has no segments to ask about.
-        self.points = std::mem::take(&mut ribbon.points);
-        self.velocities = std::mem::take(&mut ribbon.velocities);
     }
 
-    /// Returns the points to `ribbon`, with its mean pull over the step: the
-    /// impulses' sum over h² per substep (a single substep's swings as the
-    /// weight on the floor takes turns with gravity).
-    pub fn give_back(&mut self, ribbon: &mut Ribbon) {
-        ribbon.points = std::mem::take(&mut self.points);
-        ribbon.velocities = std::mem::take(&mut self.velocities);
+    /// Point `i`'s inverse mass (0 at the knot, and for a held point).
+    pub(super) fn inv_mass(&self, i: usize, n: usize) -> f32 {
+        let held = (i == n && self.anchor.is_some()) || self.grab.is_some_and(|(k, _)| k == i);
+        if i == 0 || held {
+            0.0
+        } else if i == n {
+            self.inv_end_mass
+        } else {
+            self.inv_point_mass
+        }
+    }
+
+    /// Sets `ribbon`'s mean pull over the step: the impulses' sum over h²
+    /// per substep (a single substep's swings as the weight on the floor
+    /// takes turns with gravity).
+    pub fn give_back(&self, ribbon: &mut Ribbon) {
         if self.substeps > 0 {
             ribbon.pull = self.step_impulse / (self.h * self.h * self.substeps as f32);
         }
@@ -180,7 +198,8 @@ pub(crate) struct RibbonStage {
     /// for the steps in which more are awake (no allocation a step).
     pub active: Vec<ActiveRibbon>,
     pub awake: usize,
-    /// The awake ribbons laid out for the substeps (`pack`, `unpack`).
+    /// The awake ribbons laid out for the substeps (`RibbonLanes::add`,
+    /// `take_out`).
     pub lanes: RibbonLanes,
     /// Room triangles and balloons near each active ribbon, back to back.
     pub triangles: Vec<NearTriangle>,
@@ -197,24 +216,36 @@ pub(crate) struct RibbonStage {
     pub touched: Vec<crate::body::BodyId>,
     /// Per body (dense): its ribbon still moves faster than the sleep speed.
     pub moving: Vec<bool>,
+    /// The sleeping ribbons' boxes, for the wake pass.
+    pub point_boxes: PointBoxes,
 }
 
-impl RibbonStage {
-    /// Lays out the awake ribbons for the substeps (after they were taken).
-    pub fn pack(&mut self) {
-        self.lanes.pack(&self.active[..self.awake]);
+/// Per ribbon slot: its points' box as the last step it was solved left
+/// them (None: not known), which stays right while its balloon sleeps.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct PointBoxes(Vec<Option<Aabb>>);
+
+impl PointBoxes {
+    /// `ribbon`'s points' box, slot `slot`'s kept box or found and kept.
+    pub fn of(&mut self, slot: u32, ribbon: &Ribbon) -> Aabb {
+        let slot = slot as usize;
+        if self.0.len() <= slot {
+            self.0.resize(slot + 1, None);
+        }
+        *self.0[slot].get_or_insert_with(|| Aabb::from_points(&ribbon.points))
     }
 
-    /// Hands the solved points back to the awake ribbons (before they are
-    /// given back); the lanes are empty until the next `pack`.
-    pub fn unpack(&mut self) {
-        self.lanes.unpack(&mut self.active[..self.awake]);
+    /// Forgets slot `slot`'s box: its ribbon's points changed.
+    pub fn forget(&mut self, slot: u32) {
+        if let Some(kept) = self.0.get_mut(slot as usize) {
+            *kept = None;
+        }
     }
 }
 
 /// The awake ribbons as the solver's `ribbons` part of each substep.
 pub(crate) struct RibbonSubsteps<'a> {
-    /// Packed in lane groups (`RibbonStage::pack`).
+    /// Packed in lane groups (`RibbonLanes::add`).
     pub active: &'a mut RibbonLanes,
     pub input: SubstepInput<'a>,
 }

@@ -96,7 +96,9 @@ impl World {
             }
         };
         self.wake(def.body)?;
-        Ok(self.ribbons.add(ribbon))
+        let id = self.ribbons.add(ribbon);
+        self.stages.ribbons.point_boxes.forget(id.index);
+        Ok(id)
     }
 
     /// Points straight down from `knot` (along gravity), turning along the
@@ -143,6 +145,7 @@ impl World {
             .ribbons
             .remove(id)
             .ok_or(PhysicsError::StaleRibbon(id))?;
+        self.stages.ribbons.point_boxes.forget(id.index);
         if self.ribbon_grab.is_some_and(|g| g.ribbon == id) {
             self.ribbon_grab = None;
         }

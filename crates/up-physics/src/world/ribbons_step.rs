@@ -49,21 +49,25 @@ impl World {
         // A few restless bodies are tested against each ribbon directly:
         // a grid's cells would cost more to walk than they spare.
         let few = stage.awake_bodies.len() <= FEW_RESTLESS;
-        let restless = &mut stage.nearby.restless;
         if !few {
+            let restless = &mut stage.nearby.restless;
             restless.build(&stage.bound_center, &stage.bound_radius);
         }
         let mut touched = std::mem::take(&mut stage.touched);
-        let found = &mut stage.found;
         touched.clear();
-        for (_, ribbon) in self.ribbons.iter() {
+        for (id, ribbon) in self.ribbons.iter() {
             let Some(i) = self.handles.dense(ribbon.body) else {
                 continue;
             };
             if b.awake[i] {
                 continue;
             }
-            let aabb = Aabb::from_points(&ribbon.points).expanded(ribbon.radius(ribbon.segments()));
+            // A sleeper's ribbon has not moved since its box was kept.
+            let aabb = stage
+                .point_boxes
+                .of(id.index, ribbon)
+                .expanded(ribbon.radius(ribbon.segments()));
+            let (restless, found) = (&mut stage.nearby.restless, &mut stage.found);
             found.clear();
             let (centers, radii) = (&stage.bound_center, &stage.bound_radius);
             if few {
@@ -101,6 +105,7 @@ impl World {
     pub(super) fn prepare_ribbons(&mut self) {
         let stage = &mut self.stages.ribbons;
         stage.awake = 0;
+        stage.lanes.begin();
         stage.triangles.clear();
         stage.bodies.clear();
         let b = &self.bodies;
@@ -168,26 +173,19 @@ impl World {
                 .fold(0.0f32, |m, v| m.max(v.norm()));
             let reach = speed * dt + margin + ribbon.radius(ribbon.segments());
             let aabb = Aabb::from_points(&ribbon.points).expanded(reach);
+            // An anchored end is held where it is tied, a grabbed point
+            // carried: no mass the chain's solve can move (`ActiveRibbon::inv_mass`).
             r.take(ribbon, air_density);
-            if let Some(anchor) = ribbon.anchor {
-                // Held where it is tied: no mass the chain's solve can move.
-                let n = r.points.len() - 1;
-                r.points[n] = anchor;
-                r.velocities[n] = glam::Vec3::ZERO;
-                r.inv_mass[n] = 0.0;
-            }
-            if let Some((k, _)) = r.grab {
-                r.inv_mass[k] = 0.0; // carried, not pushed
-            }
             let (first_body, first_triangle) = (stage.bodies.len(), stage.triangles.len());
             let (bodies, triangles) = (&mut stage.bodies, &mut stage.triangles);
             let lists = &mut stage.nearby.lists;
             lists.near(slot, &aabb, spheres, room, bodies, triangles);
             r.bodies = first_body as u32..stage.bodies.len() as u32;
             r.triangles = first_triangle as u32..stage.triangles.len() as u32;
+            stage.lanes.add(r, ribbon);
         }
         stage.awake = count;
-        stage.pack();
+        stage.lanes.finish_packing();
     }
 
     /// Hands the points back to the ribbons, each knot where its balloon
@@ -198,25 +196,27 @@ impl World {
     /// went non-finite (quarantined with them).
     pub(super) fn finish_ribbons(&mut self) {
         let stage = &mut self.stages.ribbons;
-        stage.unpack();
         let n = self.bodies.len();
         stage.moving.clear();
         stage.moving.resize(n, false);
         if self.ribbons.is_empty() {
+            stage.lanes.clear();
             return;
         }
         let slow = self.def.sleep_linear_speed;
         let mut max_stretch = self.ribbons.max_stretch;
-        for r in &mut stage.active[..stage.awake] {
+        for (k, r) in stage.active[..stage.awake].iter_mut().enumerate() {
             let Some(ribbon) = self.ribbons.slot_mut(r.slot) else {
                 continue;
             };
+            stage.lanes.take_out(k, r, ribbon);
             r.give_back(ribbon);
             let i = r.state as usize;
             let arm = self.bodies.rotation[i] * (ribbon.arm * self.bodies.size[i].scale);
             ribbon.points[0] = self.bodies.center[i] + arm;
             ribbon.velocities[0] =
                 self.bodies.linear_velocity[i] + self.bodies.angular_velocity[i].cross(arm);
+            stage.point_boxes.forget(r.slot);
             if !ribbon.points.iter().all(|p| p.is_finite()) {
                 self.stages.faults.non_finite.push(i);
                 continue;
@@ -225,6 +225,7 @@ impl World {
                 ribbon.rms_speed() >= slow || r.air_speed >= crate::air::RESTLESS_AIR_SPEED;
             max_stretch = max_stretch.max(ribbon.stretch());
         }
+        stage.lanes.clear();
         self.ribbons.max_stretch = max_stretch;
     }
 }
