@@ -3,9 +3,10 @@
 //! of the balloon radius, and the heap flat after the first simulated minute
 //! (bytes held, `heap_meter`; resident memory is shown beside it).
 //!
-//! Without a scene file the room is sized for the balloons (a pyramid-roofed
-//! box of at least 6 m × 6 m, about 20 balloons per m² of floor), so that
-//! `--balloons 10000` fits; its balloons have no ribbons (the original room's
+//! A scene file keeps its groups' counts unless `--balloons` spreads a
+//! total over them. Without one the room is sized for the balloons (10,000
+//! unless `--balloons` says; a pyramid-roofed box of at least 6 m × 6 m,
+//! about 20 balloons per m² of floor); its balloons have no ribbons (the original room's
 //! are left off, so the soak stays the pile it was written for; a scene file
 //! with ribbons soaks them). Every `--stir-every` seconds (300 by default) every
 //! tenth balloon is thrown, so a long run keeps waking the pile rather than
@@ -41,13 +42,15 @@ const SETTLE_SECONDS: f64 = 60.0;
 const HEAP_SLACK_BYTES: u64 = 8 << 20;
 /// Mixed into the scene's seed for the stirring's own sequence.
 const STIR_SEED: u64 = 0x5715_0000;
+/// Balloons in the room made for them when neither a scene nor `--balloons` is given.
+const DEFAULT_BALLOONS: u64 = 10_000;
 /// Balloons per m² of floor in the room made for `--balloons`.
 const BALLOONS_PER_M2: f64 = 20.0;
 
 #[derive(Args, Debug)]
 #[command(
     mut_arg("scene", |a| a.help("Scene file (.toml or .json); without one, a room sized for --balloons")),
-    mut_arg("balloons", |a| a.help("Total number of balloons (overrides the scene)").default_value("10000")),
+    mut_arg("balloons", |a| a.help("Total number of balloons, spread over the scene's groups (overrides the scene's counts); without a scene file, 10000 if left out")),
 )]
 pub struct SoakArgs {
     #[command(flatten)]
@@ -163,13 +166,11 @@ pub fn run(args: &SoakArgs) -> Result<()> {
             args.stir_every
         );
     }
-    // `--balloons` has a default here, so it is always given.
-    let Some(balloons) = args.scene.balloons else {
-        bail!("--balloons: expected a number of balloons");
-    };
     let scene = match &args.scene.scene {
+        // The scene's own counts unless `--balloons` is given.
         Some(_) => args.scene.load()?,
         None => {
+            let balloons = args.scene.balloons.unwrap_or(DEFAULT_BALLOONS);
             let mut scene = room_for(balloons);
             if let Some(seed) = args.scene.seed {
                 scene.sim.seed = seed;

@@ -8,6 +8,18 @@
 //! a ribbon cannot tunnel out through a wall at any speed it reaches, and it
 //! lies on the floor instead of sliding off it.
 //!
+//! A substep pushes a point out of the room twice, before and after its
+//! chain is solved, and friction is held over the step's substeps (`Grip`):
+//! it takes back the slide from where the point began the step, or last
+//! slid to, up to μ times the step's pushes so far. A weight resting on the
+//! floor is pushed out in the first push (it fell), while its ribbon's pull
+//! moves it along the floor in the chain's solve between, often lifting it
+//! clear by a hair, so that the second push, or the next substep's, has no
+//! push of its own to take friction from. Held to each push alone, that
+//! pull slid the weight by its whole move in every such substep: a weight
+//! pulled at half μ·N crept at 8 mm/s (`tests/ribbon_friction.rs`); held
+//! over the step, it holds below μ·N and slides at the kinetic rate above.
+//!
 //! Balloons: a point inside a balloon's leaf sphere goes out to its surface
 //! along the line from the sphere's centre, with the same friction against
 //! the balloon's move, so a ribbon draped over a balloon stays draped; the
@@ -25,14 +37,37 @@ pub(crate) struct NearTriangle {
     pub normal: Vec3,
 }
 
+/// A point's friction against the room over one step's substeps: μ times
+/// the room's pushes on it so far, less the slide friction took back, along
+/// their normal (m), and where it holds the point: where it was when the
+/// step began, or where it last slid to.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Grip {
+    pub left: Vec3,
+    pub anchor: Vec3,
+}
+
+impl Grip {
+    /// At the step's start, the point at `start`: nothing held yet.
+    pub fn new(start: Vec3) -> Grip {
+        Grip {
+            left: Vec3::ZERO,
+            anchor: start,
+        }
+    }
+}
+
 /// Pushes `point` (which was at `start` when the substep began) out of the
-/// triangles `near`, with friction `mu`.
+/// triangles `near`, with friction `mu`: its slide from `grip`'s anchor is
+/// taken back up to what `grip` has left with this call's pushes added; a
+/// point that slides further than that keeps sliding from where it is.
 pub(crate) fn push_out_of_room(
     point: &mut Vec3,
     start: Vec3,
     radius: f32,
     mu: f32,
     near: &[NearTriangle],
+    grip: &mut Grip,
 ) {
     for t in near {
         let [a, b, c] = t.corners;
@@ -54,7 +89,23 @@ pub(crate) fn push_out_of_room(
         }
         let push = (radius - height) * t.normal;
         *point += push;
-        take_back_slide(point, *point - start, push, mu);
+        grip.left += mu * push;
+    }
+    let held = grip.left.norm();
+    if held <= 0.0 {
+        return;
+    }
+    // Along the pushes' normal, what the point slid across it.
+    let normal = grip.left / held;
+    let moved = *point - grip.anchor;
+    let slide = moved - moved.dot(normal) * normal;
+    let slide_len = slide.norm();
+    if slide_len <= held {
+        *point -= slide;
+        grip.left = normal * (held - slide_len);
+    } else {
+        *point -= slide * (held / slide_len);
+        *grip = Grip::new(*point);
     }
 }
 
@@ -146,7 +197,7 @@ mod tests {
         // Fell 5 cm in one substep, from just above the floor to well below it.
         let start = Vec3::new(0.0, 0.01, -0.5);
         let mut p = Vec3::new(0.0, -0.04, -0.5);
-        push_out_of_room(&mut p, start, 0.0025, 0.5, &floor());
+        push_out_of_room(&mut p, start, 0.0025, 0.5, &floor(), &mut Grip::new(start));
         assert!((p.y - 0.0025).abs() < 1e-6, "{p}");
     }
 
@@ -154,11 +205,47 @@ mod tests {
     fn friction_holds_a_slow_slide_and_slows_a_fast_one() {
         let start = Vec3::new(0.0, 0.0025, -0.5);
         let mut slow = start + Vec3::new(0.001, -0.004, 0.0);
-        push_out_of_room(&mut slow, start, 0.0025, 0.5, &floor());
+        let mut grip = Grip::new(start);
+        push_out_of_room(&mut slow, start, 0.0025, 0.5, &floor(), &mut grip);
         assert!((slow.x - start.x).abs() < 1e-7, "{slow}");
+        // Of the 2 mm of friction the 4 mm push gave, 1 mm is left.
+        assert!(
+            (grip.left - Vec3::new(0.0, 0.001, 0.0)).length() < 1e-7,
+            "{grip:?}"
+        );
         let mut fast = start + Vec3::new(0.02, -0.004, 0.0);
-        push_out_of_room(&mut fast, start, 0.0025, 0.5, &floor());
+        push_out_of_room(
+            &mut fast,
+            start,
+            0.0025,
+            0.5,
+            &floor(),
+            &mut Grip::new(start),
+        );
         assert!((fast.x - 0.018).abs() < 1e-6, "{fast}");
+    }
+
+    #[test]
+    fn a_slide_after_the_push_is_held_by_the_steps_friction() {
+        // Pushed out of the floor by 4 mm, then pulled 1.5 mm along it and
+        // lifted clear by the chain's solve: the second push has no push of
+        // its own, and takes the slide back with what the first left.
+        let start = Vec3::new(0.0, 0.0025, -0.5);
+        let mut p = start + Vec3::new(0.0, -0.004, 0.0);
+        let mut grip = Grip::new(start);
+        push_out_of_room(&mut p, start, 0.0025, 0.5, &floor(), &mut grip);
+        p += Vec3::new(0.0015, 0.0001, 0.0);
+        push_out_of_room(&mut p, start, 0.0025, 0.5, &floor(), &mut grip);
+        assert!((p.x - start.x).abs() < 1e-7, "{p}");
+        assert!((grip.left.y - 0.0005).abs() < 1e-7, "{grip:?}");
+        // Pulled 3 mm instead, it slides by what is beyond the 2 mm.
+        let mut p = start + Vec3::new(0.0, -0.004, 0.0);
+        let mut grip = Grip::new(start);
+        push_out_of_room(&mut p, start, 0.0025, 0.5, &floor(), &mut grip);
+        p += Vec3::new(0.003, 0.0001, 0.0);
+        push_out_of_room(&mut p, start, 0.0025, 0.5, &floor(), &mut grip);
+        assert!((p.x - 0.001).abs() < 1e-6, "{p}");
+        assert_eq!(grip, Grip::new(p), "slides on from where it is");
     }
 
     #[test]

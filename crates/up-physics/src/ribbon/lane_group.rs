@@ -67,6 +67,10 @@ pub(crate) struct LaneGroup {
     pub touch_normal: Vec<V4>,
     pub touch_velocity: Vec<V4>,
     pub touched: bool,
+    /// Per point, in lanes near the room: its friction against the room
+    /// over the step's substeps (`collide::Grip`), what is left and where.
+    pub grip_left: Vec<V4>,
+    pub grip_anchor: Vec<V4>,
     /// Per point, once `windy`: the air's velocity there this step, sampled
     /// at the first substep (`lane_substep`); and per lane the fastest of it.
     pub air: Vec<V4>,
@@ -107,6 +111,8 @@ impl LaneGroup {
             &mut self.touch_normal,
             &mut self.touch_velocity,
             &mut self.air,
+            &mut self.grip_left,
+            &mut self.grip_anchor,
         ] {
             v.resize(points, V4::ZERO);
         }

@@ -8,7 +8,7 @@ use glam::Vec3;
 use up_geom::Sphere;
 
 use super::body_spheres::{place_leaves, BodySpheres, Bound};
-use super::collide::{push_out_of_balloon, push_out_of_room, NearBalloon, NearTriangle};
+use super::collide::{push_out_of_balloon, push_out_of_room, Grip, NearBalloon, NearTriangle};
 use super::lane_group::LaneGroup;
 use super::solve::SubstepInput;
 use super::{BALLOON_FRICTION, RIBBON_RADIUS, ROOM_FRICTION};
@@ -169,8 +169,9 @@ impl LaneGroup {
         }
     }
 
-    /// Pushes each ribbon's movable points out of the room's triangles near it.
-    pub(super) fn push_out_of_room(&mut self, triangles: &[NearTriangle]) {
+    /// Pushes each ribbon's movable points out of the room's triangles near
+    /// it; `first`: the step's first push, its friction from nothing yet.
+    pub(super) fn push_out_of_room(&mut self, triangles: &[NearTriangle], first: bool) {
         for l in 0..self.live {
             let range = &self.lanes[l].triangles;
             let near = &triangles[range.start as usize..range.end as usize];
@@ -183,8 +184,18 @@ impl LaneGroup {
                 }
                 let (start, radius) = (self.start[i].lane(l), self.radius(i).as_array()[l]);
                 let mut point: Vec3 = self.points[i].lane(l);
-                push_out_of_room(&mut point, start, radius, ROOM_FRICTION, near);
+                let mut grip = if first {
+                    Grip::new(start)
+                } else {
+                    Grip {
+                        left: self.grip_left[i].lane(l),
+                        anchor: self.grip_anchor[i].lane(l),
+                    }
+                };
+                push_out_of_room(&mut point, start, radius, ROOM_FRICTION, near, &mut grip);
                 self.points[i].set_lane(l, point);
+                self.grip_left[i].set_lane(l, grip.left);
+                self.grip_anchor[i].set_lane(l, grip.anchor);
             }
         }
     }

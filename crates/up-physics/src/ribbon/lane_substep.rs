@@ -30,12 +30,12 @@ impl LaneGroup {
         self.fall(input, h);
         self.carry_grabbed(h);
         self.push_out_of_balloons(near);
-        self.push_out_of_room(input.triangles);
+        self.push_out_of_room(input.triangles, self.substeps == 0);
         let unconverged = self.solve_chains(&knots);
         if unconverged.any() {
             self.follow_the_leader(unconverged);
         }
-        self.push_out_of_room(input.triangles);
+        self.push_out_of_room(input.triangles, false);
         self.step_impulse = self.step_impulse + self.impulse;
         self.substeps += 1;
         self.h = h;

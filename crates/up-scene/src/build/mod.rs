@@ -28,13 +28,15 @@ pub mod anchor;
 pub mod bench_scene;
 pub mod furniture;
 mod hang;
+mod ribbon_path;
 pub mod ribbons;
 pub mod room;
 pub mod spawn;
 
 use anchor::{anchored_region, tie_down};
 use hang::{lay_hanging, reserve_column, Hanging, HangingLayout};
-use spawn::{place_spheres, Occupancy, SpawnRegion};
+use ribbon_path::WeightedRibbon;
+use spawn::{place_spheres, place_spheres_clear_of_ribbons, Occupancy, SpawnRegion};
 
 /// Most groups a scene may have (the group index lives in 16 bits of `user_data`).
 pub const MAX_GROUPS: usize = 1 << 16;
@@ -235,14 +237,26 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
             }
             layout.centres
         } else {
-            let centres = place_spheres(
-                count,
-                root.radius,
-                &region,
-                &inside,
-                &mut occupied,
-                &mut rng,
-            );
+            let weighted = weighted_ribbon(scene, i, knot - root.center, &bounds);
+            let centres = match &weighted {
+                Some(ribbon) => place_spheres_clear_of_ribbons(
+                    count,
+                    root.radius,
+                    &region,
+                    &inside,
+                    &mut occupied,
+                    &mut rng,
+                    ribbon,
+                ),
+                None => place_spheres(
+                    count,
+                    root.radius,
+                    &region,
+                    &inside,
+                    &mut occupied,
+                    &mut rng,
+                ),
+            };
             if centres.len() < count {
                 return Err(SceneError::DoesNotFit {
                     at: scene.locate(&format!("balloons[{i}].count")),
@@ -370,6 +384,33 @@ fn hangs_weights(group: &BalloonGroup) -> bool {
         && group
             .tied_ribbon()
             .is_some_and(|r| r.weight_g > 0.0 && r.anchor.is_none())
+}
+
+/// Group `i`'s ribbon as its layout keeps clear (`ribbon_path`), its knot
+/// `knot` from the bounding sphere's centre: where it ends in a weight that
+/// hangs free, None where it has no weight or is tied to an anchor (a light
+/// ribbon under a balloon is pushed aside; an anchor holds its own end).
+fn weighted_ribbon(
+    scene: &Scene,
+    i: usize,
+    knot: Vec3,
+    bounds: &up_geom::Aabb,
+) -> Option<WeightedRibbon> {
+    let group = &scene.balloons[i];
+    let ribbon = group
+        .tied_ribbon()
+        .filter(|r| r.weight_g > 0.0 && r.anchor.is_none())?;
+    Some(WeightedRibbon {
+        knot,
+        length: ribbon.length_m,
+        segments: ribbon.segments,
+        down: Vec3::from_array(scene.sim.gravity)
+            .try_normalize()
+            .unwrap_or(Vec3::NEG_Y),
+        room_min: bounds.min,
+        room_max: bounds.max,
+        clearance: ribbon_path::clearance(knot, group.tilt_deg),
+    })
 }
 
 /// Distinct colours over the scene, and each group's colours as palette indices.

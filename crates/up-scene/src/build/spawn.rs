@@ -17,6 +17,8 @@ use glam::Vec3;
 
 use up_geom::SplitMix64;
 
+use super::ribbon_path::WeightedRibbon;
+
 /// Gap between neighbouring balloons' bounding cubes: 5 % of the diameter plus 5 mm.
 pub(crate) fn cell_size(radius: f32) -> f32 {
     2.0 * radius * 1.05 + 0.005
@@ -39,6 +41,9 @@ pub struct SpawnRegion {
 #[derive(Default)]
 pub struct Occupancy {
     spheres: Vec<(Vec3, f32)>,
+    /// Parallel to `spheres`: a weighted ribbon's path (`insert_path`),
+    /// which other ribbons may cross, rather than a balloon.
+    paths: Vec<bool>,
     buckets: HashMap<(i32, i32, i32), Vec<u32>>,
 }
 
@@ -54,8 +59,19 @@ fn bucket_range(min: Vec3, max: Vec3) -> impl Iterator<Item = (i32, i32, i32)> {
 
 impl Occupancy {
     pub fn insert(&mut self, center: Vec3, radius: f32) {
+        self.insert_kind(center, radius, false);
+    }
+
+    /// A piece of a weighted ribbon's path: balloons keep out of it, other
+    /// ribbons' paths may cross it (ribbons do not collide with each other).
+    pub(crate) fn insert_path(&mut self, center: Vec3, radius: f32) {
+        self.insert_kind(center, radius, true);
+    }
+
+    fn insert_kind(&mut self, center: Vec3, radius: f32, path: bool) {
         let index = self.spheres.len() as u32;
         self.spheres.push((center, radius));
+        self.paths.push(path);
         for key in bucket_range(center - Vec3::splat(radius), center + Vec3::splat(radius)) {
             self.buckets.entry(key).or_default().push(index);
         }
@@ -66,6 +82,15 @@ impl Occupancy {
     pub(crate) fn overlaps_sphere(&self, center: Vec3, radius: f32) -> bool {
         let reach = Vec3::splat(radius);
         self.any_near(center - reach, center + reach, |c, r| {
+            c.distance_squared(center) < (r + radius) * (r + radius)
+        })
+    }
+
+    /// Whether a sphere of `radius` at `center` comes within `radius` of any
+    /// placed balloon (ribbons' paths left out).
+    pub(crate) fn overlaps_balloon(&self, center: Vec3, radius: f32) -> bool {
+        let reach = Vec3::splat(radius);
+        self.any_near_kind(center - reach, center + reach, false, |c, r| {
             c.distance_squared(center) < (r + radius) * (r + radius)
         })
     }
@@ -91,13 +116,24 @@ impl Occupancy {
     /// Whether `hit` holds for any placed sphere (centre, radius) that
     /// reaches into the box from `min` to `max`.
     fn any_near(&self, min: Vec3, max: Vec3, hit: impl Fn(Vec3, f32) -> bool) -> bool {
+        self.any_near_kind(min, max, true, hit)
+    }
+
+    /// `any_near`, over paths too where `with_paths`.
+    fn any_near_kind(
+        &self,
+        min: Vec3,
+        max: Vec3,
+        with_paths: bool,
+        hit: impl Fn(Vec3, f32) -> bool,
+    ) -> bool {
         // A sphere is in every bucket its box touches, so one that reaches
         // the query's box is in one of its buckets; one in several is tested again.
         bucket_range(min, max).any(|key| {
             self.buckets.get(&key).is_some_and(|list| {
                 list.iter().any(|&i| {
                     let (c, r) = self.spheres[i as usize];
-                    hit(c, r)
+                    (with_paths || !self.paths[i as usize]) && hit(c, r)
                 })
             })
         })
@@ -135,6 +171,35 @@ pub fn place_spheres(
     inside: &dyn Fn(Vec3) -> bool,
     occupied: &mut Occupancy,
     rng: &mut SplitMix64,
+) -> Vec<Vec3> {
+    place(count, radius, region, inside, occupied, rng, None)
+}
+
+/// `place_spheres` for balloons on weighted ribbons: a balloon goes only
+/// where its bounding sphere and its ribbon's whole start path are clear of
+/// everything placed (the balloons of its own layer, and the paths reserved
+/// before it, included), and its path is reserved (`ribbon_path`). Where
+/// nothing is in the way, the same layout as `place_spheres`.
+pub(super) fn place_spheres_clear_of_ribbons(
+    count: usize,
+    radius: f32,
+    region: &SpawnRegion,
+    inside: &dyn Fn(Vec3) -> bool,
+    occupied: &mut Occupancy,
+    rng: &mut SplitMix64,
+    ribbon: &WeightedRibbon,
+) -> Vec<Vec3> {
+    place(count, radius, region, inside, occupied, rng, Some(ribbon))
+}
+
+fn place(
+    count: usize,
+    radius: f32,
+    region: &SpawnRegion,
+    inside: &dyn Fn(Vec3) -> bool,
+    occupied: &mut Occupancy,
+    rng: &mut SplitMix64,
+    ribbon: Option<&WeightedRibbon>,
 ) -> Vec<Vec3> {
     let mut placed = Vec::with_capacity(count);
     let c = cell_size(radius);
@@ -175,12 +240,23 @@ pub fn place_spheres(
             }
         }
         let (grid, mut cells) = chosen.unwrap_or_else(|| (fine, usable(&fine)));
+        // Cells beyond the layer's share, in the shuffle's order: where a
+        // ribbon's path is in the way of a chosen cell, the next spare is tried.
+        let mut spares = Vec::new();
         if cells.len() > target {
             rng.shuffle(&mut cells);
-            cells.truncate(target);
+            if ribbon.is_some() {
+                spares = cells.split_off(target);
+            } else {
+                cells.truncate(target);
+            }
             cells.sort_unstable();
         }
-        for cell in cells {
+        let before = placed.len();
+        for cell in cells.into_iter().chain(spares) {
+            if placed.len() - before == target {
+                break;
+            }
             let (ix, iz) = (cell % grid.nx, cell / grid.nx);
             let slack_x = (grid.cell_x - 2.0 * radius) * 0.5;
             let slack_z = (grid.cell_z - 2.0 * radius) * 0.5;
@@ -189,7 +265,15 @@ pub fn place_spheres(
                 bottom + 0.5 * c,
                 region.min.z + (iz as f32 + 0.5) * grid.cell_z + rng.range(-slack_z, slack_z) * 0.9,
             );
-            occupied.insert(center, radius);
+            if let Some(ribbon) = ribbon {
+                if occupied.overlaps_sphere(center, radius) || !ribbon.clear(center, occupied) {
+                    continue;
+                }
+                occupied.insert(center, radius);
+                ribbon.reserve(center, occupied);
+            } else {
+                occupied.insert(center, radius);
+            }
             placed.push(center);
         }
         layer += 1;
