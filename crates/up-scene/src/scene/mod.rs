@@ -24,6 +24,7 @@ mod defaults;
 mod file;
 mod lines;
 mod parse;
+pub mod shapes;
 mod spec;
 mod validate;
 
@@ -43,6 +44,7 @@ pub use defaults::{
 };
 pub use file::MAX_SCENE_BYTES;
 pub use lines::KeyLines;
+pub use shapes::{group_surface, BalloonShape};
 pub use spec::{
     AirSpec, BalloonGroup, BalloonKind, CeilingKind, Finish, GasKind, RibbonSpec, RoomSpec, Scene,
     SceneSource, SimSpec, SpawnBox, Treatment,
