@@ -67,6 +67,8 @@ mod parse_tests;
 #[cfg(test)]
 mod ribbon_tests;
 #[cfg(test)]
+mod shapes_tests;
+#[cfg(test)]
 mod test_support;
 #[cfg(test)]
 mod validate_tests;
