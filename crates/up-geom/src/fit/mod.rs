@@ -11,6 +11,10 @@
 //! as possible. Coverage is then measured on surface samples drawn with a
 //! fixed seed, and tightness is the exact union volume over the mesh volume.
 //!
+//! A flat mesh (a foil balloon, at most half as thick as wide) is fitted
+//! over its mid-plane instead (`fit_flat_sphere_tree`, `planar_cover`):
+//! along an axis its middle spheres would span its width.
+//!
 //! Pure and deterministic: the same mesh and options give the same tree.
 
 pub mod axial_cover;
