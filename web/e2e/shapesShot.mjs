@@ -21,7 +21,7 @@ const scene = {
 const server = await serveDist();
 const browser = await launchChromium();
 try {
-  const page = await browser.newPage({ viewport: { width: 1280, height: 720 } });
+  const page = await browser.newPage({ viewport: { width: 1280, height: 720 }, deviceScaleFactor: 2 });
   page.on("console", (m) => m.type() === "error" && console.error("page:", m.text()));
   await page.goto(server.url + TEST_PATH + `#scene=${base64url(JSON.stringify(scene))}`);
   await page.waitForFunction(() => window.__up?.ready(), null, { timeout: 90_000 });
@@ -29,6 +29,8 @@ try {
     await page.waitForTimeout(wait);
     const file = join(out, `${name}.png`);
     await page.screenshot({ path: file });
+    // The balloons alone, close up.
+    await page.screenshot({ path: join(out, `${name}-close.png`), clip: { x: 440, y: 360, width: 440, height: 130 } });
     console.log(`screenshot: ${file}`, JSON.stringify(await page.evaluate(() => window.__up.foil())));
   }
 } finally {
