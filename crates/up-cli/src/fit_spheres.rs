@@ -1,11 +1,14 @@
 //! `up fit-spheres`: fit a sphere tree to any closed OBJ mesh (bring your own
-//! balloon) and write it, with the fit's quality, as JSON.
+//! balloon) and write it, with the fit's quality, as JSON: the same fit a
+//! scene's `mesh = "file.obj"` balloon gets (along the axis, or over the
+//! mid-surface for a flat mesh).
 
 use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use up_geom::fit::{fit_sphere_tree, FitOptions, DEFAULT_LEAVES, MAX_LEAVES};
+use up_geom::fit::{DEFAULT_LEAVES, MAX_LEAVES};
+use up_scene::balloon::surface::{custom_mesh, fit_balloon_tree, is_flat, FLAT_LEAVES};
 use up_scene::obj::read_obj_mesh;
 
 use up_scene::atomic_file::write_atomically;
@@ -14,7 +17,8 @@ use up_scene::atomic_file::write_atomically;
 pub struct FitSpheresArgs {
     /// A closed, consistently wound triangle mesh (OBJ), in metres.
     pub model: PathBuf,
-    /// Number of leaf spheres (1 to 64): head, neck and fillers.
+    /// Number of leaf spheres (1 to 64): head, neck and fillers. A flat mesh
+    /// (at most half as thick as wide) gets FLAT_LEAVES (64) over its face.
     #[arg(long, value_name = "N", default_value_t = DEFAULT_LEAVES)]
     pub leaves: usize,
     /// Write the JSON here (atomically) instead of to standard output.
@@ -29,13 +33,20 @@ pub fn run(args: &FitSpheresArgs) -> Result<()> {
             args.leaves
         );
     }
-    let mesh = read_obj_mesh(&args.model)?;
-    let report = fit_sphere_tree(
-        mesh.vertices(),
-        mesh.triangles(),
-        &FitOptions::with_leaves(args.leaves),
-    )
-    .with_context(|| format!("{}", args.model.display()))?;
+    let (vertices, triangles) = read_obj_mesh(&args.model)?.into_parts();
+    // Checked and fitted as a scene's `mesh` balloon is: refused when open,
+    // inside out or degenerate; over its face when flat.
+    let name = args.model.display().to_string();
+    let mesh = custom_mesh(&name, vertices, triangles, None)?;
+    let flat = is_flat(&mesh.positions, &mesh.indices);
+    let report = fit_balloon_tree(&mesh.positions, &mesh.indices, flat, args.leaves)
+        .with_context(|| name.clone())?;
+    if flat {
+        eprintln!(
+            "{}: flat: {FLAT_LEAVES} spheres over its mid-surface",
+            args.model.display()
+        );
+    }
     let json = serde_json::to_string_pretty(&report)?;
     match &args.out {
         Some(path) => {

@@ -22,13 +22,14 @@ pub struct MeshBuffers {
     pub indices: Vec<u32>,
 }
 
-/// Whether each balloon model (one per group, in group order) is foil.
+/// Whether each balloon model (one per group, in group order) is drawn from
+/// its own surface (foil balloons, meshes of one's own).
 pub fn model_foil(loaded: &Loaded) -> Vec<bool> {
     loaded
         .built
         .balloon_models
         .iter()
-        .map(|m| m.spec.kind == up_physics::EnvelopeKind::Foil)
+        .map(|m| m.drawn_from_mesh)
         .collect()
 }
 

@@ -11,12 +11,17 @@
 //! as possible. Coverage is then measured on surface samples drawn with a
 //! fixed seed, and tightness is the exact union volume over the mesh volume.
 //!
+//! A flat mesh (a foil balloon, at most half as thick as wide) is fitted
+//! over its mid-plane instead (`fit_flat_sphere_tree`, `planar_cover`):
+//! along an axis its middle spheres would span its width.
+//!
 //! Pure and deterministic: the same mesh and options give the same tree.
 
 pub mod axial_cover;
 pub mod coverage;
 pub mod mesh_check;
 pub mod mesh_integrals;
+pub mod planar_cover;
 pub mod principal_axis;
 pub mod union_volume;
 
@@ -192,6 +197,90 @@ pub fn fit_sphere_tree(
         tightness: union_volume / mesh_volume,
         roles,
         axis,
+        mesh_volume_m3: mesh_volume,
+        union_volume_m3: union_volume,
+        samples: measured.samples,
+    })
+}
+
+/// A surface at most this thick (across its plane of least spread, over its
+/// largest extent in that plane) is flat: `fit_sphere_tree_auto` lays its
+/// spheres over the plane. A foil pillow is 0.27, a latex balloon 1.4.
+pub const FLAT_THINNESS: f32 = 0.5;
+
+/// The fitter a mesh's shape calls for: spheres over the mid-surface
+/// (`fit_flat_sphere_tree`) for a flat one, along the axis otherwise.
+pub fn fit_sphere_tree_auto(
+    vertices: &[Vec3],
+    triangles: &[[u32; 3]],
+    options: &FitOptions,
+) -> Result<FitReport, FitError> {
+    check_closed(vertices, triangles)?;
+    let shell = mesh_integrals::shell_integrals(vertices, triangles);
+    let (_, thinness) =
+        planar_cover::plane_of(vertices, shell.area, shell.centroid, shell.second_moment);
+    if thinness <= FLAT_THINNESS {
+        fit_flat_sphere_tree(vertices, triangles, options)
+    } else {
+        fit_sphere_tree(vertices, triangles, options)
+    }
+}
+
+/// Fits a sphere tree to a closed flat mesh with every leaf centred on its
+/// mid-plane (see `planar_cover`); `axis` in the report is the plane's
+/// normal and every leaf a filler.
+pub fn fit_flat_sphere_tree(
+    vertices: &[Vec3],
+    triangles: &[[u32; 3]],
+    options: &FitOptions,
+) -> Result<FitReport, FitError> {
+    if !(1..=MAX_LEAVES).contains(&options.leaves) {
+        return Err(FitError::BadLeafCount(options.leaves));
+    }
+    check_closed(vertices, triangles)?;
+    let solid = mesh_integrals::solid_integrals(vertices, triangles);
+    let extent = crate::Aabb::from_points(vertices).extents().max_element();
+    let mesh_volume = solid.volume.abs();
+    if mesh_volume.is_nan() || mesh_volume <= 1e-9 * extent * extent * extent {
+        return Err(FitError::NoVolume {
+            volume: solid.volume,
+        });
+    }
+    let shell = mesh_integrals::shell_integrals(vertices, triangles);
+    let (frame, _) =
+        planar_cover::plane_of(vertices, shell.area, shell.centroid, shell.second_moment);
+    let mut spheres = planar_cover::fit_planar_spheres(vertices, triangles, &frame, options.leaves);
+    let margin = f64::from(extent) * 2e-6 + 1e-7;
+    for s in &mut spheres {
+        s.radius += margin;
+    }
+    let leaves: Vec<Sphere> = spheres
+        .iter()
+        .map(|s| Sphere::new(frame.point(s.center), s.radius as f32))
+        .collect();
+    // Root: around the leaves' bounding box centre, holding every leaf.
+    let (lo, hi) = leaves.iter().fold(
+        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+        |(lo, hi), s| (lo.min(s.center - s.radius), hi.max(s.center + s.radius)),
+    );
+    let centre = 0.5 * (lo + hi);
+    let reach = leaves
+        .iter()
+        .map(|s| s.center.distance(centre) + s.radius)
+        .fold(0.0f32, f32::max);
+    let root = Sphere::new(centre, reach * (1.0 + 1e-6) + margin as f32);
+    let tree = SphereTree::from_root_and_leaves(root, &leaves)?;
+    let samples =
+        coverage::surface_samples(vertices, triangles, options.coverage_samples, options.seed);
+    let measured = coverage::measure_coverage(&samples, &leaves);
+    let union_volume = planar_cover::union_volume_on_plane(&spheres, 256) as f32;
+    Ok(FitReport {
+        tree,
+        coverage: measured.covered,
+        max_uncovered_distance_m: measured.max_uncovered_distance,
+        tightness: union_volume / mesh_volume,
+        roles: vec![LeafRole::Filler; leaves.len()],
+        axis: frame.normal,
         mesh_volume_m3: mesh_volume,
         union_volume_m3: union_volume,
         samples: measured.samples,

@@ -233,3 +233,40 @@ fn bad_inputs_are_errors() {
         Err(FitError::NoVolume { .. })
     ));
 }
+
+/// A lentil: a sphere squashed to a fifth of its width along z.
+fn lentil() -> (Vec<Vec3>, Vec<[u32; 3]>) {
+    let (v, t) = uv_sphere(0.2, 24, 48);
+    let v = v.iter().map(|p| Vec3::new(p.x, p.y, 0.2 * p.z)).collect();
+    (v, t)
+}
+
+#[test]
+fn a_flat_mesh_gets_spheres_over_its_mid_plane() {
+    let (v, t) = lentil();
+    let fit = fit_sphere_tree_auto(&v, &t, &FitOptions::with_leaves(32)).unwrap();
+    assert_eq!(
+        fit,
+        fit_flat_sphere_tree(&v, &t, &FitOptions::with_leaves(32)).unwrap()
+    );
+    assert!(fit.axis.dot(Vec3::Z).abs() > 0.999, "{}", fit.axis);
+    assert_eq!(fit.coverage, 1.0);
+    assert!(fit.tree.leaf_spheres().all(|s| s.center.z.abs() < 1e-4));
+    // Far tighter than the axial fit of the same lentil, which spans its
+    // width (a lentil is thinner at its rim than a foil: 2.2 with 32 leaves).
+    let axial = fit_sphere_tree(&v, &t, &FitOptions::with_leaves(32)).unwrap();
+    assert!(fit.tightness < 2.5, "{}", fit.tightness);
+    assert!(
+        fit.tightness < 0.5 * axial.tightness,
+        "{} vs {}",
+        fit.tightness,
+        axial.tightness
+    );
+    // A round mesh keeps the axial fit.
+    let (v, t) = uv_sphere(0.2, 12, 24);
+    let round = fit_sphere_tree_auto(&v, &t, &FitOptions::default()).unwrap();
+    assert_eq!(
+        round,
+        fit_sphere_tree(&v, &t, &FitOptions::default()).unwrap()
+    );
+}

@@ -20,23 +20,28 @@
 //! centre of buoyancy, so it floats upright.
 
 pub mod foil_mesh;
+pub mod foil_shape;
 pub mod gas_fill;
 pub mod mass;
 pub mod mesh;
+pub mod outline;
 pub mod report;
+pub mod surface;
 
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 use up_geom::fit::mesh_integrals::{shell_integrals, solid_integrals};
-use up_geom::fit::{fit_sphere_tree, FitError, FitOptions, FitReport, LeafRole, MAX_LEAVES};
+use up_geom::fit::{FitError, FitReport, LeafRole, MAX_LEAVES};
 use up_physics::gas::EnvelopeKind;
 use up_physics::{Atmosphere, BalloonShape};
 
 use foil_mesh::{foil_frontal_area, foil_mesh};
+use foil_shape::foil_shape;
 use mass::Moments;
 use mesh::{BalloonMesh, BalloonMeshError};
 pub use report::{CollidersReport, NodeReport};
+use surface::{custom_frontal_area, fit_balloon_tree, is_flat, BalloonSurface, CustomMeshError};
 
 /// Radius of a deflated balloon's latex tube as a share of the inflated
 /// diameter: ≈ 2.5 cm for an 11″ (28 cm) balloon, whose flat deflated body is
@@ -102,6 +107,8 @@ pub enum BalloonError {
     Mesh(#[from] BalloonMeshError),
     #[error("balloon sphere tree: {0}")]
     Fit(#[from] FitError),
+    #[error("balloon mesh {0}")]
+    Custom(#[from] CustomMeshError),
 }
 
 /// Masses of the parts, kg.
@@ -129,6 +136,9 @@ pub struct BalloonModel {
     pub parts: MassBreakdown,
     /// kg/m³ of the room's air when the model was built; 1.204 at 20 °C.
     pub air_density: f32,
+    /// Whether the surface is drawn from `mesh` (foil balloons and meshes of
+    /// one's own) rather than the page's latex model.
+    pub drawn_from_mesh: bool,
 }
 
 impl BalloonModel {
@@ -216,6 +226,19 @@ pub fn build_balloon(
     atmosphere: &Atmosphere,
     leaves: usize,
 ) -> Result<BalloonModel, BalloonError> {
+    build_balloon_with(spec, &BalloonSurface::Standard, atmosphere, leaves)
+}
+
+/// `build_balloon` on `surface`. A flat surface (a foil heart, star or
+/// digit, a flat mesh of one's own) is fitted over its mid-surface with
+/// `FLAT_LEAVES` leaves; the rest (the pillow too) along their axis with
+/// `leaves`.
+pub fn build_balloon_with(
+    spec: &BalloonSpec,
+    surface: &BalloonSurface,
+    atmosphere: &Atmosphere,
+    leaves: usize,
+) -> Result<BalloonModel, BalloonError> {
     let d = spec.diameter_m;
     check(
         "diameter_m",
@@ -252,35 +275,48 @@ pub fn build_balloon(
         Gas::Air => air_density,
     };
 
-    let mesh = match spec.kind {
-        EnvelopeKind::Latex => BalloonMesh::new(d)?,
-        EnvelopeKind::Foil => foil_mesh(d)?,
+    let (mesh, outline_frontal) = match (surface, spec.kind) {
+        (BalloonSurface::Standard, EnvelopeKind::Latex) => (BalloonMesh::new(d)?, None),
+        (BalloonSurface::Standard, EnvelopeKind::Foil) => (foil_mesh(d)?, None),
+        (BalloonSurface::FoilOutline(kind), _) => {
+            let shape = foil_shape(*kind, d)?;
+            (shape.mesh, Some(shape.frontal_area_m2))
+        }
+        (BalloonSurface::Custom { mesh, .. }, _) => (mesh.clone(), None),
+    };
+    let custom = matches!(surface, BalloonSurface::Custom { .. });
+    let flat = match surface {
+        // The pillow keeps its axial tree: spread over its face its leaves
+        // reach 2 cm past its rim and valve, and its bounding sphere grows
+        // from 0.245 to 0.265 m, which halves how many a full room holds.
+        BalloonSurface::Standard => false,
+        BalloonSurface::FoilOutline(_) => true,
+        BalloonSurface::Custom { .. } => is_flat(&mesh.positions, &mesh.indices),
     };
     let solid = solid_integrals(&mesh.positions, &mesh.indices);
     let shell = shell_integrals(&mesh.positions, &mesh.indices);
     let knot = mesh.dimensions.knot_center;
     let gas = Moments::solid(&solid, gas_density);
     let envelope = match spec.kind {
-        EnvelopeKind::Latex => Moments::stretched_shell(
+        EnvelopeKind::Latex if !custom => Moments::stretched_shell(
             &mesh.positions,
             &mesh.indices,
             e,
             UNSTRETCHED_RADIUS_FRACTION * d,
         ),
-        // The film hardly stretches: the same mass on every square metre.
-        EnvelopeKind::Foil => Moments::shell(&shell, e),
+        // The film hardly stretches (and a mesh of one's own says nothing of
+        // its stretch): the same mass on every square metre.
+        _ => Moments::shell(&shell, e),
     };
     let moments = envelope + Moments::ball(knot, mesh.dimensions.knot_radius, k) + gas;
     let mass = moments.properties();
-    let fit = fit_sphere_tree(
-        &mesh.positions,
-        &mesh.indices,
-        &FitOptions::with_leaves(leaves),
-    )?;
+    let fit = fit_balloon_tree(&mesh.positions, &mesh.indices, flat, leaves)?;
     // Frontal area for drag: the largest horizontal cross-section, π r_max²
     // for latex (round about Y); the pillow's section through its centre.
-    let reference_area = match spec.kind {
-        EnvelopeKind::Latex => {
+    let reference_area = match (outline_frontal, spec.kind) {
+        (Some(area), _) => area,
+        _ if custom => custom_frontal_area(&mesh),
+        (None, EnvelopeKind::Latex) => {
             let r_max = mesh
                 .positions
                 .iter()
@@ -288,7 +324,7 @@ pub fn build_balloon(
                 .fold(0.0, f32::max);
             std::f32::consts::PI * r_max * r_max
         }
-        EnvelopeKind::Foil => foil_frontal_area(&mesh),
+        (None, EnvelopeKind::Foil) => foil_frontal_area(&mesh),
     };
     let shape = BalloonShape {
         tree: fit.tree.clone(),
@@ -312,6 +348,7 @@ pub fn build_balloon(
             gas_kg: gas.mass(),
         },
         air_density,
+        drawn_from_mesh: custom || spec.kind == EnvelopeKind::Foil,
     })
 }
 

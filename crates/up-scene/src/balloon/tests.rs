@@ -251,6 +251,26 @@ fn the_foil_fit_stands_on_its_vertical_axis_and_covers_it() {
 }
 
 #[test]
+fn a_foil_heart_is_fitted_over_its_face() {
+    let spec = BalloonSpec {
+        kind: EnvelopeKind::Foil,
+        diameter_m: 18.0 * 0.0254,
+        envelope_mass_kg: 0.008,
+        knot_mass_kg: 0.001,
+        gas: Gas::Helium,
+    };
+    let surface = BalloonSurface::FoilOutline(outline::OutlineKind::Heart);
+    let m = build_balloon_with(&spec, &surface, &Atmosphere::default(), 5).unwrap();
+    assert_eq!(m.fit.coverage, 1.0);
+    assert!(m.fit.axis.dot(Vec3::Z).abs() > 0.999, "axis {}", m.fit.axis);
+    let tree = &m.shape.tree;
+    assert!(tree.leaves().len() <= surface::FLAT_LEAVES && tree.leaves().len() > 32);
+    assert!(tree.leaf_spheres().all(|s| s.center.z.abs() < 1e-4));
+    assert!(m.fit.tightness <= 1.5, "tightness {}", m.fit.tightness);
+    assert!(m.drawn_from_mesh);
+}
+
+#[test]
 fn the_default_balloon_matches_the_engine_gas_tests_figures() {
     // up-physics' gas tests (gas/tests.rs), which calibrate the leak,
     // take the 11″ balloon as V = 0.0142 m³, envelope 3 g, envelope and

@@ -17,7 +17,7 @@ use up_physics::gas::{EnvelopeDef, EnvelopeKind};
 use up_physics::{BodyDef, BodyId, JointId, World, WorldDef};
 
 use crate::balloon::gas_fill::{fill_balloon, group_envelope, PermeanceFactors};
-use crate::balloon::{build_balloon, BalloonModel, BalloonSpec, Gas};
+use crate::balloon::{build_balloon_with, BalloonModel, BalloonSpec, Gas};
 use crate::error::SceneError;
 use crate::scene::{parse_color, BalloonGroup, BalloonKind, CeilingKind, GasKind, Scene};
 use ribbons::{tie_ribbon, GroupRibbon};
@@ -143,14 +143,16 @@ pub fn build_group_model(scene: &Scene, i: usize) -> Result<BalloonModel, SceneE
             BalloonKind::Foil => EnvelopeKind::Foil,
         },
         diameter_m: group.diameter(),
-        envelope_mass_kg: group.envelope_mass_kg(),
+        envelope_mass_kg: group.shaped_envelope_mass_kg(),
         knot_mass_kg: group.knot_mass_kg(),
         gas: match group.gas {
             GasKind::Helium => Gas::Helium,
             GasKind::Air => Gas::Air,
         },
     };
-    build_balloon(&spec, &scene.air.atmosphere(), group.leaves as usize).map_err(|e| {
+    let surface = crate::scene::group_surface(scene, i)?;
+    let leaves = group.leaves as usize;
+    build_balloon_with(&spec, &surface, &scene.air.atmosphere(), leaves).map_err(|e| {
         SceneError::Balloon {
             at: scene.locate(&format!("balloons[{i}]")),
             message: e.to_string(),

@@ -94,6 +94,10 @@ impl Default for BalloonGroup {
             yaw_deg: 10.0,
             leaves: 5,
             ribbon: None,
+            shape: None,
+            text: None,
+            mesh: None,
+            knot: None,
         }
     }
 }

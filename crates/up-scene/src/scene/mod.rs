@@ -26,6 +26,7 @@ mod file;
 mod furniture;
 mod lines;
 mod parse;
+pub mod shapes;
 mod spec;
 mod validate;
 
@@ -49,6 +50,7 @@ pub use furniture::{
     MAX_FURNITURE_SIZE_M, MIN_FURNITURE_SIZE_M,
 };
 pub use lines::KeyLines;
+pub use shapes::{group_surface, BalloonShape};
 pub use spec::{
     AirSpec, BalloonGroup, BalloonKind, CeilingKind, Finish, GasKind, RibbonSpec, RoomSpec, Scene,
     SceneSource, SimSpec, SpawnBox, Treatment,
@@ -70,6 +72,8 @@ mod gas_tests;
 mod parse_tests;
 #[cfg(test)]
 mod ribbon_tests;
+#[cfg(test)]
+mod shapes_tests;
 #[cfg(test)]
 mod test_support;
 #[cfg(test)]

@@ -212,6 +212,21 @@ pub struct BalloonGroup {
     /// A ribbon tied to every balloon of the group. Left out, or `length_m = 0`: none.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub ribbon: Option<RibbonSpec>,
+    /// `"round"`, `"pillow"`, `"heart"`, `"star"` or `"digit"` (`shapes`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shape: Option<super::shapes::BalloonShape>,
+    /// `shape = "digit"`: the digit, `"0"` to `"9"`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub text: Option<String>,
+    /// A closed OBJ mesh (m, +Y up) instead of `shape`, beside the scene file.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mesh: Option<String>,
+    /// m, the mesh's frame: where its ribbon ties; its lowest point if left out.
+    #[serde(
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "super::parse::point"
+    )]
+    pub knot: Option<[f32; 3]>,
 }
 
 impl BalloonGroup {

@@ -300,6 +300,7 @@ fn validate(scene: &Scene) -> Result<(), SceneError> {
             let expected = format!("an integer in [1, {MAX_SCENE_LEAVES}]");
             return Err(c.fail(&key("leaves"), expected, group.leaves.to_string()));
         }
+        super::shapes::check_shape(&c, i, group)?;
         if let Some(ribbon) = &group.ribbon {
             check_ribbon(&c, &key("ribbon"), ribbon)?;
             check_anchor(&c, &key("ribbon"), ribbon, room)?;

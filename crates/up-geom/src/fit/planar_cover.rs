@@ -1,0 +1,382 @@
+//! Covering a flat surface (a foil balloon, a cushion) with spheres centred
+//! on its mid-surface, spread over the plane instead of strung along one axis.
+//!
+//! Design. The plane is the one through the surface centroid across the
+//! direction of least spread (the smallest principal axis of the surface's
+//! covariance). In that frame a point is `(x, y, z)`, `z` its height off the
+//! plane; a sphere centred on the plane at `(cx, cy)` holds it when
+//! `(x − cx)² + (y − cy)² + z² ≤ r²`. Each triangle goes to one sphere, which
+//! holds its three corners and so, being convex, the whole triangle: the cover
+//! is exact for every point of the surface, not only for samples.
+//!
+//! Where the spheres go: a weighted k-means of the triangles' centres in the
+//! plane, the weight the triangle's area times its height squared, so the
+//! thick middle gets more, smaller cells than the thin rim (a sphere must be at
+//! least as large as the half-thickness where it sits; cells there must be
+//! small to keep it near that). Then a few rounds of: each triangle to the
+//! sphere that holds it with the least radius, each centre moved to where its
+//! triangles need the least radius (a convex problem: subgradient steps
+//! towards the farthest corner). Fixed starts and sweep orders: the same mesh
+//! and count give the same spheres.
+//!
+//! The union's volume is exact per column across the plane: every centre lies
+//! on it, so along a line through the plane the spheres' chords share their
+//! middle and the union is the longest chord.
+
+use glam::{DVec2, DVec3, Vec3};
+
+use super::principal_axis::{covariance, symmetric_eigen};
+
+/// The mid-plane: a point on it and an orthonormal frame, `normal` across it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlaneFrame {
+    pub origin: Vec3,
+    pub u: Vec3,
+    pub v: Vec3,
+    pub normal: Vec3,
+}
+
+impl PlaneFrame {
+    fn local(&self, p: Vec3) -> DVec3 {
+        let r = (p - self.origin).as_dvec3();
+        DVec3::new(
+            r.dot(self.u.as_dvec3()),
+            r.dot(self.v.as_dvec3()),
+            r.dot(self.normal.as_dvec3()),
+        )
+    }
+
+    /// World point of plane coordinates `(x, y)`.
+    pub fn point(&self, c: DVec2) -> Vec3 {
+        self.origin + self.u * c.x as f32 + self.v * c.y as f32
+    }
+}
+
+/// A sphere centred on the plane: its plane coordinates and radius, m.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlanarSphere {
+    pub center: DVec2,
+    pub radius: f64,
+}
+
+/// Snaps round-off (≈ 1e-9 on a mesh built along the coordinate axes) to zero.
+fn snapped(a: Vec3) -> Vec3 {
+    Vec3::select(a.abs().cmplt(Vec3::splat(1e-6)), Vec3::ZERO, a).normalize()
+}
+
+/// The plane of least spread of a surface with `area`, `centroid` and
+/// `second_moment` (`mesh_integrals::shell_integrals`), and how flat the
+/// surface is across it: its extent along the normal over its largest extent
+/// in the plane (0 for a flat sheet, about 1 for a ball).
+pub fn plane_of(
+    vertices: &[Vec3],
+    area: f32,
+    centroid: Vec3,
+    second_moment: glam::Mat3,
+) -> (PlaneFrame, f32) {
+    let (_, vectors) = symmetric_eigen(covariance(second_moment, area, centroid));
+    let normal = snapped(vectors[2]);
+    // Sign rule: the largest component positive, as `principal_axis`.
+    let sign = |a: Vec3| {
+        let m = a.abs().max_element();
+        if a.x == m || a.y == m || a.z == m {
+            a
+        } else {
+            -a
+        }
+    };
+    let normal = sign(normal);
+    let u = sign(snapped(vectors[0] - normal * vectors[0].dot(normal)));
+    let v = normal.cross(u);
+    let frame = PlaneFrame {
+        origin: centroid,
+        u,
+        v,
+        normal,
+    };
+    let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+    for &p in vertices {
+        let q = frame.local(p);
+        lo = lo.min(q);
+        hi = hi.max(q);
+    }
+    let e = hi - lo;
+    let flatness = if e.x.max(e.y) > 0.0 {
+        (e.z / e.x.max(e.y)) as f32
+    } else {
+        1.0
+    };
+    (frame, flatness)
+}
+
+/// Squared radius a sphere on the plane at `c` needs to hold `corners`.
+fn need(c: DVec2, corners: &[DVec3; 3]) -> f64 {
+    corners.iter().fold(0.0f64, |m, p| {
+        m.max((p.x - c.x).powi(2) + (p.y - c.y).powi(2) + p.z * p.z)
+    })
+}
+
+/// The plane point that holds `tris` with the least radius, from `start`.
+fn least_radius_centre(start: DVec2, tris: &[&[DVec3; 3]]) -> DVec2 {
+    let mut c = start;
+    let mut best = (tris.iter().fold(0.0f64, |m, t| m.max(need(c, t))), c);
+    for k in 0..96 {
+        // The farthest corner: a subgradient of the radius points at it.
+        let mut far = (0.0f64, c);
+        for t in tris {
+            for p in t.iter() {
+                let d = (p.x - c.x).powi(2) + (p.y - c.y).powi(2) + p.z * p.z;
+                if d > far.0 {
+                    far = (d, DVec2::new(p.x, p.y));
+                }
+            }
+        }
+        if far.0 < best.0 {
+            best = (far.0, c);
+        }
+        c += (far.1 - c) / (k as f64 + 2.0);
+    }
+    let last = tris.iter().fold(0.0f64, |m, t| m.max(need(c, t)));
+    if last < best.0 {
+        c
+    } else {
+        best.1
+    }
+}
+
+/// Covers the surface with at most `count` spheres centred on `frame`'s plane.
+pub fn fit_planar_spheres(
+    vertices: &[Vec3],
+    triangles: &[[u32; 3]],
+    frame: &PlaneFrame,
+    count: usize,
+) -> Vec<PlanarSphere> {
+    let tris: Vec<[DVec3; 3]> = triangles
+        .iter()
+        .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+        .map(|t| t.map(|i| frame.local(vertices[i as usize])))
+        .collect();
+    if tris.is_empty() {
+        return Vec::new();
+    }
+    let z_max = tris
+        .iter()
+        .flat_map(|t| t.iter().map(|p| p.z.abs()))
+        .fold(0.0f64, f64::max)
+        .max(f64::MIN_POSITIVE);
+    // Weighted points: each triangle's centre in the plane.
+    let points: Vec<(DVec2, f64)> = tris
+        .iter()
+        .map(|t| {
+            let centre = (t[0] + t[1] + t[2]) / 3.0;
+            let area = 0.5 * (t[1] - t[0]).cross(t[2] - t[0]).length();
+            let h = centre.z.abs() / z_max;
+            (DVec2::new(centre.x, centre.y), area * (0.05 + h * h))
+        })
+        .collect();
+    let count = count.clamp(1, tris.len());
+    let mut centres = farthest_point_start(&points, count);
+    for _ in 0..40 {
+        let mut sums = vec![(DVec2::ZERO, 0.0f64); centres.len()];
+        for &(p, w) in &points {
+            let k = nearest(&centres, p);
+            sums[k].0 += p * w;
+            sums[k].1 += w;
+        }
+        for (c, (s, w)) in centres.iter_mut().zip(&sums) {
+            if *w > 0.0 {
+                *c = *s / *w;
+            }
+        }
+    }
+    // Each triangle to the sphere it needs least of; then rounds of
+    // least-radius moves, each triangle going to the sphere that already holds
+    // it with the smallest radius (else the one it grows least).
+    let mut owner = vec![0usize; tris.len()];
+    let mut radii = vec![f64::INFINITY; centres.len()];
+    for round in 0..4 {
+        for (t, o) in tris.iter().zip(owner.iter_mut()) {
+            let mut pick = ((f64::INFINITY, f64::INFINITY), 0usize);
+            for (k, &c) in centres.iter().enumerate() {
+                let n = need(c, t);
+                let key = (n.max(radii[k]), n);
+                if key < pick.0 {
+                    pick = (key, k);
+                }
+            }
+            *o = pick.1;
+        }
+        if round == 3 {
+            break;
+        }
+        for (k, c) in centres.iter_mut().enumerate() {
+            let mine: Vec<&[DVec3; 3]> = tris
+                .iter()
+                .zip(&owner)
+                .filter(|(_, &o)| o == k)
+                .map(|(t, _)| t)
+                .collect();
+            if !mine.is_empty() {
+                *c = least_radius_centre(*c, &mine);
+            }
+        }
+        radii = radii_of(&tris, &owner, &centres);
+    }
+    balance(&tris, &mut owner, &mut centres);
+    let radii = radii_of(&tris, &owner, &centres);
+    centres
+        .iter()
+        .zip(&radii)
+        .filter(|(_, &r2)| r2 > 0.0)
+        .map(|(&center, &r2)| PlanarSphere {
+            center,
+            radius: r2.sqrt(),
+        })
+        .collect()
+}
+
+/// Lowers the largest sphere while it can: its triangles that need its full
+/// radius go to the neighbour that holds them with a smaller one, and it
+/// moves to where its remaining triangles need the least. The largest sphere
+/// sets how far two flat shapes stay apart face to face (the pair of
+/// largest spheres meets first), so this is what keeps them near the drawn
+/// thickness.
+fn balance(tris: &[[DVec3; 3]], owner: &mut [usize], centres: &mut [DVec2]) {
+    let mut radii = radii_of(tris, owner, centres);
+    for _ in 0..20 * centres.len() {
+        let (k, top) =
+            radii.iter().enumerate().fold(
+                (0, f64::NEG_INFINITY),
+                |b, (k, &r)| if r > b.1 { (k, r) } else { b },
+            );
+        let mut moved = false;
+        for (t, o) in tris.iter().zip(owner.iter_mut()) {
+            if *o != k || need(centres[k], t) < top * (1.0 - 1e-9) {
+                continue;
+            }
+            let mut best = (f64::INFINITY, k);
+            for (j, &c) in centres.iter().enumerate() {
+                if j != k {
+                    let n = need(c, t).max(radii[j]);
+                    if n < best.0 {
+                        best = (n, j);
+                    }
+                }
+            }
+            if best.0 >= top * (1.0 - 1e-6) {
+                return;
+            }
+            *o = best.1;
+            radii[best.1] = best.0;
+            moved = true;
+        }
+        if !moved {
+            return;
+        }
+        let mine: Vec<&[DVec3; 3]> = tris
+            .iter()
+            .zip(owner.iter())
+            .filter(|(_, &o)| o == k)
+            .map(|(t, _)| t)
+            .collect();
+        if !mine.is_empty() {
+            centres[k] = least_radius_centre(centres[k], &mine);
+        }
+        radii[k] = mine.iter().fold(0.0f64, |m, t| m.max(need(centres[k], t)));
+    }
+}
+
+fn nearest(centres: &[DVec2], p: DVec2) -> usize {
+    let mut best = (f64::INFINITY, 0);
+    for (k, c) in centres.iter().enumerate() {
+        let d = c.distance_squared(p);
+        if d < best.0 {
+            best = (d, k);
+        }
+    }
+    best.1
+}
+
+/// Starting centres: the weighted mean, then each time the point farthest
+/// (weighted) from those chosen.
+fn farthest_point_start(points: &[(DVec2, f64)], count: usize) -> Vec<DVec2> {
+    let total: f64 = points.iter().map(|p| p.1).sum();
+    let mean = points.iter().fold(DVec2::ZERO, |s, &(p, w)| s + p * w) / total.max(1e-300);
+    let mut centres = vec![mean];
+    let mut gap: Vec<f64> = points
+        .iter()
+        .map(|&(p, _)| p.distance_squared(mean))
+        .collect();
+    while centres.len() < count {
+        let mut best = (-1.0f64, 0);
+        for (i, (&(_, w), &g)) in points.iter().zip(&gap).enumerate() {
+            if g * w > best.0 {
+                best = (g * w, i);
+            }
+        }
+        let c = points[best.1].0;
+        centres.push(c);
+        for (g, &(p, _)) in gap.iter_mut().zip(points) {
+            *g = g.min(p.distance_squared(c));
+        }
+    }
+    centres
+}
+
+/// Squared radius each centre needs for the triangles it owns.
+fn radii_of(tris: &[[DVec3; 3]], owner: &[usize], centres: &[DVec2]) -> Vec<f64> {
+    let mut r2 = vec![0.0f64; centres.len()];
+    for (t, &o) in tris.iter().zip(owner) {
+        r2[o] = r2[o].max(need(centres[o], t));
+    }
+    r2
+}
+
+/// m³: the volume of the union of spheres centred on one plane, by columns
+/// across it (`cells` × `cells` over their bounding square, midpoint rule).
+pub fn union_volume_on_plane(spheres: &[PlanarSphere], cells: usize) -> f64 {
+    if spheres.is_empty() || cells == 0 {
+        return 0.0;
+    }
+    let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+    for s in spheres {
+        lo = lo.min(s.center - DVec2::splat(s.radius));
+        hi = hi.max(s.center + DVec2::splat(s.radius));
+    }
+    let step = (hi - lo) / cells as f64;
+    let mut volume = 0.0;
+    for i in 0..cells {
+        for j in 0..cells {
+            let p = lo + step * DVec2::new(i as f64 + 0.5, j as f64 + 0.5);
+            let half = spheres.iter().fold(0.0f64, |m, s| {
+                m.max(s.radius * s.radius - s.center.distance_squared(p))
+            });
+            volume += 2.0 * half.sqrt();
+        }
+    }
+    volume * step.x * step.y
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_sphere_union_is_the_ball() {
+        let s = [PlanarSphere {
+            center: DVec2::new(0.3, -0.1),
+            radius: 0.5,
+        }];
+        let v = union_volume_on_plane(&s, 400);
+        let ball = 4.0 / 3.0 * std::f64::consts::PI * 0.125;
+        assert!((v / ball - 1.0).abs() < 1e-3, "{v} vs {ball}");
+    }
+
+    #[test]
+    fn the_least_radius_centre_of_two_points_is_between_them() {
+        let t1 = [DVec3::new(-1.0, 0.0, 0.0); 3];
+        let t2 = [DVec3::new(1.0, 0.0, 0.0); 3];
+        let c = least_radius_centre(DVec2::new(0.9, 0.0), &[&t1, &t2]);
+        assert!(c.length() < 0.02, "{c}");
+    }
+}
