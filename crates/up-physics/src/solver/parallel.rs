@@ -16,6 +16,8 @@ use super::contact_constraint::{GroupAnchors, GroupRecords};
 use super::lanes::LANES;
 #[cfg(feature = "parallel")]
 use crate::threading::staged::run_in_stages;
+#[cfg(feature = "parallel")]
+use crate::threading::thread_times;
 use crate::threading::tasks::for_each_run;
 #[cfg(feature = "parallel")]
 use crate::threading::tasks::worth_splitting;
@@ -156,7 +158,7 @@ pub(crate) fn for_each_colored<K>(
         let blocks = &coloring.blocks;
         if rayon::current_num_threads() > 1 && blocks.stages.blocks() > 1 {
             let shared_groups = SharedSlice::new(groups);
-            run_in_stages(&blocks.stages, |k| {
+            thread_times::pass(|| run_in_stages(&blocks.stages, |k| {
                 for piece in blocks.block(k) {
                     // SAFETY: the blocks' pieces do not overlap and each
                     // block is run by one task, so its groups are its own;
@@ -166,7 +168,7 @@ pub(crate) fn for_each_colored<K>(
                     let chunk = unsafe { shared_groups.range(piece.start, piece.end) };
                     run(piece.start as usize, piece.moving, chunk);
                 }
-            });
+            }));
             return;
         }
     }
@@ -246,7 +248,11 @@ where
     };
     #[cfg(feature = "parallel")]
     if worth_splitting(bodies.len(), BODY_CHUNK) {
-        bodies.par_chunks(BODY_CHUNK).for_each(run);
+        thread_times::pass(|| {
+            bodies
+                .par_chunks(BODY_CHUNK)
+                .for_each(|chunk| thread_times::task(|| run(chunk)))
+        });
         return;
     }
     run(bodies);
