@@ -116,7 +116,11 @@ pub fn table(stages: &[StageThreads]) -> String {
         "stage, ms/step", "wall", "barriers", "passes"
     );
     for t in 0..threads {
-        let who = if t == 0 { "step's".into() } else { format!("t{t}") };
+        let who = if t == 0 {
+            "step's".into()
+        } else {
+            format!("t{t}")
+        };
         out += &format!("  {:>22}", format!("{who} busy/barrier/idle"));
     }
     out.push('\n');

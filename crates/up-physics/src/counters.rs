@@ -3,8 +3,8 @@
 
 use serde::{Deserialize, Serialize};
 
-pub use crate::threading::thread_times::{ThreadCounters, ThreadTime};
 use crate::threading::thread_times::{self, Reading};
+pub use crate::threading::thread_times::{ThreadCounters, ThreadTime};
 
 macro_rules! stages {
     ($($(#[$doc:meta])* $stage:ident = $name:literal in $phase:ident,)*) => {
@@ -226,7 +226,11 @@ impl StageClock {
             *last = reading;
         }
         // The readings are not the stages' time: the next stage starts after them.
-        self.last = if self.threads.is_some() { now_ms() } else { now };
+        self.last = if self.threads.is_some() {
+            now_ms()
+        } else {
+            now
+        };
     }
 
     /// The counters, with the total.

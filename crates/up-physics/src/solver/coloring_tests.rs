@@ -227,7 +227,10 @@ fn blocks_share_a_stage_evenly_among_the_threads() {
     let sizes: Vec<u32> = (0..blocks.stage_first.len())
         .map(|k| blocks.block(k).iter().map(|p| p.end - p.start).sum())
         .collect();
-    assert_eq!(sizes, vec![35, 35, 2 * MIN_THREAD_GROUPS - 1, 50, 50, 50, 50]);
+    assert_eq!(
+        sizes,
+        vec![35, 35, 2 * MIN_THREAD_GROUPS - 1, 50, 50, 50, 50]
+    );
     assert_eq!(blocks.stage_first, vec![0, 0, 2, 3, 3, 3, 3]);
 }
 
