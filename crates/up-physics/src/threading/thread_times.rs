@@ -297,3 +297,77 @@ impl ThreadCounters {
         self.passes[stage as usize] = after.passes.saturating_sub(before.passes) as u32;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::counters::Stage;
+
+    /// The step's thread is listed first, busy outside its passes and in
+    /// its tasks; another thread only in its tasks; the rest of the stage
+    /// is idle.
+    #[test]
+    fn the_steps_thread_comes_first_and_is_busy_outside_its_passes() {
+        let before = Reading {
+            barriers: 10,
+            ..Reading::default()
+        };
+        let mut after = before;
+        // Slot 1 runs the step: 6 ms in passes, 4 of them in tasks, 1 at barriers.
+        after.pass[1] = 6_000_000;
+        after.task[1] = 4_000_000;
+        after.barrier[1] = 1_000_000;
+        // Slot 0 ran 5 ms of tasks and waited 2 at barriers.
+        after.task[0] = 5_000_000;
+        after.barrier[0] = 2_000_000;
+        after.barriers = 40;
+        after.passes = 3;
+        let (mut counters, _) = ThreadCounters::begin(2);
+        counters.record(Stage::Solve, 10.0, 1, &before, &after);
+        let times = counters.times(Stage::Solve);
+        let close = |a: f64, b: f64| (a - b).abs() < 1e-9;
+        assert!(close(times[0].busy_ms, 4.0 + 4.0), "{times:?}");
+        assert!(close(times[0].barrier_ms, 1.0) && close(times[0].idle_ms, 1.0));
+        assert!(close(times[1].busy_ms, 5.0) && close(times[1].barrier_ms, 2.0));
+        assert!(close(times[1].idle_ms, 3.0));
+        assert_eq!(counters.barriers(Stage::Solve), 30);
+        assert_eq!(counters.passes(Stage::Solve), 3);
+        assert!(counters.times(Stage::Gas).iter().all(|t| t.busy_ms == 0.0));
+    }
+
+    /// A staged pass on two threads, timed: its barriers are counted, the
+    /// step's thread's time in it is a pass, and its blocks are tasks.
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn a_staged_pass_counts_its_barriers_and_its_tasks() {
+        use crate::threading::staged::{run_in_stages, Stages};
+        let stage_first: Vec<u32> = (0..32).map(|k| k / 4 * 4).collect();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        set_timing(true);
+        pool.install(|| {
+            let _stepping = Stepping::enter();
+            let owner = slot_index();
+            let mut stages = Stages::default();
+            stages.lay_out(&stage_first);
+            let before = Reading::now();
+            pass(|| {
+                run_in_stages(&stages, |_| {
+                    (0..20_000).for_each(|_| std::hint::spin_loop());
+                })
+            });
+            let after = Reading::now();
+            // Other tests may add to the slots meanwhile: only lower bounds hold.
+            assert!(after.barriers - before.barriers >= 7);
+            assert!(after.passes > before.passes);
+            assert!(after.pass[owner] > before.pass[owner]);
+            let tasks: u64 = (0..TIMED_THREADS)
+                .map(|k| after.task[k] - before.task[k])
+                .sum();
+            assert!(tasks > 0);
+        });
+        set_timing(false);
+    }
+}
