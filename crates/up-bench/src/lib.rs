@@ -18,4 +18,5 @@ pub mod scene_export;
 pub mod stats;
 pub mod step_times;
 pub mod system_info;
+pub mod thread_times;
 pub mod up_engine;

@@ -93,6 +93,10 @@ struct RunArgs {
     /// How Rapier joints a ribbon's balls: impulse or multibody.
     #[arg(long, default_value = "impulse")]
     rapier_joints: String,
+    /// Time each of UP's threads in each stage: busy, waiting at barriers,
+    /// idle, and the barriers crossed (two clock reads per task).
+    #[arg(long)]
+    thread_times: bool,
 }
 
 #[derive(Args, Debug)]
@@ -194,6 +198,7 @@ fn run_options(args: &RunArgs) -> Result<RunOptions> {
         step_times: args.step_times.clone(),
         ribbons: args.ribbons,
         rapier_joints,
+        thread_times: args.thread_times,
     })
 }
 
@@ -254,6 +259,12 @@ fn print_table(results: &[EngineResult]) {
                 let which = if r.ribbons > 0 { "with" } else { "without" };
                 println!("UP {which} ribbons, ms per step: {}", stages.join(", "));
             }
+        }
+    }
+    for r in results {
+        println!("{} mean ms per step: {:.3}", r.engine, r.ms_per_step_mean);
+        if let Some(stages) = &r.stage_threads_mean {
+            print!("{}", up_bench::thread_times::table(stages));
         }
     }
     if let (Some(by_median), Some(by_mean)) =

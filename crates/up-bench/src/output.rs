@@ -55,6 +55,10 @@ pub struct EngineResult {
     /// UP: its own stage timers (`World::counters`), ms per step over the run.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stage_ms_mean: Option<Vec<(String, f64)>>,
+    /// UP with `--thread-times`: each thread's busy, barrier and idle time
+    /// in each stage, ms per step over the run.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stage_threads_mean: Option<Vec<crate::thread_times::StageThreads>>,
 }
 
 fn is_zero(n: &usize) -> bool {
@@ -152,6 +156,7 @@ mod tests {
             max_ribbon_stretch_after_start: None,
             rapier_joints: None,
             stage_ms_mean: None,
+            stage_threads_mean: None,
         }
     }
 

@@ -298,6 +298,7 @@ mod tests {
             max_ribbon_stretch_after_start: (ribbons > 0).then_some(0.0005),
             rapier_joints: (engine == "rapier").then(|| "impulse".into()),
             stage_ms_mean: (engine == "up").then(|| vec![("solve".into(), 1.5)]),
+            stage_threads_mean: None,
         }
     }
 

@@ -28,6 +28,7 @@ use crate::rss::peak_rss_mb;
 use crate::scene_data::SceneData;
 use crate::stats::{mean, median, quantile, settled};
 use crate::step_times;
+use crate::thread_times::ThreadTotals;
 use crate::up_engine::UpEngine;
 
 /// Most steps a run takes.
@@ -55,6 +56,8 @@ pub struct RunOptions {
     pub ribbons: bool,
     /// How Rapier joints a ribbon's balls.
     pub rapier_joints: RapierJoints,
+    /// Time each of UP's threads in each stage (`thread_times`).
+    pub thread_times: bool,
 }
 
 /// What a memory probe child prints.
@@ -202,6 +205,8 @@ pub fn run(opts: &RunOptions) -> Result<Vec<EngineResult>> {
     let mut stretch_step: Vec<u64> = vec![0; engines.len()];
     let late_from = (RIBBON_START_S / data.def.dt).round() as u64;
     let mut stages: Vec<Vec<(&'static str, f64)>> = vec![Vec::new(); engines.len()];
+    let mut threads: Vec<ThreadTotals> = vec![ThreadTotals::default(); engines.len()];
+    up_physics::set_thread_timing(opts.thread_times);
     let mut scratch = Vec::new();
     let order: Vec<usize> = (0..engines.len()).collect();
     for step in 1..=opts.steps {
@@ -230,6 +235,7 @@ pub fn run(opts: &RunOptions) -> Result<Vec<EngineResult>> {
             }
             if let Some(counters) = engine.counters() {
                 add_stages(&mut stages[i], &counters.stages());
+                threads[i].add(&counters);
             }
         }
         if step % every == 0 || step == opts.steps {
@@ -291,6 +297,7 @@ pub fn run(opts: &RunOptions) -> Result<Vec<EngineResult>> {
                     .map(|&(name, total)| (name.to_string(), total / opts.steps as f64))
                     .collect()
             }),
+            stage_threads_mean: threads[i].means(),
         });
     }
     Ok(results)

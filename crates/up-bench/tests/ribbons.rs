@@ -137,6 +137,7 @@ fn a_run_with_ribbons_has_up_without_them_beside() {
         step_times: None,
         ribbons: true,
         rapier_joints: RapierJoints::Impulse,
+        thread_times: false,
     })
     .unwrap();
     assert_eq!(results.len(), 3);

@@ -3,6 +3,9 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::threading::thread_times::{self, Reading};
+pub use crate::threading::thread_times::{ThreadCounters, ThreadTime};
+
 macro_rules! stages {
     ($($(#[$doc:meta])* $stage:ident = $name:literal in $phase:ident,)*) => {
         /// A stage of the step, in the order the step runs them
@@ -140,6 +143,9 @@ pub struct Counters {
     ms: [f64; Stage::COUNT],
     /// The whole step: the stages summed.
     total_ms: f64,
+    /// Each thread's part of each stage, when timed (`set_thread_timing`).
+    #[serde(skip)]
+    threads: ThreadCounters,
 }
 
 impl Counters {
@@ -151,6 +157,13 @@ impl Counters {
     /// The whole last step, ms.
     pub fn total_ms(&self) -> f64 {
         self.total_ms
+    }
+
+    /// Each thread's busy, barrier and idle time in each stage of the last
+    /// step, and the barriers each crossed: empty (no threads) unless the
+    /// timing was on (`set_thread_timing`).
+    pub fn threads(&self) -> &ThreadCounters {
+        &self.threads
     }
 
     /// Stage names and times, in the order the step runs them, then "total".
@@ -180,20 +193,44 @@ impl Counters {
 pub(crate) struct StageClock {
     last: f64,
     counters: Counters,
+    /// When the threads are timed: the step's thread's slot, the slots'
+    /// reading at the last lap, and the guard marking this thread's steps.
+    threads: Option<(usize, Reading, thread_times::Stepping)>,
 }
 
 impl StageClock {
-    pub fn start() -> Self {
+    /// Starts the step's clock; `threads`: the threads its passes may share.
+    pub fn start(threads: usize) -> Self {
+        let mut counters = Counters::default();
+        let threads = thread_times::timing().then(|| {
+            let (timed, owner) = ThreadCounters::begin(threads);
+            counters.threads = timed;
+            (owner, Reading::now(), thread_times::Stepping::enter())
+        });
         Self {
             last: now_ms(),
-            counters: Counters::default(),
+            counters,
+            threads,
         }
     }
 
     pub fn lap(&mut self, stage: Stage) {
         let now = now_ms();
-        self.counters.ms[stage as usize] = now - self.last;
-        self.last = now;
+        let wall = now - self.last;
+        self.counters.ms[stage as usize] = wall;
+        if let Some((owner, last, _)) = &mut self.threads {
+            let reading = Reading::now();
+            self.counters
+                .threads
+                .record(stage, wall, *owner, last, &reading);
+            *last = reading;
+        }
+        // The readings are not the stages' time: the next stage starts after them.
+        self.last = if self.threads.is_some() {
+            now_ms()
+        } else {
+            now
+        };
     }
 
     /// The counters, with the total.
@@ -201,6 +238,13 @@ impl StageClock {
         self.counters.total_ms = self.counters.ms.iter().sum();
         self.counters
     }
+}
+
+/// Turns on or off the timing of each thread's part of every stage
+/// (`Counters::threads`) for every world stepped in this process from
+/// now on: two clock reads per task of a parallel pass while on.
+pub fn set_thread_timing(on: bool) {
+    thread_times::set_timing(on);
 }
 
 /// A monotonic clock in milliseconds. Native builds use `std::time::Instant`;
@@ -244,7 +288,7 @@ mod tests {
 
     #[test]
     fn the_phases_sum_to_the_stages() {
-        let mut clock = StageClock::start();
+        let mut clock = StageClock::start(1);
         for stage in Stage::ALL {
             clock.lap(stage);
         }

@@ -33,7 +33,7 @@ mod world;
 
 pub use air::AirFlow;
 pub use body::{BalloonShape, BodyDef, BodyId, ShapeId};
-pub use counters::{Counters, Phase, Stage};
+pub use counters::{set_thread_timing, Counters, Phase, Stage, ThreadCounters, ThreadTime};
 pub use forces::atmosphere::Atmosphere;
 pub use forces::field::{FieldSample, ForceField, PointSample};
 pub use gas::{EnvelopeDef, EnvelopeKind, Gas, TemperatureSchedule};

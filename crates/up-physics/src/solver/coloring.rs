@@ -57,6 +57,13 @@ pub(crate) const ZONES: usize = 32;
 #[cfg(feature = "parallel")]
 pub(crate) const BLOCK_GROUPS: u32 = 64;
 
+/// Fewest groups a thread's part of a stage holds: a stage with fewer than
+/// this for each thread stays one block (and joins its one-block
+/// neighbours), since a wait at a barrier costs about as much as solving
+/// this many groups.
+#[cfg(feature = "parallel")]
+pub(crate) const MIN_THREAD_GROUPS: u32 = 16;
+
 /// Which sides of a group's constraints can move: every lane of a group alike.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Moving {
@@ -175,13 +182,19 @@ pub(crate) struct Coloring {
 }
 
 /// The groups of a pass cut into blocks that tasks take whole (`staged`):
-/// a colour (or level) is a stage, its runs cut into blocks of up to
-/// `BLOCK_GROUPS` groups; the serial rest is one block. Consecutive stages of
-/// one block each become one block, solved in colour order by one task: the
-/// colours' long tail of a few groups each costs no wait between them.
+/// a colour (or level) is a stage, its runs cut into blocks of equal size,
+/// as few as hold at most `BLOCK_GROUPS` groups each and share evenly among
+/// the threads (a multiple of their number), so that each thread's share
+/// of a stage is as long as the others'; a stage with fewer than
+/// `MIN_THREAD_GROUPS` a thread, and the serial rest, is one block.
+/// Consecutive stages of one block each become one block, solved in colour
+/// order by one task: the colours' long tail of a few groups each costs no
+/// wait between them.
 #[cfg(feature = "parallel")]
 #[derive(Clone, Debug, Default)]
 pub(crate) struct ColourBlocks {
+    /// Threads the stages are cut for (0 counts as 1).
+    pub threads: u32,
     /// The pieces of runs, in the runs' order; a block is consecutive pieces.
     pub pieces: Vec<ColourRun>,
     /// Block k holds `pieces[piece_end[k - 1]..piece_end[k]]` (from 0 for k = 0).
@@ -194,7 +207,9 @@ pub(crate) struct ColourBlocks {
 
 #[cfg(feature = "parallel")]
 impl ColourBlocks {
-    fn clear(&mut self) {
+    /// Empties the blocks, to be cut for `threads` threads.
+    fn clear(&mut self, threads: usize) {
+        self.threads = threads as u32;
         self.pieces.clear();
         self.piece_end.clear();
         self.stage_first.clear();
@@ -218,25 +233,31 @@ impl ColourBlocks {
         &self.pieces[start as usize..self.piece_end[k] as usize]
     }
 
-    /// Adds one stage: `runs`, cut into blocks of up to `BLOCK_GROUPS`
-    /// groups (a block may span runs), or whole if `whole`.
+    /// Adds one stage: `runs`, cut into blocks (a block may span runs) as
+    /// the type says, or whole if `whole`.
     fn add_stage(&mut self, runs: &[ColourRun], whole: bool) {
         let first_piece = self.pieces.len();
         let first_block = self.piece_end.len();
-        let mut room = BLOCK_GROUPS;
+        let groups: u32 = runs.iter().map(|r| r.end - r.start).sum();
+        let threads = self.threads.max(1);
+        let blocks = if whole || groups < MIN_THREAD_GROUPS * threads {
+            1
+        } else {
+            threads * groups.div_ceil(threads * BLOCK_GROUPS)
+        };
+        // Block b ends after groups * (b + 1) / blocks of the stage's groups.
+        let end_of = |b: u32| (u64::from(groups) * u64::from(b + 1) / u64::from(blocks)) as u32;
+        let (mut block, mut done) = (0, 0);
         for run in runs {
             let mut start = run.start;
             while start < run.end {
-                let end = if whole {
-                    run.end
-                } else {
-                    run.end.min(start + room)
-                };
+                let room = end_of(block) - done;
+                let end = run.end.min(start + room);
                 self.pieces.push(ColourRun { start, end, ..*run });
-                room -= (end - start).min(room);
-                if room == 0 && !whole {
+                done += end - start;
+                if done == end_of(block) {
                     self.piece_end.push(self.pieces.len() as u32);
-                    room = BLOCK_GROUPS;
+                    block += 1;
                 }
                 start = end;
             }
@@ -342,7 +363,7 @@ impl Coloring {
         // Each run's first group; the serial rest takes a group per constraint.
         self.ranges.clear();
         #[cfg(feature = "parallel")]
-        self.blocks.clear();
+        self.blocks.clear(crate::threading::tasks::threads_here());
         let mut first_group = [[0u32; 3]; SERIAL + 1];
         let mut start = 0u32;
         for (color, counts) in counts.iter().enumerate() {

@@ -162,9 +162,9 @@ fn constraints_past_the_last_level_run_serially_one_a_group() {
     assert_eq!(lanes, vec![0; 4]);
 }
 
-/// Each colour's runs are cut into blocks of up to `BLOCK_GROUPS` groups
-/// (a block may span runs), in order; the overflow stays whole; stages
-/// of one block in a row become one block; empty colours add nothing.
+/// Each colour's runs are cut into equal blocks of up to `BLOCK_GROUPS`
+/// groups (a block may span runs), in order; the overflow stays whole;
+/// stages of one block in a row become one block; empty colours add nothing.
 #[cfg(feature = "parallel")]
 #[test]
 fn colours_are_cut_into_blocks_and_lone_blocks_join() {
@@ -189,20 +189,49 @@ fn colours_are_cut_into_blocks_and_lone_blocks_join() {
     assert_eq!(
         spans,
         vec![
-            vec![(0, 64, Moving::Both)],
-            vec![(64, 128, Moving::Both)],
-            vec![(128, 150, Moving::Both), (150, 160, Moving::A)],
+            vec![(0, 53, Moving::Both)],
+            vec![(53, 106, Moving::Both)],
+            vec![(106, 150, Moving::Both), (150, 160, Moving::A)],
             // Three one-block stages (the empty colour adds none), one block.
             vec![
                 (160, 170, Moving::Both),
                 (170, 175, Moving::B),
                 (175, 300, Moving::Both),
             ],
-            vec![(300, 364, Moving::Both)],
-            vec![(364, 400, Moving::Both)],
+            vec![(300, 350, Moving::Both)],
+            vec![(350, 400, Moving::Both)],
         ]
     );
     assert_eq!(blocks.stage_first, vec![0, 0, 0, 3, 4, 4]);
+}
+
+/// Cut for two threads, a stage's blocks come in a multiple of two, of
+/// equal size, so that each thread's share is half the stage; a stage with
+/// fewer than `MIN_THREAD_GROUPS` groups a thread stays one block.
+#[cfg(feature = "parallel")]
+#[test]
+fn blocks_share_a_stage_evenly_among_the_threads() {
+    let run = |start, end| ColourRun {
+        start,
+        end,
+        moving: Moving::Both,
+    };
+    let mut blocks = ColourBlocks {
+        threads: 2,
+        ..ColourBlocks::default()
+    };
+    blocks.add_stage(&[run(0, 70)], false);
+    blocks.add_stage(&[run(70, 70 + 2 * MIN_THREAD_GROUPS - 1)], false);
+    let next = 70 + 2 * MIN_THREAD_GROUPS - 1;
+    blocks.add_stage(&[run(next, next + 200)], false);
+    let sizes: Vec<u32> = (0..blocks.stage_first.len())
+        .map(|k| blocks.block(k).iter().map(|p| p.end - p.start).sum())
+        .collect();
+    assert_eq!(
+        sizes,
+        vec![35, 35, 2 * MIN_THREAD_GROUPS - 1, 50, 50, 50, 50]
+    );
+    assert_eq!(blocks.stage_first, vec![0, 0, 2, 3, 3, 3, 3]);
 }
 
 /// The blocks of a real colouring hold every group once, in the runs' order.

@@ -227,16 +227,21 @@ impl Solver {
         contact_constraint::set_lane(parts, slot % LANES, c);
     }
 
-    /// `begin_constraints` and `set_constraint` for all the `prepared`
-    /// constraints at once, group by group on rayon's threads: each group is
-    /// gathered from its lanes' constraints and written whole by one task.
+    /// `begin_constraints` and `set_constraint` for all the constraints at
+    /// once: `prepare` fills `prepared` (on rayon's threads) while this
+    /// thread colours them, which needs only their pairs; then group by
+    /// group on rayon's threads, each group gathered from its lanes'
+    /// constraints and written whole by one task.
     #[cfg(feature = "parallel")]
     pub fn set_constraints(
         &mut self,
-        pairs: impl Iterator<Item = (u32, u32)>,
-        prepared: &[PreparedContact],
+        pairs: impl Iterator<Item = (u32, u32)> + Send,
+        prepared: &mut [PreparedContact],
+        prepare: impl FnOnce(&mut [PreparedContact]) + Send,
     ) {
-        let (n, room) = self.colour(pairs);
+        // The colouring is serial (greedy, in order): off the critical path.
+        let ((n, room), ()) = rayon::join(|| self.colour(pairs), || prepare(prepared));
+        let prepared = &*prepared;
         // Each group is written whole below: only the lengths matter here.
         self.groups.resize(n, ContactGroup::default());
         self.anchors.resize(n, GroupAnchors::default());

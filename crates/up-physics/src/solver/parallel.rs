@@ -19,6 +19,8 @@ use crate::threading::staged::run_in_stages;
 use crate::threading::tasks::for_each_run;
 #[cfg(feature = "parallel")]
 use crate::threading::tasks::worth_splitting;
+#[cfg(feature = "parallel")]
+use crate::threading::thread_times;
 
 /// Contact groups (of four constraints) handed to one task of a pass over
 /// all groups at once; below this such a pass stays serial.
@@ -156,16 +158,18 @@ pub(crate) fn for_each_colored<K>(
         let blocks = &coloring.blocks;
         if rayon::current_num_threads() > 1 && blocks.stages.blocks() > 1 {
             let shared_groups = SharedSlice::new(groups);
-            run_in_stages(&blocks.stages, |k| {
-                for piece in blocks.block(k) {
-                    // SAFETY: the blocks' pieces do not overlap and each
-                    // block is run by one task, so its groups are its own;
-                    // blocks that run at once belong to one stage, a colour
-                    // or level, whose groups share no moving body (the
-                    // `GroupStates` writes).
-                    let chunk = unsafe { shared_groups.range(piece.start, piece.end) };
-                    run(piece.start as usize, piece.moving, chunk);
-                }
+            thread_times::pass(|| {
+                run_in_stages(&blocks.stages, |k| {
+                    for piece in blocks.block(k) {
+                        // SAFETY: the blocks' pieces do not overlap and each
+                        // block is run by one task, so its groups are its own;
+                        // blocks that run at once belong to one stage, a colour
+                        // or level, whose groups share no moving body (the
+                        // `GroupStates` writes).
+                        let chunk = unsafe { shared_groups.range(piece.start, piece.end) };
+                        run(piece.start as usize, piece.moving, chunk);
+                    }
+                })
             });
             return;
         }
@@ -246,7 +250,11 @@ where
     };
     #[cfg(feature = "parallel")]
     if worth_splitting(bodies.len(), BODY_CHUNK) {
-        bodies.par_chunks(BODY_CHUNK).for_each(run);
+        thread_times::pass(|| {
+            bodies
+                .par_chunks(BODY_CHUNK)
+                .for_each(|chunk| thread_times::task(|| run(chunk)))
+        });
         return;
     }
     run(bodies);

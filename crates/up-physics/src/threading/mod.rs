@@ -3,7 +3,8 @@
 //! run stage after stage in one fork-join (`staged`), the pool's threads kept
 //! awake through a step (`keep_awake`), and the capacity the passes' buffers
 //! took in a busy step given back (`spare`, whose floors are sized by the
-//! tasks' lists). Which thread runs which work changes no result.
+//! tasks' lists), and where each thread's time goes (`thread_times`). Which
+//! thread runs which work changes no result.
 
 #[cfg(feature = "parallel")]
 pub(crate) mod keep_awake;
@@ -11,3 +12,4 @@ pub(crate) mod spare;
 #[cfg(feature = "parallel")]
 pub(crate) mod staged;
 pub(crate) mod tasks;
+pub(crate) mod thread_times;

@@ -29,6 +29,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 
 use crate::threading::spare::{release_spare, BUFFER_FLOOR};
 use crate::threading::tasks::threads_here;
+use crate::threading::thread_times;
 
 /// Spins before a waiting thread yields its core (to a thread that holds a
 /// block, when there are more threads than cores).
@@ -196,6 +197,7 @@ pub(crate) fn run_in_stages(stages: &Stages, run: impl Fn(usize) + Sync) {
     let _over = ClearOnDrop(&stages.running);
     let threads = stages.threads;
     stages.deal();
+    thread_times::crossed(stages.stages().saturating_sub(1));
     let joined = AtomicUsize::new(0);
     let done = Padded(AtomicUsize::new(0));
     let failed = AtomicBool::new(false);
@@ -211,7 +213,7 @@ pub(crate) fn run_in_stages(stages: &Stages, run: impl Fn(usize) + Sync) {
             let mut ran = 0;
             let mut run_counted = |k: usize| {
                 let unwinding = FlagOnUnwind(&failed);
-                run(k);
+                thread_times::task(|| run(k));
                 std::mem::forget(unwinding);
                 ran += 1;
             };
@@ -259,12 +261,26 @@ impl Drop for FlagOnUnwind<'_> {
     }
 }
 
+/// Adds a barrier's wait to the thread's time when dropped, however the wait ends.
+struct BarrierWaited(Option<f64>);
+
+impl Drop for BarrierWaited {
+    fn drop(&mut self) {
+        thread_times::barrier_waited(self.0);
+    }
+}
+
 /// Waits until `done` counts at least `blocks`: a thread counts a stage's
 /// blocks it ran once it finds none left, and none starts the next stage
 /// before the count holds all of them, so the count reaching a stage's first
 /// block means every block before it has finished. Returns false, at once,
 /// if a block panicked.
 fn wait_until_done(done: &AtomicUsize, blocks: usize, failed: &AtomicBool) -> bool {
+    if done.load(Ordering::Acquire) >= blocks {
+        return true;
+    }
+    let started = thread_times::barrier_start();
+    let _waited = BarrierWaited(started);
     let mut spins = 0;
     // Acquire: pairs with the Release of every block counted.
     while done.load(Ordering::Acquire) < blocks {

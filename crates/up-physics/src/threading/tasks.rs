@@ -9,6 +9,9 @@ use std::ops::Range;
 use rayon::prelude::*;
 
 #[cfg(feature = "parallel")]
+use crate::threading::thread_times;
+
+#[cfg(feature = "parallel")]
 thread_local! {
     /// Whether this thread runs work that keeps off rayon's pool (`alone`).
     static ALONE: Cell<bool> = const { Cell::new(false) };
@@ -158,7 +161,7 @@ where
     debug_assert!(chunk > 0, "runs of no items");
     #[cfg(feature = "parallel")]
     if worth_splitting(len, chunk) {
-        return split_runs(0, len, chunk, parts, &run);
+        return thread_times::pass(|| split_runs(0, len, chunk, parts, &run));
     }
     let _ = (len, chunk);
     run(0, parts);
@@ -173,7 +176,7 @@ where
     F: Fn(usize, P) + Sync,
 {
     if len <= chunk {
-        return run(first, parts);
+        return thread_times::task(|| run(first, parts));
     }
     let mid = len.div_ceil(chunk) / 2 * chunk;
     let (before, after) = parts.split_at(mid);
@@ -225,13 +228,17 @@ pub(crate) fn collect_in_order<L, F>(
         if lists.len() < tasks {
             lists.resize_with(tasks, L::default);
         }
-        lists[..tasks]
-            .par_iter_mut()
-            .enumerate()
-            .for_each(|(k, list)| {
-                list.reset();
-                collect(k * chunk..((k + 1) * chunk).min(len), list);
-            });
+        thread_times::pass(|| {
+            lists[..tasks]
+                .par_iter_mut()
+                .enumerate()
+                .for_each(|(k, list)| {
+                    thread_times::task(|| {
+                        list.reset();
+                        collect(k * chunk..((k + 1) * chunk).min(len), list);
+                    })
+                })
+        });
         for list in &lists[..tasks] {
             out.join(list);
         }

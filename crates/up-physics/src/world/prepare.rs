@@ -174,12 +174,13 @@ impl World {
         if worth_splitting(count, PREPARE_CHUNK) {
             let prepared = &mut stage.prepared;
             prepared.resize(count, PreparedContact::default());
-            fill_chunks(prepared, PREPARE_CHUNK, |first, out| {
-                resume.each(&found.runs, first..first + out.len(), |i, previous| {
-                    out[i - first] = prepare(i, previous);
-                });
+            solver.set_constraints(pairs, prepared, |prepared| {
+                fill_chunks(prepared, PREPARE_CHUNK, |first, out| {
+                    resume.each(&found.runs, first..first + out.len(), |i, previous| {
+                        out[i - first] = prepare(i, previous);
+                    });
+                })
             });
-            solver.set_constraints(pairs, prepared);
             return;
         }
         // Unused this step: its length must say so (`spare`).

@@ -111,7 +111,11 @@ impl World {
 
     /// `step`, on the calling thread.
     fn step_here(&mut self) {
-        let mut clock = StageClock::start();
+        #[cfg(feature = "parallel")]
+        let threads = crate::threading::tasks::threads_here();
+        #[cfg(not(feature = "parallel"))]
+        let threads = 1;
+        let mut clock = StageClock::start(threads);
 
         self.update_gas();
         clock.lap(Stage::Gas);
