@@ -79,6 +79,14 @@ pub(crate) fn push_out_of_room(
         // is flat across the seams of its triangles (an edge pushes along the
         // face normal, never sideways, as a ribbon lying over a seam needs).
         let on_plane = *point - height * t.normal;
+        // Outside the triangle's box widened past the radius (and rounding),
+        // it is farther than the radius: skip the closest point's cost.
+        let reach = Vec3::splat(radius * 1.001 + 1e-6);
+        if on_plane.cmplt(a.min(b).min(c) - reach).any()
+            || on_plane.cmpgt(a.max(b).max(c) + reach).any()
+        {
+            continue;
+        }
         let (closest, _) = closest_point_triangle(on_plane, a, b, c);
         if closest.distance_squared(on_plane) > radius * radius {
             continue;
