@@ -19,7 +19,7 @@ use up_geom::Sphere;
 
 use super::body_spheres::BodySpheres;
 use super::chain::ChainRows;
-use super::collide::NearBalloon;
+use super::collide::{Grip, NearBalloon};
 use super::lane_pushes::NearSlot;
 use super::solve::ActiveRibbon;
 use super::{Ribbon, MAX_SEGMENTS};
@@ -67,10 +67,10 @@ pub(crate) struct LaneGroup {
     pub touch_normal: Vec<V4>,
     pub touch_velocity: Vec<V4>,
     pub touched: bool,
-    /// Per point, in lanes near the room: its friction against the room
-    /// over the step's substeps (`collide::Grip`), what is left and where.
-    pub grip_left: Vec<V4>,
-    pub grip_anchor: Vec<V4>,
+    /// Per point and lane (`point * LANES + lane`), in lanes near the room:
+    /// its friction against the room over the step's substeps; plain, not
+    /// lane-shuffled, since only the scalar room push reads it.
+    pub grips: Vec<Grip>,
     /// Per point, once `windy`: the air's velocity there this step, sampled
     /// at the first substep (`lane_substep`); and per lane the fastest of it.
     pub air: Vec<V4>,
@@ -111,14 +111,13 @@ impl LaneGroup {
             &mut self.touch_normal,
             &mut self.touch_velocity,
             &mut self.air,
-            &mut self.grip_left,
-            &mut self.grip_anchor,
         ] {
             v.resize(points, V4::ZERO);
         }
         self.windy = false;
         self.air_speed = F4::ZERO;
         self.inv_mass.resize(points, F4::ZERO);
+        self.grips.resize(points * LANES, Grip::new(Vec3::ZERO));
         self.rows.resize(segments);
         self.step_impulse = V4::ZERO;
         self.substeps = 0;

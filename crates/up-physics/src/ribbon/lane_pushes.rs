@@ -13,7 +13,7 @@ use super::lane_group::LaneGroup;
 use super::solve::SubstepInput;
 use super::{BALLOON_FRICTION, RIBBON_RADIUS, ROOM_FRICTION};
 use crate::solver::body_state::BodyState;
-use crate::solver::lanes::{set, F4, V4};
+use crate::solver::lanes::{set, F4, LANES, V4};
 
 /// The `k`th near balloon of each lane: its bounding sphere, and the lanes
 /// that have a `k`th (bit `l` for lane `l`).
@@ -184,18 +184,12 @@ impl LaneGroup {
                 }
                 let (start, radius) = (self.start[i].lane(l), self.radius(i).as_array()[l]);
                 let mut point: Vec3 = self.points[i].lane(l);
-                let mut grip = if first {
-                    Grip::new(start)
-                } else {
-                    Grip {
-                        left: self.grip_left[i].lane(l),
-                        anchor: self.grip_anchor[i].lane(l),
-                    }
-                };
-                push_out_of_room(&mut point, start, radius, ROOM_FRICTION, near, &mut grip);
+                let grip = &mut self.grips[i * LANES + l];
+                if first {
+                    *grip = Grip::new(start);
+                }
+                push_out_of_room(&mut point, start, radius, ROOM_FRICTION, near, grip);
                 self.points[i].set_lane(l, point);
-                self.grip_left[i].set_lane(l, grip.left);
-                self.grip_anchor[i].set_lane(l, grip.anchor);
             }
         }
     }
