@@ -119,12 +119,14 @@ pub enum FitError {
     Tree(#[from] SphereTreeError),
 }
 
-/// Fits a sphere tree to a closed, consistently wound triangle mesh.
-pub fn fit_sphere_tree(
+/// The checks every fit starts with (a leaf count in range, a closed mesh,
+/// a volume that is a number and not vanishing against the mesh's size),
+/// and the mesh's solid integrals with its volume and largest extent.
+fn checked_solid(
     vertices: &[Vec3],
     triangles: &[[u32; 3]],
     options: &FitOptions,
-) -> Result<FitReport, FitError> {
+) -> Result<(mesh_integrals::SolidIntegrals, f32, f32), FitError> {
     if !(1..=MAX_LEAVES).contains(&options.leaves) {
         return Err(FitError::BadLeafCount(options.leaves));
     }
@@ -138,6 +140,16 @@ pub fn fit_sphere_tree(
             volume: solid.volume,
         });
     }
+    Ok((solid, mesh_volume, extent))
+}
+
+/// Fits a sphere tree to a closed, consistently wound triangle mesh.
+pub fn fit_sphere_tree(
+    vertices: &[Vec3],
+    triangles: &[[u32; 3]],
+    options: &FitOptions,
+) -> Result<FitReport, FitError> {
+    let (solid, mesh_volume, extent) = checked_solid(vertices, triangles, options)?;
     let shell = mesh_integrals::shell_integrals(vertices, triangles);
     let covariance = principal_axis::covariance(shell.second_moment, shell.area, shell.centroid);
     let axis = principal_axis::principal_axis(covariance);
@@ -234,18 +246,7 @@ pub fn fit_flat_sphere_tree(
     triangles: &[[u32; 3]],
     options: &FitOptions,
 ) -> Result<FitReport, FitError> {
-    if !(1..=MAX_LEAVES).contains(&options.leaves) {
-        return Err(FitError::BadLeafCount(options.leaves));
-    }
-    check_closed(vertices, triangles)?;
-    let solid = mesh_integrals::solid_integrals(vertices, triangles);
-    let extent = crate::Aabb::from_points(vertices).extents().max_element();
-    let mesh_volume = solid.volume.abs();
-    if mesh_volume.is_nan() || mesh_volume <= 1e-9 * extent * extent * extent {
-        return Err(FitError::NoVolume {
-            volume: solid.volume,
-        });
-    }
+    let (_, mesh_volume, extent) = checked_solid(vertices, triangles, options)?;
     let shell = mesh_integrals::shell_integrals(vertices, triangles);
     let (frame, _) =
         planar_cover::plane_of(vertices, shell.area, shell.centroid, shell.second_moment);

@@ -28,11 +28,14 @@
 mod body_spheres;
 pub(crate) mod chain;
 pub(crate) mod collide;
+mod hang_path;
 mod lane_group;
 mod lane_pushes;
 mod lane_substep;
 pub(crate) mod nearby;
 pub(crate) mod solve;
+
+pub use hang_path::hang_path;
 
 use std::collections::BTreeMap;
 

@@ -7,7 +7,8 @@ use up_geom::norm::Norm;
 use super::{PhysicsError, World};
 use crate::body::BodyId;
 use crate::ribbon::{
-    Ribbon, RibbonDef, RibbonId, MAX_SEGMENTS, MIN_SEGMENTS, RIBBON_RADIUS, WEIGHT_RADIUS,
+    hang_path, Ribbon, RibbonDef, RibbonId, MAX_SEGMENTS, MIN_SEGMENTS, RIBBON_RADIUS,
+    WEIGHT_RADIUS,
 };
 
 /// A ribbon point held by the pointer.
@@ -116,27 +117,7 @@ impl World {
             let b = room.aabb();
             (b.min + margin, b.max - margin)
         });
-        let mut points = vec![knot];
-        let mut direction = down;
-        for _ in 0..n {
-            let last = *points.last().unwrap_or(&knot);
-            let mut next = last + direction * ribbon.segment_length;
-            if let Some((lo, hi)) = bounds {
-                if next.clamp(lo, hi) != next {
-                    // Along the floor toward the room's middle, or round a wall.
-                    let middle = 0.5 * (lo + hi);
-                    let toward = (middle - last) - (middle - last).dot(down) * down;
-                    direction = if direction == down {
-                        toward.try_normalize().unwrap_or(Vec3::X)
-                    } else {
-                        down.cross(direction)
-                    };
-                    next = (last + direction * ribbon.segment_length).clamp(lo, hi);
-                }
-            }
-            points.push(next);
-        }
-        points
+        hang_path(knot, down, ribbon.segment_length, n, bounds)
     }
 
     /// Unties and removes a ribbon; wakes its balloon.

@@ -157,6 +157,17 @@ fn normalised(mut points: Vec<Vec2>, height: f32) -> Vec<Vec2> {
 }
 
 impl Outline {
+    /// One polygon drawn `rounding` in from the outline, raised by it so the
+    /// rounded outline still starts at y = 0.
+    fn rounded(polygon: Vec<Vec2>, rounding: f32) -> Self {
+        Self {
+            polygons: vec![polygon.into_iter().map(|p| p + v(0.0, rounding)).collect()],
+            strokes: vec![],
+            pen: 0.0,
+            rounding,
+        }
+    }
+
     /// `kind` at `size` m (its height; the disc's diameter).
     pub fn new(kind: OutlineKind, size: f32) -> Self {
         let rounding = CORNER_ROUNDING * size;
@@ -167,24 +178,8 @@ impl Outline {
                 pen: 0.5 * size,
                 rounding: 0.0,
             },
-            OutlineKind::Heart => Self {
-                polygons: vec![heart(size - 2.0 * rounding)
-                    .into_iter()
-                    .map(|p| p + v(0.0, rounding))
-                    .collect()],
-                strokes: vec![],
-                pen: 0.0,
-                rounding,
-            },
-            OutlineKind::Star => Self {
-                polygons: vec![star(size - 2.0 * rounding)
-                    .into_iter()
-                    .map(|p| p + v(0.0, rounding))
-                    .collect()],
-                strokes: vec![],
-                pen: 0.0,
-                rounding,
-            },
+            OutlineKind::Heart => Self::rounded(heart(size - 2.0 * rounding), rounding),
+            OutlineKind::Star => Self::rounded(star(size - 2.0 * rounding), rounding),
             OutlineKind::Digit(d) => {
                 // Scaled so the strokes with the pen are `size` tall.
                 let strokes = digit_strokes(d.min(9));

@@ -15,7 +15,7 @@
 //! reserves a hanging weight's column.
 
 use glam::Vec3;
-use up_physics::ribbon::WEIGHT_RADIUS;
+use up_physics::ribbon::{hang_path, WEIGHT_RADIUS};
 
 use super::hang::COLUMN_RADIUS;
 use super::spawn::Occupancy;
@@ -85,7 +85,7 @@ fn along(path: &[Vec3], radius: f32) -> impl Iterator<Item = Vec3> + '_ {
 }
 
 /// A free weighted ribbon's start points, as `World::add_ribbon` lays one
-/// (`World::hang`): from `knot` straight `down` in segments
+/// (`up_physics::ribbon::hang_path`): from `knot` straight `down` in segments
 /// of `length / segments`; where the next point would leave the room's box
 /// (`room_min`..`room_max`, less the weight's radius and a millimetre), along
 /// the floor toward the box's middle, and round a wall where it meets one.
@@ -98,26 +98,14 @@ pub(super) fn start_path(
     room_max: Vec3,
 ) -> Vec<Vec3> {
     let margin = WEIGHT_RADIUS + 1e-3;
-    let (lo, hi) = (room_min + margin, room_max - margin);
-    let segment = length / segments as f32;
-    let mut points = vec![knot];
-    let mut direction = down;
-    for _ in 0..segments {
-        let last = *points.last().unwrap_or(&knot);
-        let mut next = last + direction * segment;
-        if next.clamp(lo, hi) != next {
-            let middle = 0.5 * (lo + hi);
-            let toward = (middle - last) - (middle - last).dot(down) * down;
-            direction = if direction == down {
-                toward.try_normalize().unwrap_or(Vec3::X)
-            } else {
-                down.cross(direction)
-            };
-            next = (last + direction * segment).clamp(lo, hi);
-        }
-        points.push(next);
-    }
-    points
+    let bounds = (room_min + margin, room_max - margin);
+    hang_path(
+        knot,
+        down,
+        length / segments as f32,
+        segments as usize,
+        Some(bounds),
+    )
 }
 
 #[cfg(test)]
