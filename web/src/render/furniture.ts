@@ -5,6 +5,7 @@
 
 import * as THREE from "three";
 import type { FurnitureMesh } from "../sim/engine";
+import { repeatingTexture } from "./room";
 
 /** Linear-space positions, one triangle after another (flat: no shared vertices). */
 export function furniturePositions(mesh: FurnitureMesh): Float32Array {
@@ -67,12 +68,7 @@ function woodTexture(): THREE.CanvasTexture {
     g.bezierCurveTo(85, y + rand() * 8 - 4, 170, y + rand() * 8 - 4, 256, y);
     g.stroke();
   }
-  const texture = new THREE.CanvasTexture(canvas);
-  texture.wrapS = THREE.RepeatWrapping;
-  texture.wrapT = THREE.RepeatWrapping;
-  texture.colorSpace = THREE.SRGBColorSpace;
-  texture.anisotropy = 4;
-  return texture;
+  return repeatingTexture(canvas);
 }
 
 /** The furniture as one mesh, or null when the room has none. */

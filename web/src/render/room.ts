@@ -45,6 +45,11 @@ function floorTexture(): THREE.CanvasTexture {
     g.fillStyle = "rgba(50, 30, 12, 0.6)";
     g.fillRect(0, i * h, canvas.width, 2);
   }
+  return repeatingTexture(canvas);
+}
+
+/** A drawn canvas as a colour texture that repeats both ways (planks, grain). */
+export function repeatingTexture(canvas: HTMLCanvasElement): THREE.CanvasTexture {
   const texture = new THREE.CanvasTexture(canvas);
   texture.wrapS = THREE.RepeatWrapping;
   texture.wrapT = THREE.RepeatWrapping;
