@@ -72,7 +72,7 @@ export class PhysicsView {
     this.bridge.setForcesOnAll(on);
   }
 
-  /** Fetches the teaching scenes and adds the panel's "Learn" folder; `loaded` runs once one is chosen. */
+  /** Fetches the teaching and example scenes and adds the panel's "Scenes" folder; `loaded` runs once one is chosen. */
   async addMenu(gui: GUI, assetsBase: string, loaded: (lesson: Lesson) => void): Promise<void> {
     this.lessons = await loadLessons(assetsBase);
     this.menu = new LessonMenu(gui, this.lessons, {

@@ -1,10 +1,15 @@
 import { describe, expect, it } from "vitest";
-import { aboutTitle, lessonFiles, titleFromFile } from "./lessonMenu";
+import { aboutTitle, exampleFiles, lessonFiles, titleFromFile } from "./lessonMenu";
 
 describe("the teaching scenes' menu", () => {
   it("lists the manifest's learn-*.toml scenes only", () => {
     const files = ["balloon.obj", "scenes/thrown.toml", "scenes/learn-throw.toml", "scenes/learn-cold-room.toml", "scenes/learn-x.json", "other/learn-y.toml"];
     expect(lessonFiles(files)).toEqual(["scenes/learn-cold-room.toml", "scenes/learn-throw.toml"]);
+  });
+
+  it("lists the other scenes apart, for those with a title to follow the lessons", () => {
+    const files = ["balloon.obj", "scenes/thrown.toml", "scenes/learn-throw.toml", "scenes/birthday.toml", "scenes/x.json", "other/y.toml"];
+    expect(exampleFiles(files)).toEqual(["scenes/birthday.toml", "scenes/thrown.toml"]);
   });
 
   it("reads the title of the [about] table, not another table's", () => {

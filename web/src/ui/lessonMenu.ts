@@ -1,6 +1,7 @@
-// The teaching scenes (assets/scenes/learn-*.toml) and the panel's "Learn"
-// folder: a menu of them by their `[about] title`, and the "forces on all"
-// switch. A chosen scene is built by the engine from its TOML, as the CLI
+// The teaching scenes (assets/scenes/learn-*.toml), then the other scenes
+// that carry an `[about] title` (the examples that say what they show), and
+// the panel's "Scenes" folder: a menu of them by that title, and the "forces
+// on all" switch. A chosen scene is built by the engine from its TOML, as the CLI
 // builds it; its caption comes back in the scene the engine wrote (caption.ts).
 
 import type GUI from "lil-gui";
@@ -16,9 +17,17 @@ export interface Lesson {
   toml: string;
 }
 
+/** Any scene in the asset manifest. */
+const SCENE_FILE = /^scenes\/[a-z0-9-]+\.toml$/;
+
 /** The manifest's teaching scenes, in file order. */
 export function lessonFiles(files: readonly string[]): string[] {
   return files.filter((f) => LESSON_FILE.test(f)).sort();
+}
+
+/** The manifest's other scenes, in file order: listed only where they have a title. */
+export function exampleFiles(files: readonly string[]): string[] {
+  return files.filter((f) => SCENE_FILE.test(f) && !LESSON_FILE.test(f)).sort();
 }
 
 /**
@@ -54,19 +63,23 @@ export function titleFromFile(file: string): string {
   return stem.charAt(0).toUpperCase() + stem.slice(1);
 }
 
-/** Fetches the manifest's teaching scenes under `base` (the assets' URL, ending in "/"). */
+/** Fetches the manifest's teaching scenes, then its titled other scenes, under `base` (the assets' URL, ending in "/"). */
 export async function loadLessons(base: string): Promise<Lesson[]> {
   const response = await fetch(`${base}manifest.json`);
   if (!response.ok) throw new Error(`cannot load ${base}manifest.json: HTTP ${response.status}`);
   const { files } = (await response.json()) as { files: string[] };
-  return Promise.all(
-    lessonFiles(files).map(async (file) => {
-      const r = await fetch(base + file);
-      if (!r.ok) throw new Error(`cannot load ${file}: HTTP ${r.status}`);
-      const toml = await r.text();
-      return { file, title: aboutTitle(toml) ?? titleFromFile(file), toml };
-    }),
-  );
+  const read = async (file: string) => {
+    const r = await fetch(base + file);
+    if (!r.ok) throw new Error(`cannot load ${file}: HTTP ${r.status}`);
+    const toml = await r.text();
+    return { file, title: aboutTitle(toml), toml };
+  };
+  const lessons = await Promise.all(lessonFiles(files).map(read));
+  const examples = await Promise.all(exampleFiles(files).map(read));
+  return [
+    ...lessons.map((l) => ({ ...l, title: l.title ?? titleFromFile(l.file) })),
+    ...examples.flatMap((e) => (e.title === null ? [] : [{ ...e, title: e.title }])),
+  ];
 }
 
 export interface LessonActions {
@@ -74,18 +87,18 @@ export interface LessonActions {
   forcesOnAll(on: boolean): void;
 }
 
-/** The panel's "Learn" folder. */
+/** The panel's "Scenes" folder. */
 export class LessonMenu {
   readonly folder: GUI;
   private readonly view = { lesson: "", forcesOnAll: false };
 
   constructor(gui: GUI, lessons: Lesson[], actions: LessonActions) {
-    this.folder = gui.addFolder("Learn");
+    this.folder = gui.addFolder("Scenes");
     // First in the panel: the way in for a learner.
     gui.$children.prepend(this.folder.domElement);
     const options: Record<string, string> = { "choose a scene…": "" };
     for (const l of lessons) options[l.title] = l.file;
-    const menu = this.folder.add(this.view, "lesson", options).name("teaching scene");
+    const menu = this.folder.add(this.view, "lesson", options).name("scene");
     menu.domElement.dataset.key = "lesson";
     menu.onChange((file: string) => {
       const lesson = lessons.find((l) => l.file === file);
