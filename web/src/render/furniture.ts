@@ -7,7 +7,7 @@ import * as THREE from "three";
 import type { FurnitureMesh } from "../sim/engine";
 import { repeatingTexture } from "./room";
 
-/** Linear-space positions, one triangle after another (flat: no shared vertices). */
+/** World positions, one triangle after another (flat: no shared vertices). */
 export function furniturePositions(mesh: FurnitureMesh): Float32Array {
   const t = mesh.triangles;
   const v = mesh.vertices;
@@ -22,7 +22,7 @@ export function furniturePositions(mesh: FurnitureMesh): Float32Array {
 
 /**
  * Box-mapped texture coordinates, 1 per 0.5 m: each face takes the two axes
- * across its normal, so the grain runs along a table's top and down its legs.
+ * across its normal, the grain running along x (z on faces that look along x).
  */
 export function furnitureUvs(positions: Float32Array): Float32Array {
   const uv = new Float32Array((positions.length / 3) * 2);

@@ -15,10 +15,8 @@
 //! floor is pushed out in the first push (it fell), while its ribbon's pull
 //! moves it along the floor in the chain's solve between, often lifting it
 //! clear by a hair, so that the second push, or the next substep's, has no
-//! push of its own to take friction from. Held to each push alone, that
-//! pull slid the weight by its whole move in every such substep: a weight
-//! pulled at half μ·N crept at 8 mm/s (`tests/ribbon_friction.rs`); held
-//! over the step, it holds below μ·N and slides at the kinetic rate above.
+//! push of its own to take friction from; held over the step, it holds
+//! below μ·N and slides at the kinetic rate above (`tests/ribbon_friction.rs`).
 //!
 //! Balloons: a point inside a balloon's leaf sphere goes out to its surface
 //! along the line from the sphere's centre, with the same friction against

@@ -66,6 +66,8 @@ const CHAIR_BACK_M: f32 = 0.04;
 const TOUCH_M: f32 = 1e-3;
 /// Spacing of the spheres that reserve a piece's boxes in the spawn layout, m.
 const RESERVE_SPACING_M: f32 = 0.05;
+/// The most spheres one box reserves; past it the spacing grows.
+const MAX_RESERVE_SPHERES: f32 = 4096.0;
 
 impl YawBox {
     fn rotation(&self) -> Quat {
@@ -203,7 +205,11 @@ fn build_piece(scene: &Scene, i: usize) -> Result<FurniturePiece, SceneError> {
     }
     let path = scene
         .furniture_mesh_path(i)
-        .expect("validation: a piece without a kind has a mesh");
+        .ok_or_else(|| SceneError::Invalid {
+            at: scene.locate(&format!("furniture[{i}]")),
+            expected: "kind = \"table\" | \"chair\", or mesh = \"file.obj\"".into(),
+            found: "neither".into(),
+        })?;
     let bad = |problem: String| SceneError::Invalid {
         at: scene.locate(&format!("furniture[{i}].mesh")),
         expected: "a closed OBJ mesh, in metres, Y up, its normals pointing out".into(),
@@ -342,7 +348,14 @@ pub fn room_with_furniture(
 pub fn reserve(pieces: &[FurniturePiece], occupied: &mut Occupancy) {
     for b in pieces.iter().flat_map(|p| &p.boxes) {
         let q = b.rotation();
-        let cells = (2.0 * b.half / RESERVE_SPACING_M).ceil().max(Vec3::ONE);
+        // Coarser over a large box (a mesh piece's whole bounds), so a room-sized
+        // piece reserves thousands of spheres, not millions.
+        let mut spacing = RESERVE_SPACING_M;
+        let mut cells = (2.0 * b.half / spacing).ceil().max(Vec3::ONE);
+        while cells.x * cells.y * cells.z > MAX_RESERVE_SPHERES {
+            spacing *= 1.25;
+            cells = (2.0 * b.half / spacing).ceil().max(Vec3::ONE);
+        }
         let step = 2.0 * b.half / cells;
         // A sphere through a cell's corners covers the cell.
         let radius = 0.5 * step.length();
