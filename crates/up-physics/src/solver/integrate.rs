@@ -43,24 +43,29 @@ pub(crate) fn integrate_velocities(
     h: f32,
 ) {
     parallel::for_each_body(awake, states, |i, s| {
-        if s.runaway {
-            return; // frozen until the step ends (its forces may be infinite)
-        }
-        let f = &forces[i as usize];
-        let torque = f.torque_at(s.q, s.v);
-        if f.air == Vec3::ZERO {
-            let speed_damping = h * f.drag_factor * s.v.norm() * s.inv_mass;
-            s.v = (s.v + h * s.inv_mass * f.force) / (1.0 + speed_damping);
-        } else {
-            let speed_damping = h * f.drag_factor * (s.v - f.air).norm() * s.inv_mass;
-            let pushed = s.v + h * s.inv_mass * f.force + speed_damping * f.air;
-            s.v = pushed / (1.0 + speed_damping);
-        }
-        s.w = (s.w + h * (s.inv_inertia * torque)) / (1.0 + h * angular_damping);
-        if s.inv_mass > 0.0 && !quarantine::is_sane_motion(s.v, s.w) {
-            s.freeze_runaway();
-        }
+        integrate_velocity(s, &forces[i as usize], angular_damping, h)
     });
+}
+
+/// `integrate_velocities` for one body's state `s` under its forces `f`.
+#[inline]
+pub(crate) fn integrate_velocity(s: &mut BodyState, f: &BodyForces, angular_damping: f32, h: f32) {
+    if s.runaway {
+        return; // frozen until the step ends (its forces may be infinite)
+    }
+    let torque = f.torque_at(s.q, s.v);
+    if f.air == Vec3::ZERO {
+        let speed_damping = h * f.drag_factor * s.v.norm() * s.inv_mass;
+        s.v = (s.v + h * s.inv_mass * f.force) / (1.0 + speed_damping);
+    } else {
+        let speed_damping = h * f.drag_factor * (s.v - f.air).norm() * s.inv_mass;
+        let pushed = s.v + h * s.inv_mass * f.force + speed_damping * f.air;
+        s.v = pushed / (1.0 + speed_damping);
+    }
+    s.w = (s.w + h * (s.inv_inertia * torque)) / (1.0 + h * angular_damping);
+    if s.inv_mass > 0.0 && !quarantine::is_sane_motion(s.v, s.w) {
+        s.freeze_runaway();
+    }
 }
 
 /// The grab spring's pull on its body over substep `h`; returns the impulse, N·s.

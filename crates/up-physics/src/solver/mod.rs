@@ -13,10 +13,14 @@
 //! 3. restitution (bounces), and store impulses for the next step;
 //! 4. stabilise: overlap beyond a slop is removed from the positions directly.
 
+#[cfg(feature = "parallel")]
+pub(crate) mod awake_blocks;
 pub(crate) mod body_lanes;
 pub(crate) mod body_state;
 pub(crate) mod coloring;
 pub(crate) mod contact_constraint;
+#[cfg(feature = "parallel")]
+pub(crate) mod fused;
 pub(crate) mod integrate;
 pub(crate) mod joint_constraint;
 pub(crate) mod lanes;
@@ -81,6 +85,12 @@ pub(crate) struct Solver {
     /// Each body's zone, a slab of the room that orders the constraints
     /// within their colours (`coloring`): set on several threads, empty on one.
     pub zones: Vec<u8>,
+    /// The awake bodies by zone, in blocks for the substep's body passes.
+    #[cfg(feature = "parallel")]
+    awake_blocks: awake_blocks::AwakeBlocks,
+    /// This step's substep as one staged run (`fused`).
+    #[cfg(feature = "parallel")]
+    substep: fused::SubstepStages,
 }
 
 /// The parameters of one step's solve.
@@ -154,6 +164,18 @@ fn on_velocities(
     }
 }
 
+/// The relax pass on one group (`Solver::refresh_and_relax`).
+#[inline]
+fn relax_group(g: &mut ContactGroup, anchors: &GroupAnchors, sides: GroupStates, relax: &Bias) {
+    let poses = |side| gather_side(&sides, side, Poses::FIXED, Poses::gather);
+    let (a, b) = (poses(0), poses(1));
+    contact_constraint::refresh(g, anchors, &a, &b);
+    on_velocities(g, sides, |c, a, b| {
+        contact_constraint::solve(c, a, b, relax)
+    });
+    g.add_substep();
+}
+
 /// Side `side` of a group as `gather` reads it; for a fixed side, `fixed`
 /// (what it would read) without reading.
 #[inline]
@@ -178,6 +200,11 @@ impl Solver {
         release_spare(&mut self.records, BUFFER_FLOOR);
         self.coloring.release_spare();
         self.skips.release_spare();
+        #[cfg(feature = "parallel")]
+        {
+            self.awake_blocks.release_spare();
+            self.substep.release_spare();
+        }
     }
 
     /// Colours the constraints of this step from their body pairs (state
@@ -197,6 +224,13 @@ impl Solver {
     /// room's state.
     fn colour(&mut self, pairs: impl Iterator<Item = (u32, u32)>) -> (usize, u32) {
         self.coloring.assign(pairs, &self.states, &self.zones);
+        // Off the critical path too (`set_constraints`).
+        #[cfg(feature = "parallel")]
+        self.awake_blocks.cut(
+            &self.awake,
+            &self.zones,
+            crate::threading::tasks::threads_here(),
+        );
         (self.coloring.groups, self.room)
     }
 
@@ -322,7 +356,28 @@ impl Solver {
                 contact_constraint::prepare_masses(c, anchors, &a, &b);
             },
         );
+        // With no probe or grab between its passes, a substep runs as one
+        // staged run (`fused`) on several threads; the ribbons, which run
+        // passes of their own, then come after it, and the relax pass after them.
+        #[cfg(feature = "parallel")]
+        let fused = probe.is_none()
+            && grab.is_none()
+            && self.lay_out_substep(p.iterations, ribbons.is_none());
         for _ in 0..p.substeps {
+            #[cfg(feature = "parallel")]
+            if fused {
+                self.fused_substep(&fused::SubstepKernels {
+                    h,
+                    angular_damping: p.angular_damping,
+                    push: &push,
+                    relax: &relax,
+                });
+                if let Some(ribbons) = ribbons.as_deref_mut() {
+                    ribbons.substep(&mut self.states);
+                    self.refresh_and_relax(&relax);
+                }
+                continue;
+            }
             if let Some(probe) = probe.as_deref_mut() {
                 probe.before(&self.states, &self.forces);
             }
@@ -362,15 +417,7 @@ impl Solver {
     /// constraints instead of two, with the same results: relaxing changes
     /// only velocities, and a refresh reads only positions.
     fn refresh_and_relax(&mut self, relax: &Bias) {
-        self.colour_pass(|g, anchors, sides| {
-            let poses = |side| gather_side(&sides, side, Poses::FIXED, Poses::gather);
-            let (a, b) = (poses(0), poses(1));
-            contact_constraint::refresh(g, anchors, &a, &b);
-            on_velocities(g, sides, |c, a, b| {
-                contact_constraint::solve(c, a, b, relax)
-            });
-            g.add_substep();
-        });
+        self.colour_pass(|g, anchors, sides| relax_group(g, anchors, sides, relax));
     }
 
     /// One pass of `kernel` over the constraints' velocities, colour after colour.

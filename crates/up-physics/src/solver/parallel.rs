@@ -9,6 +9,8 @@ use std::marker::PhantomData;
 use rayon::prelude::*;
 
 use super::body_state::BodyState;
+#[cfg(feature = "parallel")]
+use super::coloring::ColourBlocks;
 use super::coloring::{Coloring, Moving};
 use super::contact_constraint::ContactGroup;
 #[cfg(feature = "parallel")]
@@ -32,7 +34,7 @@ const BODY_CHUNK: usize = 256;
 /// A slice shared by the tasks of one pass, each touching only its own
 /// elements: the body states of a colour or a body pass, the groups of a
 /// pass's blocks.
-struct SharedSlice<T> {
+pub(super) struct SharedSlice<T> {
     ptr: *mut T,
     len: usize,
 }
@@ -51,7 +53,7 @@ unsafe impl<T: Send> Send for SharedSlice<T> {}
 unsafe impl<T: Send> Sync for SharedSlice<T> {}
 
 impl<T> SharedSlice<T> {
-    fn new(items: &mut [T]) -> Self {
+    pub(super) fn new(items: &mut [T]) -> Self {
         Self {
             ptr: items.as_mut_ptr(),
             len: items.len(),
@@ -61,7 +63,7 @@ impl<T> SharedSlice<T> {
     /// # Safety
     /// No other task may use element `i` at the same time.
     #[allow(clippy::mut_from_ref)] // the point of the type: disjoint indices, shared pointer
-    unsafe fn get(&self, i: u32) -> &mut T {
+    pub(super) unsafe fn get(&self, i: u32) -> &mut T {
         assert!((i as usize) < self.len);
         // SAFETY: in bounds (asserted), and ours alone (the caller's contract).
         unsafe { &mut *self.ptr.add(i as usize) }
@@ -78,9 +80,18 @@ impl<T> SharedSlice<T> {
             std::slice::from_raw_parts_mut(self.ptr.add(start as usize), (end - start) as usize)
         }
     }
+
+    /// # Safety
+    /// No other task may use any element at the same time.
+    #[cfg(feature = "parallel")]
+    #[allow(clippy::mut_from_ref)]
+    pub(super) unsafe fn all(&self) -> &mut [T] {
+        // SAFETY: the whole slice, ours alone (the caller's contract).
+        unsafe { self.range(0, self.len as u32) }
+    }
 }
 
-type SharedStates = SharedSlice<BodyState>;
+pub(super) type SharedStates = SharedSlice<BodyState>;
 
 /// The states of a contact group's bodies, side A and side B, one per lane,
 /// as a task of `for_each_colored` sees them: every state can be read, only
@@ -142,17 +153,6 @@ pub(crate) fn for_each_colored<K>(
     K: Fn(usize, &mut ContactGroup, GroupStates) + Sync,
 {
     let shared = SharedStates::new(states);
-    let run = |first: usize, moving: Moving, chunk: &mut [ContactGroup]| {
-        for (k, g) in chunk.iter_mut().enumerate() {
-            let sides = GroupStates {
-                shared,
-                bodies: [g.a, g.b],
-                moving,
-                _states: PhantomData,
-            };
-            kernel(first + k, g, sides);
-        }
-    };
     #[cfg(feature = "parallel")]
     {
         let blocks = &coloring.blocks;
@@ -160,15 +160,9 @@ pub(crate) fn for_each_colored<K>(
             let shared_groups = SharedSlice::new(groups);
             thread_times::pass(|| {
                 run_in_stages(&blocks.stages, |k| {
-                    for piece in blocks.block(k) {
-                        // SAFETY: the blocks' pieces do not overlap and each
-                        // block is run by one task, so its groups are its own;
-                        // blocks that run at once belong to one stage, a colour
-                        // or level, whose groups share no moving body (the
-                        // `GroupStates` writes).
-                        let chunk = unsafe { shared_groups.range(piece.start, piece.end) };
-                        run(piece.start as usize, piece.moving, chunk);
-                    }
+                    // SAFETY: each block is run by one task, and blocks that
+                    // run at once belong to one stage (`run_colour_block`).
+                    unsafe { run_colour_block(blocks, k, shared_groups, shared, &kernel) }
                 })
             });
             return;
@@ -176,7 +170,53 @@ pub(crate) fn for_each_colored<K>(
     }
     for r in &coloring.ranges {
         let colour = &mut groups[r.start as usize..r.end as usize];
-        run(r.start as usize, r.moving, colour);
+        run_groups(shared, r.start as usize, r.moving, colour, &kernel);
+    }
+}
+
+/// Runs `kernel` on `chunk`, groups from `first` on whose sides move as `moving` says.
+#[inline]
+fn run_groups<K>(
+    shared: SharedStates,
+    first: usize,
+    moving: Moving,
+    chunk: &mut [ContactGroup],
+    kernel: &K,
+) where
+    K: Fn(usize, &mut ContactGroup, GroupStates) + Sync,
+{
+    for (k, g) in chunk.iter_mut().enumerate() {
+        let sides = GroupStates {
+            shared,
+            bodies: [g.a, g.b],
+            moving,
+            _states: PhantomData,
+        };
+        kernel(first + k, g, sides);
+    }
+}
+
+/// Runs `kernel` on the groups of block `k` of `blocks`, as `for_each_colored` does.
+///
+/// # Safety
+/// No other task may run block `k` at the same time, and blocks that run
+/// at the same time must belong to one stage (a colour or level): then the
+/// blocks' pieces do not overlap, so the block's groups are its own, and
+/// the stage's groups share no moving body (the `GroupStates` writes).
+#[cfg(feature = "parallel")]
+pub(super) unsafe fn run_colour_block<K>(
+    blocks: &ColourBlocks,
+    k: usize,
+    groups: SharedSlice<ContactGroup>,
+    states: SharedStates,
+    kernel: &K,
+) where
+    K: Fn(usize, &mut ContactGroup, GroupStates) + Sync,
+{
+    for piece in blocks.block(k) {
+        // SAFETY: the caller's contract.
+        let chunk = unsafe { groups.range(piece.start, piece.end) };
+        run_groups(states, piece.start as usize, piece.moving, chunk, kernel);
     }
 }
 

@@ -202,9 +202,14 @@ pub(crate) fn run_in_stages(stages: &Stages, run: impl Fn(usize) + Sync) {
     let done = Padded(AtomicUsize::new(0));
     let failed = AtomicBool::new(false);
     let work = || {
-        // Shares by order of arrival: a thread that never comes leaves its
-        // share to the others.
-        let own = joined.fetch_add(1, Ordering::Relaxed) % threads;
+        // A pool's thread takes the share of its index, the same in every
+        // run, so that it keeps the same part of the room from pass to pass
+        // (a pool larger than the layout's threads folds onto it); others by
+        // order of arrival. A thread that never comes leaves its share to the
+        // others.
+        let own = rayon::current_thread_index()
+            .unwrap_or_else(|| joined.fetch_add(1, Ordering::Relaxed))
+            % threads;
         for (s, &first) in stages.starts[..stages.stages()].iter().enumerate() {
             if !wait_until_done(&done.0, first as usize, &failed) {
                 return;
