@@ -7,16 +7,20 @@
 //! the colours' are, so that a thread integrates the bodies whose
 //! constraints it solves. The same work in the same order per body and per
 //! constraint as the passes one by one: the same results, bit for bit.
+//!
+//! The position passes that always run after the solve (`Solver::stabilize`'s
+//! `min_passes`) are one staged run likewise, colour after colour, pass after pass.
 
 use super::coloring::ColourBlocks;
 use super::contact_constraint::{self, Bias};
 use super::integrate::integrate_velocity;
 use super::parallel::{run_colour_block, SharedSlice, SharedStates};
-use super::{on_velocities, relax_group, Solver};
+use super::{on_velocities, position_group, relax_group, Solver, Stabilization};
 use crate::threading::spare::{release_spare, BUFFER_FLOOR};
 use crate::threading::staged::{run_in_stages, Stages};
 use crate::threading::tasks::threads_here;
 use crate::threading::thread_times;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// What a span of a substep's blocks runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -27,6 +31,10 @@ enum Segment {
     IntegratePositions,
     Joints,
     Relax,
+    /// A position pass (`Solver::stabilize`) but the last.
+    Position,
+    /// The last position pass, which says whether another must run.
+    LastPosition,
 }
 
 /// A substep's blocks, segment after segment, laid out once a step.
@@ -113,6 +121,56 @@ impl Solver {
         true
     }
 
+    /// Lays out the first `passes` position passes as one staged run, if it
+    /// is worth it (as `lay_out_substep`); returns whether to use it.
+    pub(super) fn lay_out_position_passes(&mut self, passes: u32) -> bool {
+        let colours = &self.coloring.blocks;
+        if threads_here() < 2 || colours.stages.blocks() < 2 {
+            return false;
+        }
+        let layout = &mut self.position_passes;
+        layout.segments.clear();
+        layout.stage_first.clear();
+        for pass in 1..=passes {
+            let last = pass == passes;
+            let segment = if last {
+                Segment::LastPosition
+            } else {
+                Segment::Position
+            };
+            layout.push_colours(segment, colours);
+        }
+        layout.stages.lay_out(&layout.stage_first);
+        true
+    }
+
+    /// The position passes laid out by `lay_out_position_passes`; only the
+    /// last sets `beyond_target`, as the passes one by one leave it.
+    pub(super) fn fused_position_passes(&mut self, s: &Stabilization, beyond_target: &AtomicBool) {
+        let states = SharedStates::new(&mut self.states);
+        let groups = SharedSlice::new(&mut self.groups);
+        let (anchors, skips, colours) = (&self.anchors, &self.skips, &self.coloring.blocks);
+        let layout = &self.position_passes;
+        // What the passes before the last find is not asked for.
+        let ignored = AtomicBool::new(false);
+        let run = |block: usize| {
+            let (segment, b) = layout.locate(block);
+            let beyond = if segment == Segment::LastPosition {
+                beyond_target
+            } else {
+                &ignored
+            };
+            // SAFETY: as `fused_substep`'s colour blocks.
+            unsafe {
+                run_colour_block(colours, b, groups, states, &|i, g, sides| {
+                    position_group(g, &anchors[i], sides, (i, skips), s, beyond)
+                })
+            }
+        };
+        beyond_target.store(false, Ordering::Relaxed);
+        thread_times::pass(|| run_in_stages(&layout.stages, run));
+    }
+
     /// One substep as laid out by `lay_out_substep`.
     pub(super) fn fused_substep(&mut self, k: &SubstepKernels) {
         let states = SharedStates::new(&mut self.states);
@@ -156,6 +214,9 @@ impl Solver {
                     relax_group(g, &anchors[i], sides, k.relax)
                 })
             },
+            (Segment::Position | Segment::LastPosition, _) => {
+                unreachable!("a position pass in a substep's layout")
+            }
             (Segment::Joints, _) => {
                 // SAFETY: the joints' stage is one block: no other task runs.
                 let (states, joints) = unsafe { (states.all(), joints.all()) };

@@ -91,6 +91,9 @@ pub(crate) struct Solver {
     /// This step's substep as one staged run (`fused`).
     #[cfg(feature = "parallel")]
     substep: fused::SubstepStages,
+    /// The position passes that always run, as one staged run (`fused`).
+    #[cfg(feature = "parallel")]
+    position_passes: fused::SubstepStages,
 }
 
 /// The parameters of one step's solve.
@@ -164,6 +167,46 @@ fn on_velocities(
     }
 }
 
+/// A position pass on group `i` (`Solver::stabilize`); sets `beyond_target`
+/// if a contact is still deeper than the target.
+#[inline]
+fn position_group(
+    g: &mut ContactGroup,
+    anchors: &GroupAnchors,
+    mut states: GroupStates,
+    (i, skips): (usize, &PositionSkips),
+    s: &Stabilization,
+    beyond_target: &AtomicBool,
+) {
+    // Would move nothing (`position_skips`): what it found last time holds.
+    let travel = skips.travel_of([&g.a, &g.b]);
+    if skips.can_skip(i, travel) {
+        return;
+    }
+    let displacements =
+        |side| gather_side(&states, side, Displacements::FIXED, Displacements::gather);
+    let (mut a, mut b) = (displacements(0), displacements(1));
+    let push = contact_constraint::stabilize(g, anchors, &mut a, &mut b, s.slop, s.target);
+    skips.ran(i, travel, push.room_left);
+    if !push.moved {
+        return;
+    }
+    if push.beyond_target {
+        beyond_target.store(true, Ordering::Relaxed);
+    }
+    let sides = [(&a, g.a, push.distance[0]), (&b, g.b, push.distance[1])];
+    for (side, (d, bodies, distance)) in sides.into_iter().enumerate() {
+        if states.moving.fixes(side) {
+            continue;
+        }
+        let scatter = d.scatter();
+        states.write(side, |lane, state| {
+            scatter(lane, state);
+            skips.moved(bodies[lane], distance.as_array()[lane]);
+        });
+    }
+}
+
 /// The relax pass on one group (`Solver::refresh_and_relax`).
 #[inline]
 fn relax_group(g: &mut ContactGroup, anchors: &GroupAnchors, sides: GroupStates, relax: &Bias) {
@@ -204,6 +247,7 @@ impl Solver {
         {
             self.awake_blocks.release_spare();
             self.substep.release_spare();
+            self.position_passes.release_spare();
         }
     }
 
@@ -482,53 +526,29 @@ impl Solver {
         );
         let max_passes = s.max_passes.max(s.min_passes);
         self.skips.begin(self.states.len(), self.groups.len());
-        let anchors = &self.anchors;
-        let skips = &self.skips;
         // Set by any group, whatever the thread: an OR, the same in any order.
         let beyond_target = AtomicBool::new(false);
         let mut passes = 0;
+        // The passes that always run, as one staged run on several threads
+        // (`fused`), only the last of them asked whether to go on.
+        #[cfg(feature = "parallel")]
+        if s.min_passes > 1 && self.lay_out_position_passes(s.min_passes) {
+            self.fused_position_passes(s, &beyond_target);
+            passes = s.min_passes;
+            if !beyond_target.load(Ordering::Relaxed) {
+                return passes;
+            }
+        }
+        let anchors = &self.anchors;
+        let skips = &self.skips;
         while passes < max_passes {
             beyond_target.store(false, Ordering::Relaxed);
             for_each_colored(
                 &self.coloring,
                 &mut self.groups,
                 &mut self.states,
-                |i, g, mut states| {
-                    // Would move nothing (`position_skips`): what it found last time holds.
-                    let travel = skips.travel_of([&g.a, &g.b]);
-                    if skips.can_skip(i, travel) {
-                        return;
-                    }
-                    let displacements = |side| {
-                        gather_side(&states, side, Displacements::FIXED, Displacements::gather)
-                    };
-                    let (mut a, mut b) = (displacements(0), displacements(1));
-                    let push = contact_constraint::stabilize(
-                        g,
-                        &anchors[i],
-                        &mut a,
-                        &mut b,
-                        s.slop,
-                        s.target,
-                    );
-                    skips.ran(i, travel, push.room_left);
-                    if !push.moved {
-                        return;
-                    }
-                    if push.beyond_target {
-                        beyond_target.store(true, Ordering::Relaxed);
-                    }
-                    let sides = [(&a, g.a, push.distance[0]), (&b, g.b, push.distance[1])];
-                    for (side, (d, bodies, distance)) in sides.into_iter().enumerate() {
-                        if states.moving.fixes(side) {
-                            continue;
-                        }
-                        let scatter = d.scatter();
-                        states.write(side, |lane, state| {
-                            scatter(lane, state);
-                            skips.moved(bodies[lane], distance.as_array()[lane]);
-                        });
-                    }
+                |i, g, states| {
+                    position_group(g, &anchors[i], states, (i, skips), s, &beyond_target)
                 },
             );
             passes += 1;
