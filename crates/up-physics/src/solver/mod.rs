@@ -3,7 +3,9 @@
 //! 1. prepare: forces for each body; the contacts are coloured (`coloring`)
 //!    and prepared into groups of four (`lanes`), warm-started from the last
 //!    step, so that each pass solves four constraints with one stream of SIMD
-//!    instructions and can run a colour's groups on several threads (`parallel`);
+//!    instructions and can run a colour's groups on several threads
+//!    (`parallel`; there a substep's passes, and the position passes that
+//!    always run, are each one staged run, `fused`);
 //! 2. per substep: integrate velocities (forces), warm start, solve (soft
 //!    push-out of overlap), integrate positions, project the joints to their
 //!    lengths (`joint_constraint`, position level), the ribbons (a
