@@ -22,11 +22,23 @@
 //! along the line from the sphere's centre, with the same friction against
 //! the balloon's move, so a ribbon draped over a balloon stays draped; the
 //! balloon takes the opposite impulse (momentum is kept: a one-way push lets
-//! balloons stir each other through their ribbons for ever).
+//! balloons stir each other through their ribbons for ever). The leaves are
+//! not placed in the room to be tested: the point is turned into the
+//! balloon's frame once and tested there against its shape's tree (shared by
+//! every balloon of the shape, so it stays in cache), a little wider than
+//! the leaves (`FRAME_SLACK`); only a leaf that passes is placed and the
+//! push decided as it would be against that leaf placed, so the result is
+//! the same bit for bit as testing every placed leaf in order.
 
 use glam::{Quat, Vec3};
 use up_geom::norm::Norm;
-use up_geom::{closest_point_triangle, Sphere};
+use up_geom::{closest_point_triangle, Sphere, SphereTree};
+
+/// How much wider than a leaf the test in the balloon's frame is, m: far
+/// more than the rounding between a point turned into that frame and a leaf
+/// placed in the room (a few ulps of a room coordinate, ~1e-6 m in a room of
+/// tens of metres), so no leaf the placed test would push from is skipped.
+const FRAME_SLACK: f32 = 1e-4;
 
 /// A room triangle near a ribbon this step, with its unit inward normal.
 #[derive(Clone, Copy, Debug)]
@@ -132,7 +144,7 @@ fn take_back_slide(point: &mut Vec3, moved: Vec3, push: Vec3, mu: f32) {
 }
 
 /// A balloon near a ribbon at this substep's pose: its bounding sphere, and
-/// its leaf spheres once a point has come within that.
+/// where its shape's tree is.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct NearBalloon {
     /// Its solver state.
@@ -143,43 +155,74 @@ pub(crate) struct NearBalloon {
     pub center: Vec3,
     pub rotation: Quat,
     pub tree: u32,
-    /// Where its placed leaves are in the list of placed leaves; empty until
-    /// placed.
-    pub leaves: (u32, u32),
+    /// Its tree's scale (`BodySize::scale`).
+    pub scale: f32,
 }
 
 /// Pushes `point` (which was at `start` when the substep began), found
-/// within `b`'s bounding sphere, out of `spheres` (its leaves, placed), with
-/// friction `mu` against the balloon's move. Returns the point's move, if
-/// it moved (the balloon takes the push back).
+/// within `b`'s bounding sphere, out of the leaves of `tree` (`b`'s shape's)
+/// placed at `b`'s pose, with friction `mu` against the balloon's move.
+/// Returns the point's move, if it moved (the balloon takes the push back).
 pub(crate) fn push_out_of_balloon(
     point: &mut Vec3,
     start: Vec3,
     radius: f32,
     mu: f32,
     b: &NearBalloon,
-    spheres: &[Sphere],
+    tree: &SphereTree,
 ) -> Option<Vec3> {
     let before = *point;
-    push_out_of_spheres(point, radius, spheres);
+    push_out_of_leaves(point, radius, tree, b);
     take_back_slide(point, *point - start - b.moved, *point - before, mu);
     (*point != before).then_some(*point - before)
 }
 
-/// Pushes `point` out of each of `spheres`.
-pub(crate) fn push_out_of_spheres(point: &mut Vec3, radius: f32, spheres: &[Sphere]) {
-    for s in spheres {
-        let away = *point - s.center;
-        let reach = s.radius + radius;
-        let d2 = away.length_squared();
-        if d2 >= reach * reach {
+/// Pushes `point` out of each leaf of `tree` placed at `b`'s pose, in the
+/// tree's order: tested first in the balloon's frame, a leaf placed only if
+/// the point may be within it (`FRAME_SLACK`).
+fn push_out_of_leaves(point: &mut Vec3, radius: f32, tree: &SphereTree, b: &NearBalloon) {
+    let nodes = tree.nodes();
+    let to_balloon = b.rotation.conjugate();
+    let mut local = to_balloon * (*point - b.center);
+    for &leaf in tree.leaves() {
+        let node = &nodes[leaf as usize];
+        // Placed as a leaf always was: the centre plus the turned, scaled offset.
+        let offset = node.center * b.scale;
+        let leaf_radius = node.radius * b.scale;
+        let near = leaf_radius + radius + FRAME_SLACK;
+        let away = local - offset;
+        // Not `<`: a NaN point goes on to the placed test, as it would alone.
+        if away.length_squared() >= near * near {
             continue;
         }
-        let d = d2.sqrt();
-        // At the very centre any way out will do: up, where ribbons hang from.
-        let out = if d > 1e-9 { away / d } else { Vec3::NEG_Y };
-        *point = s.center + reach * out;
+        let placed = Sphere::new(b.center + b.rotation * offset, leaf_radius);
+        if push_out_of_sphere(point, radius, &placed) {
+            local = to_balloon * (*point - b.center);
+        }
     }
+}
+
+/// Pushes `point` out of each of `spheres`.
+#[cfg(test)]
+fn push_out_of_spheres(point: &mut Vec3, radius: f32, spheres: &[Sphere]) {
+    for s in spheres {
+        push_out_of_sphere(point, radius, s);
+    }
+}
+
+/// Pushes `point` out of `s` if it is within; whether it was.
+fn push_out_of_sphere(point: &mut Vec3, radius: f32, s: &Sphere) -> bool {
+    let away = *point - s.center;
+    let reach = s.radius + radius;
+    let d2 = away.length_squared();
+    if d2 >= reach * reach {
+        return false;
+    }
+    let d = d2.sqrt();
+    // At the very centre any way out will do: up, where ribbons hang from.
+    let out = if d > 1e-9 { away / d } else { Vec3::NEG_Y };
+    *point = s.center + reach * out;
+    true
 }
 
 #[cfg(test)]
@@ -252,6 +295,71 @@ mod tests {
         push_out_of_room(&mut p, start, 0.0025, 0.5, &floor(), &mut grip);
         assert!((p.x - 0.001).abs() < 1e-6, "{p}");
         assert_eq!(grip, Grip::new(p), "slides on from where it is");
+    }
+
+    /// Points at and around the leaves' surfaces of balloons turned, scaled
+    /// and far out in a room: pushed out tested in the balloon's frame, they
+    /// end where testing every placed leaf in order leaves them, bit for bit.
+    #[test]
+    fn leaves_tested_in_the_balloons_frame_push_as_the_placed_leaves_do() {
+        let mut next = crate::hash::uniform(5);
+        let mut random = move || Vec3::new(next(), next(), next()) * 2.0 - 1.0;
+        let leaves: Vec<Sphere> = (0..9)
+            .map(|k| Sphere::new(random() * 0.12, 0.06 + 0.01 * k as f32))
+            .collect();
+        let tree = SphereTree::from_root_and_leaves(Sphere::new(Vec3::ZERO, 0.3), &leaves)
+            .expect("a tree");
+        let (mut pushed, mut trials) = (0, 0);
+        for _ in 0..400 {
+            let axis = random().normalize_or(Vec3::Y);
+            let rotation = Quat::from_axis_angle(axis, 3.0 * random().x).normalize();
+            let b = NearBalloon {
+                state: 0,
+                bound: Sphere::new(Vec3::ZERO, 0.0),
+                moved: random() * 0.01,
+                center: random() * 40.0,
+                rotation,
+                tree: 0,
+                scale: 1.0 + 0.3 * random().x,
+            };
+            let placed: Vec<Sphere> = tree
+                .leaves()
+                .iter()
+                .map(|&leaf| {
+                    let node = &tree.nodes()[leaf as usize];
+                    Sphere::new(
+                        b.center + b.rotation * (node.center * b.scale),
+                        node.radius * b.scale,
+                    )
+                })
+                .collect();
+            for s in &placed {
+                for _ in 0..8 {
+                    let radius = 0.0025;
+                    let out = random().normalize_or(Vec3::X);
+                    // Within, just outside and just inside a leaf's reach.
+                    let off = [0.5, 1.0 - 1e-6, 1.0, 1.0 + 1e-6, 1.2][trials % 5];
+                    let start = s.center + out * (s.radius + radius) * off;
+                    let mut want = start;
+                    push_out_of_spheres(&mut want, radius, &placed);
+                    let (slid, push) = (want - start - b.moved, want - start);
+                    take_back_slide(&mut want, slid, push, 0.5);
+                    let mut got = start;
+                    let moved = push_out_of_balloon(&mut got, start, radius, 0.5, &b, &tree);
+                    assert_eq!(
+                        got.to_array().map(f32::to_bits),
+                        want.to_array().map(f32::to_bits)
+                    );
+                    assert_eq!(moved.is_some(), got != start);
+                    pushed += usize::from(moved.is_some());
+                    trials += 1;
+                }
+            }
+        }
+        assert!(
+            pushed > trials / 4 && pushed < trials,
+            "{pushed} of {trials}"
+        );
     }
 
     #[test]

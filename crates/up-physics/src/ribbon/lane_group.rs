@@ -14,9 +14,6 @@
 
 use std::ops::Range;
 
-use glam::{Mat3, Vec3};
-use up_geom::Sphere;
-
 use super::body_spheres::BodySpheres;
 use super::chain::ChainRows;
 use super::collide::{Grip, NearBalloon};
@@ -24,6 +21,7 @@ use super::lane_pushes::NearSlot;
 use super::solve::ActiveRibbon;
 use super::{Ribbon, MAX_SEGMENTS};
 use crate::solver::lanes::{set, F4, LANES, M4, V4};
+use glam::{Mat3, Vec3};
 
 /// A ribbon's lane, what is not laid out across the lanes: its balloon, what
 /// it may touch, and what it did to them this substep.
@@ -92,9 +90,7 @@ pub(crate) struct LaneGroup {
     /// The step's substeps so far and their length, s.
     pub substeps: u32,
     pub h: f32,
-    /// The near balloons' leaf spheres, placed when a point comes near (when
-    /// not placed for all bodies), and their bounds lined up across the lanes.
-    pub spheres: Vec<Sphere>,
+    /// The near balloons' bounds lined up across the lanes.
     pub near_slots: Vec<NearSlot>,
     pub rows: ChainRows,
 }

@@ -7,7 +7,7 @@
 use glam::Vec3;
 use up_geom::Sphere;
 
-use super::body_spheres::{place_leaves, BodySpheres, Bound};
+use super::body_spheres::{BodySpheres, Bound};
 use super::collide::{push_out_of_balloon, push_out_of_room, Grip, NearBalloon, NearTriangle};
 use super::lane_group::LaneGroup;
 use super::solve::SubstepInput;
@@ -46,7 +46,6 @@ impl LaneGroup {
     /// it, at this substep's poses; keeps the pushes back and the touched
     /// points' normals.
     pub(super) fn push_out_of_balloons(&mut self, near: &NearInput) {
-        self.spheres.clear();
         self.touched = false;
         let (mut lo, mut hi) = (self.points[1], self.points[1]);
         for p in &self.points[2..] {
@@ -101,21 +100,11 @@ impl LaneGroup {
         let input = near.input;
         let radius = self.radius(i).as_array()[l];
         let (start, mut point) = (self.start[i].lane(l), self.points[i].lane(l));
-        let (lane, placed) = (&mut self.lanes[l], &mut self.spheres);
-        let b = &mut lane.near[k];
-        let leaves = if near.bodies.all_leaves {
-            &near.bodies.leaves
-        } else {
-            if b.leaves.0 == b.leaves.1 {
-                let first = placed.len() as u32;
-                place_leaves(b, input, placed);
-                b.leaves = (first, placed.len() as u32);
-            }
-            &*placed
-        };
-        let spheres = &leaves[b.leaves.0 as usize..b.leaves.1 as usize];
+        let lane = &mut self.lanes[l];
+        let b = &lane.near[k];
+        let tree = &input.shapes[b.tree as usize].tree;
         let mu = BALLOON_FRICTION;
-        let moved = push_out_of_balloon(&mut point, start, radius, mu, b, spheres);
+        let moved = push_out_of_balloon(&mut point, start, radius, mu, b, tree);
         self.points[i].set_lane(l, point);
         let Some(moved) = moved else { return };
         // The point's momentum change, the other way, where it touched.
@@ -133,7 +122,7 @@ impl LaneGroup {
 
     /// Lane `l`'s near balloons: those of its candidates whose roots reach
     /// its points' box `(lo, hi)` (the knot's left out), at this substep's
-    /// poses (their leaves are placed when a point comes near).
+    /// poses.
     fn find_near(&mut self, l: usize, (lo, hi): (Vec3, Vec3), near: &NearInput) {
         let NearInput {
             input,
@@ -164,7 +153,7 @@ impl LaneGroup {
                 center: input.centers[b as usize] + s.dp,
                 rotation: s.q,
                 tree: input.shape_of[b as usize],
-                leaves: spheres.leaves_of(b),
+                scale: input.size[b as usize].scale,
             });
         }
     }

@@ -260,9 +260,7 @@ impl SubstepPart for RibbonSubsteps<'_> {
 /// balloons, in the ribbons' order.
 fn substep(lanes: &mut RibbonLanes, input: &SubstepInput, states: &mut [BodyState]) {
     let read: &[BodyState] = states;
-    // A crowd's leaves placed once for all its ribbons.
-    let all_leaves = 2 * lanes.order.len() >= input.centers.len();
-    lanes.bodies.place(input, read, all_leaves);
+    lanes.bodies.place(input, read);
     let near = NearInput {
         input,
         states: read,

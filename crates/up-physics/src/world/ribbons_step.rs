@@ -167,10 +167,12 @@ impl World {
                 let distance = target.distance(ribbon.points[k]);
                 r.grab_speed = (distance / dt).min(GRAB_MAX_SPEED);
             }
+            // The root of the largest square: the largest root, one root taken.
             let speed = ribbon
                 .velocities
                 .iter()
-                .fold(0.0f32, |m, v| m.max(v.norm()));
+                .fold(0.0f32, |m, v| m.max(v.length_squared()))
+                .sqrt();
             let reach = speed * dt + margin + ribbon.radius(ribbon.segments());
             let aabb = Aabb::from_points(&ribbon.points).expanded(reach);
             // An anchored end is held where it is tied, a grabbed point
