@@ -1,5 +1,5 @@
 import { describe, expect, it } from "vitest";
-import { MAX_THREADS, NOT_ISOLATED_TEXT, defaultThreads, moduleUrl, requestedThreads } from "./threadPool";
+import { DEFAULT_POOL, MAX_THREADS, NOT_ISOLATED_TEXT, defaultThreads, moduleUrl, requestedPool, requestedThreads } from "./threadPool";
 import { threadsText } from "../ui/hud";
 
 describe("the thread count", () => {
@@ -40,5 +40,15 @@ describe("the module", () => {
   it("is named in the HUD: the threads, or one line saying the page is not isolated", () => {
     expect(threadsText(3, true)).toBe("Threads: 3");
     expect(threadsText(1, false)).toBe(NOT_ISOLATED_TEXT);
+  });
+});
+
+describe("the pool's settings", () => {
+  it("are the address's `pool` and `spin` where valid, each else the default", () => {
+    expect(requestedPool("?threads=2")).toEqual(DEFAULT_POOL);
+    expect(requestedPool("?pool=beside&spin=1")).toEqual({ here: false, keepAwake: true });
+    expect(requestedPool("?pool=here&spin=0")).toEqual({ here: true, keepAwake: false });
+    expect(requestedPool("?pool=elsewhere&spin=2")).toEqual(DEFAULT_POOL);
+    expect(requestedPool("?spin=1")).toEqual({ here: DEFAULT_POOL.here, keepAwake: true });
   });
 });

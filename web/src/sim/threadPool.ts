@@ -43,10 +43,44 @@ export function moduleUrl(singleUrl: string, threads: number, isolated: boolean)
   return new URL("threads/up_wasm.wasm", singleUrl).href;
 }
 
+/**
+ * How the pool runs beside the page's own threads (the physics worker, the
+ * main thread, the GPU process), both chosen by measurement
+ * (docs/perf-log.md) and overridable by the address for measuring:
+ * - `here` (`?pool=here`, the default): the physics worker is the pool's
+ *   first thread and takes its share of every pass, so T threads step the
+ *   world with T − 1 workers started; `beside` (`?pool=beside`): T workers
+ *   started, the physics worker handing each step to them and sleeping.
+ * - `keepAwake` (`?spin=1`; off by default): the pool's threads look for work
+ *   through a whole step instead of sleeping between its passes, which wins
+ *   cores only a busy page's drawing needs too.
+ */
+export interface PoolSettings {
+  here: boolean;
+  keepAwake: boolean;
+}
+
+export const DEFAULT_POOL: PoolSettings = { here: true, keepAwake: false };
+
+/** The pool's settings the address asks for (`pool=here|beside`, `spin=0|1`), the defaults otherwise. */
+export function requestedPool(search: string): PoolSettings {
+  const params = new URLSearchParams(search);
+  const pool = params.get("pool");
+  const spin = params.get("spin");
+  return {
+    here: pool === "here" ? true : pool === "beside" ? false : DEFAULT_POOL.here,
+    keepAwake: spin === "1" ? true : spin === "0" ? false : DEFAULT_POOL.keepAwake,
+  };
+}
+
 /** The threaded module's glue: the single-threaded one's exports and its pool's. */
 export interface ThreadedGlue {
   /** wasm-bindgen-rayon: fills rayon's pool with `threads` Web Workers sharing the module's memory. */
   initThreadPool(threads: number): Promise<void>;
+  /** rayon's pool of `threads` (at least 2) with the calling thread its first, and `threads` − 1 Web Workers. */
+  initThreadPoolHere(threads: number): Promise<void>;
+  /** Whether a step keeps the pool's threads looking for work through it (on until told otherwise). */
+  set_keep_threads_awake(on: boolean): void;
   /** Threads in the pool, once `initThreadPool` has resolved. */
   thread_count(): number;
 }
@@ -60,12 +94,21 @@ export interface StartedEngine {
 
 /**
  * Instantiates the module for `threads` threads from its `bytes` and `glue`
- * (`moduleUrl`'s), and, when threaded, starts its pool before any step.
+ * (`moduleUrl`'s), and, when threaded, starts its pool as `settings` say
+ * before any step.
  */
-export async function startEngine(glue: GlueModule, bytes: BufferSource, threads: number, isolated: boolean): Promise<StartedEngine> {
+export async function startEngine(
+  glue: GlueModule,
+  bytes: BufferSource,
+  threads: number,
+  isolated: boolean,
+  settings: PoolSettings = DEFAULT_POOL,
+): Promise<StartedEngine> {
   const engine = Engine.load(glue, bytes);
   if (!isolated || threads <= 1) return { engine, threads: 1, isolated };
   const pool = glue as unknown as ThreadedGlue;
-  await pool.initThreadPool(threads);
+  if (settings.here) await pool.initThreadPoolHere(threads);
+  else await pool.initThreadPool(threads);
+  pool.set_keep_threads_awake(settings.keepAwake);
   return { engine, threads: pool.thread_count(), isolated };
 }
