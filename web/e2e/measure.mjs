@@ -4,7 +4,8 @@
 //
 //   node e2e/measure.mjs [--balloons 10000] [--threads 1,2] [--steps 300] [--seconds 10]
 //                        [--ribbons | --ribbons=0|1|both] [--rounds 1]
-//                        [--pool here|beside[,…]] [--spin 0|1[,…]] [--thread-times=0|1]
+//                        [--pool here|beside[,…]] [--spin auto|0|1[,…]] [--setups POOL:SPIN,…]
+//                        [--thread-times=0|1]
 //                                                             (after `npm run build`)
 //
 // The scene: BALLOONS free balloons released from the floor of a square room
@@ -18,8 +19,9 @@
 // Thread counts above one run the threaded module's pool as `--pool` and
 // `--spin` say (sim/threadPool.ts: the physics worker one of the pool's
 // threads or beside them; the pool's threads kept looking for work through a
-// step or not; the page's defaults when not given); given several, each
-// combination is measured in turn. `--rounds N` repeats the whole sequence N
+// step, or only where they leave the page's drawing a core: auto; the page's
+// defaults when not given); given several, each combination is measured in
+// turn, or the pairs `--setups here:auto,beside:1` name. `--rounds N` repeats the whole sequence N
 // times, so that the settings alternate on a machine whose load drifts.
 //
 // For each thread count T (and each ribbon setting) the page opens with `?threads=T`, then:
@@ -112,8 +114,16 @@ function parseArgs(argv) {
       case "--ribbons": opts.ribbons = RIBBON_SETTINGS.on; break;
       case "--rounds": opts.rounds = intArg(arg, value(), 1, 100); break;
       case "--pool": opts.pool = listArg(arg, value(), ["here", "beside"]); break;
-      case "--spin": opts.spin = listArg(arg, value(), ["0", "1"]); break;
-      default: throw new Error(`unknown argument ${JSON.stringify(arg)} (node e2e/measure.mjs [--balloons N] [--threads 1,2] [--steps S] [--seconds S] [--ribbons | --ribbons=0|1|both] [--rounds N] [--pool here|beside[,…]] [--spin 0|1[,…]] [--thread-times=0|1])`);
+      case "--spin": opts.spin = listArg(arg, value(), ["auto", "0", "1"]); break;
+      case "--setups":
+        opts.setups = value().split(",").map((pair) => {
+          const [pool, spin] = pair.split(":");
+          listArg("--setups (POOL:SPIN pairs)", pool, ["here", "beside"]);
+          listArg("--setups (POOL:SPIN pairs)", spin ?? "", ["auto", "0", "1"]);
+          return { pool, spin };
+        });
+        break;
+      default: throw new Error(`unknown argument ${JSON.stringify(arg)} (node e2e/measure.mjs [--balloons N] [--threads 1,2] [--steps S] [--seconds S] [--ribbons | --ribbons=0|1|both] [--rounds N] [--pool here|beside[,…]] [--spin auto|0|1[,…]] [--setups POOL:SPIN,…] [--thread-times=0|1])`);
     }
   }
   return opts;
@@ -499,7 +509,7 @@ const { ribbon, dt } = await engineDefaults();
 const sceneOf = (ribbons) => ({ room: { width: side, depth: side }, balloons: [ribbons ? { count: opts.balloons, ribbon } : { count: opts.balloons }] });
 const settingName = opts.ribbons.length > 1 ? "both" : opts.ribbons[0] ? "on" : "off";
 /** The pool settings measured on more than one thread (null: the page's default). */
-const setups = opts.pool.flatMap((pool) => opts.spin.map((spin) => ({ pool, spin })));
+const setups = opts.setups ?? opts.pool.flatMap((pool) => opts.spin.map((spin) => ({ pool, spin })));
 const server = await serveDist();
 const browser = await launchChromium();
 let failed = false;

@@ -224,6 +224,11 @@ export class SimBridge {
     });
   }
 
+  /** Tells the worker whether the page draws its frames (the pool's spinning depends on it). */
+  setDrawing(on: boolean): void {
+    this.send({ type: "drawing", on });
+  }
+
   load(sceneJson: string | null): void {
     this.send({ type: "load", sceneJson });
   }

@@ -41,6 +41,8 @@ export type ToWorker =
   | { type: "return"; buffer: ArrayBuffer }
   /** Asks the engine whether it would load `sceneJson`; answered by `validated` with the same `id`. */
   | { type: "validate"; id: number; sceneJson: string }
+  /** Whether the page draws its frames (it does unless they are held): the pool spins only where it leaves the drawing a core (threadPool.ts). */
+  | { type: "drawing"; on: boolean }
   /** Measurements: the scene from its start, `steps` steps timed one by one (sim/stepMeter.ts); `threadTimes`: each thread's part of each stage too. */
   | { type: "measureSteps"; steps: number; threadTimes: boolean }
   /** Asks for the world's state hash and the steps taken since it was built; answered by `hash` with the same `id`. */

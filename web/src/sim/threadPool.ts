@@ -45,32 +45,47 @@ export function moduleUrl(singleUrl: string, threads: number, isolated: boolean)
 
 /**
  * How the pool runs beside the page's own threads (the physics worker, the
- * main thread, the GPU process), both chosen by measurement
- * (docs/perf-log.md) and overridable by the address for measuring:
+ * main thread, the GPU process), chosen by measurement (docs/perf-log.md)
+ * and overridable by the address for measuring:
  * - `here` (`?pool=here`, the default): the physics worker is the pool's
  *   first thread and takes its share of every pass, so T threads step the
  *   world with T − 1 workers started; `beside` (`?pool=beside`): T workers
  *   started, the physics worker handing each step to them and sleeping.
- * - `keepAwake` (`?spin=1`; off by default): the pool's threads look for work
- *   through a whole step instead of sleeping between its passes, which wins
- *   cores only a busy page's drawing needs too.
+ * - `spin` (`?spin=auto|1|0`): whether the pool's threads look for work
+ *   through a whole step instead of sleeping between its passes
+ *   (`keepThreadsAwake`). Spinning shortens every pass's hand-over, but
+ *   takes cores that the page's drawing needs when the pool has them all.
  */
 export interface PoolSettings {
   here: boolean;
-  keepAwake: boolean;
+  spin: "auto" | "on" | "off";
 }
 
-export const DEFAULT_POOL: PoolSettings = { here: true, keepAwake: false };
+export const DEFAULT_POOL: PoolSettings = { here: true, spin: "auto" };
 
-/** The pool's settings the address asks for (`pool=here|beside`, `spin=0|1`), the defaults otherwise. */
+/** The pool's settings the address asks for (`pool=here|beside`, `spin=auto|1|0`), the defaults otherwise. */
 export function requestedPool(search: string): PoolSettings {
   const params = new URLSearchParams(search);
   const pool = params.get("pool");
   const spin = params.get("spin");
   return {
     here: pool === "here" ? true : pool === "beside" ? false : DEFAULT_POOL.here,
-    keepAwake: spin === "1" ? true : spin === "0" ? false : DEFAULT_POOL.keepAwake,
+    spin: spin === "1" ? "on" : spin === "0" ? "off" : spin === "auto" ? "auto" : DEFAULT_POOL.spin,
   };
+}
+
+/**
+ * Whether the pool's `threads` threads keep looking for work through a step:
+ * as `settings.spin` says, and for `auto` unless the page draws while the
+ * pool takes every core but one (`cores` − 1 leaves one to the main thread
+ * and the GPU process, which a visitor's GPU barely needs and SwiftShader
+ * needs whole). A thread that spins while another needs its core holds back
+ * the block that thread runs, and every thread then waits at the barrier.
+ */
+export function keepThreadsAwake(settings: PoolSettings, threads: number, cores: number | undefined, drawing: boolean): boolean {
+  if (settings.spin !== "auto") return settings.spin === "on";
+  const spare = Number.isInteger(cores) && cores! > 0 ? cores! - threads : 0;
+  return !drawing || spare >= 1;
 }
 
 /** The threaded module's glue: the single-threaded one's exports and its pool's. */
@@ -90,6 +105,8 @@ export interface StartedEngine {
   engine: Engine;
   threads: number;
   isolated: boolean;
+  /** The threaded module's pool switch (`keepThreadsAwake`), or null on one thread. */
+  setKeepAwake: ((on: boolean) => void) | null;
 }
 
 /**
@@ -105,10 +122,10 @@ export async function startEngine(
   settings: PoolSettings = DEFAULT_POOL,
 ): Promise<StartedEngine> {
   const engine = Engine.load(glue, bytes);
-  if (!isolated || threads <= 1) return { engine, threads: 1, isolated };
+  if (!isolated || threads <= 1) return { engine, threads: 1, isolated, setKeepAwake: null };
   const pool = glue as unknown as ThreadedGlue;
   if (settings.here) await pool.initThreadPoolHere(threads);
   else await pool.initThreadPool(threads);
-  pool.set_keep_threads_awake(settings.keepAwake);
-  return { engine, threads: pool.thread_count(), isolated };
+  pool.set_keep_threads_awake(keepThreadsAwake(settings, threads, globalThis.navigator?.hardwareConcurrency, true));
+  return { engine, threads: pool.thread_count(), isolated, setKeepAwake: (on) => pool.set_keep_threads_awake(on) };
 }

@@ -7,7 +7,7 @@
 // the balloons float and sends that for the plot.
 
 import { Engine, glueUrl, type GlueModule } from "./engine";
-import { DEFAULT_POOL, moduleUrl, startEngine, type PoolSettings } from "./threadPool";
+import { DEFAULT_POOL, keepThreadsAwake, moduleUrl, startEngine, type PoolSettings, type StartedEngine } from "./threadPool";
 import { RIBBON_POINT_STRIDE, checkLayout, frameFloats, frameViews } from "./frameLayout";
 import type { FromWorker, ToWorker, WorldInfo } from "./protocol";
 import { TimeLapse, censusInterval } from "./timeLapse";
@@ -38,8 +38,10 @@ class WorkerState {
   /** Threads that step the engine, and whether the page may share memory with workers (else one thread). */
   threads = 1;
   isolated = false;
-  /** How the pool runs beside the page's threads (threadPool.ts). */
+  /** How the pool runs beside the page's threads (threadPool.ts), its spinning switch, and whether the page draws. */
   pool: PoolSettings = DEFAULT_POOL;
+  setKeepAwake: StartedEngine["setKeepAwake"] = null;
+  drawing = true;
   /** The engine once the module is instantiated (validation requests wait for it). */
   started: Promise<Engine> | null = null;
   /** The scene of the current world, to rebuild it after a trap. */
@@ -82,6 +84,11 @@ const state = new WorkerState();
 const probe = new ForceProbe();
 /** The air's sources in the frames, and its field while shown. */
 const air = new AirSampler();
+
+/** The pool's threads spin through a step or sleep between its passes, as the settings and the page's drawing say. */
+function applyKeepAwake(): void {
+  state.setKeepAwake?.(keepThreadsAwake(state.pool, state.threads, navigator.hardwareConcurrency, state.drawing));
+}
 
 function post(message: FromWorker, transfer: Transferable[] = []): void {
   scope.postMessage(message, transfer);
@@ -228,7 +235,11 @@ function restartAfterTrap(error: unknown): boolean {
   // threaded one a fresh pool; the old pool's workers stay asleep).
   state.started = Engine.importGlue(state.glueHref, state.restarts)
     .then((glue) => startEngine(glue, bytes, state.threads, state.isolated, state.pool))
-    .then((started) => started.engine);
+    .then((started) => {
+      state.setKeepAwake = started.setKeepAwake;
+      applyKeepAwake();
+      return started.engine;
+    });
   state.started
     .then((e) => {
       state.engine = e;
@@ -374,6 +385,8 @@ function handle(msg: ToWorker): void {
         const started = await startEngine(glue, bytes, msg.threads, isolated, msg.pool);
         state.threads = started.threads;
         state.isolated = started.isolated;
+        state.setKeepAwake = started.setKeepAwake;
+        applyKeepAwake();
         checkLayout(started.engine.constants);
         checkForceLayout(started.engine.constants);
         checkAirLayout(started.engine.constants);
@@ -424,6 +437,10 @@ function handle(msg: ToWorker): void {
     case "debug":
       state.sendContacts = msg.on;
       state.dirty = true;
+      return;
+    case "drawing":
+      state.drawing = msg.on;
+      applyKeepAwake();
       return;
     case "showAir":
       air.setShow(msg.on);
