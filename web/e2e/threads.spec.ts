@@ -98,7 +98,7 @@ const RUNS: [number, string][] = [
   [2, ""],
   [4, ""],
   [2, "&pool=beside&spin=1"],
-  [3, "&pool=here&spin=1"],
+  [3, "&pool=here&spin=auto"],
   [4, "&pool=beside&spin=0"],
 ];
 

@@ -51,7 +51,7 @@ export function moduleUrl(singleUrl: string, threads: number, isolated: boolean)
  *   first thread and takes its share of every pass, so T threads step the
  *   world with T − 1 workers started; `beside` (`?pool=beside`): T workers
  *   started, the physics worker handing each step to them and sleeping.
- * - `spin` (`?spin=auto|1|0`): whether the pool's threads look for work
+ * - `spin` (`?spin=1|0|auto`): whether the pool's threads look for work
  *   through a whole step instead of sleeping between its passes
  *   (`keepThreadsAwake`). Spinning shortens every pass's hand-over, but
  *   takes cores that the page's drawing needs when the pool has them all.
@@ -61,7 +61,13 @@ export interface PoolSettings {
   spin: "auto" | "on" | "off";
 }
 
-export const DEFAULT_POOL: PoolSettings = { here: true, spin: "auto" };
+/**
+ * The page's pool: the physics worker in it (never slower, one worker fewer,
+ * one hand-over a step fewer), spinning through a step. `auto` was not faster
+ * while the page drew on this project's 2-core machine (docs/perf-log.md,
+ * 2026-12-05), so it stays a choice to measure, not the default.
+ */
+export const DEFAULT_POOL: PoolSettings = { here: true, spin: "on" };
 
 /** The pool's settings the address asks for (`pool=here|beside`, `spin=auto|1|0`), the defaults otherwise. */
 export function requestedPool(search: string): PoolSettings {
