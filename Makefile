@@ -8,7 +8,8 @@
 #   make measure  the web app in headless Chromium at BALLOONS (10000) on each of THREADS (1,2):
 #               physics per step, the main thread's frame work, input, state hash (one JSON line);
 #               RIBBONS=1 ties the default scene's 1.5 m ribbon on every balloon, RIBBONS=both
-#               measures without and with in turn on each thread count (their ratio from one run)
+#               measures without and with in turn on each thread count (their ratio from one run);
+#               each thread's busy/barrier/idle time per stage; ROUNDS=3 alternates three times
 #   make fuzz   run every cargo-fuzz target for FUZZ_SECONDS each (pinned nightly + cargo-fuzz);
 #               `make test` runs the targets over their committed corpus on stable
 #   make soak   the long run of issue 7: 10,000 balloons for an hour of simulated time
@@ -187,14 +188,18 @@ bench-ribbons: setup-rust
 
 # The page in headless Chromium, once per thread count on the same scene: physics per step over
 # MEASURE_STEPS steps (300: the rise, the arrival under the ceiling, the pile going to sleep),
-# the main thread's frame work, input delay, the state hash (equal on all). RIBBONS: 0 (free
-# balloons), 1 (each on the default scene's ribbon) or both (without and with, in turn).
+# the main thread's frame work, input delay, the state hash (equal on all), and each thread's
+# busy, barrier and idle time in each stage. RIBBONS: 0 (free balloons), 1 (each on the default
+# scene's ribbon) or both (without and with, in turn). ROUNDS: the whole sequence repeated, so
+# that the settings alternate; MEASURE_ARGS: more of measure.mjs's options (--pool, --spin).
 BALLOONS ?= 10000
 THREADS ?= 1,2
 MEASURE_STEPS ?= 300
 RIBBONS ?= 0
+ROUNDS ?= 1
+MEASURE_ARGS ?=
 measure: setup-browser build
-	cd web && node e2e/measure.mjs --balloons $(BALLOONS) --threads $(THREADS) --steps $(MEASURE_STEPS) --seconds 10 --ribbons=$(RIBBONS)
+	cd web && node e2e/measure.mjs --balloons $(BALLOONS) --threads $(THREADS) --steps $(MEASURE_STEPS) --seconds 10 --ribbons=$(RIBBONS) --rounds $(ROUNDS) $(MEASURE_ARGS)
 
 # cargo-fuzz on the pinned nightly (the threaded wasm build's); fuzz/run.sh says what it runs.
 fuzz: setup-wasm-threads

@@ -3,7 +3,10 @@
 // count, on the same scene:
 //
 //   node e2e/measure.mjs [--balloons 10000] [--threads 1,2] [--steps 300] [--seconds 10]
-//                        [--ribbons | --ribbons=0|1|both]      (after `npm run build`)
+//                        [--ribbons | --ribbons=0|1|both] [--rounds 1]
+//                        [--pool here|beside[,…]] [--spin auto|0|1[,…]] [--setups POOL:SPIN,…]
+//                        [--thread-times=0|1]
+//                                                             (after `npm run build`)
 //
 // The scene: BALLOONS free balloons released from the floor of a square room
 // wide enough to place them (the default scene's balloons and walls). With
@@ -12,6 +15,14 @@
 // page's default scene has); `--ribbons=both` measures without and with
 // ribbons in turn on each thread count, so that their ratio comes from one
 // run on the same machine.
+//
+// Thread counts above one run the threaded module's pool as `--pool` and
+// `--spin` say (sim/threadPool.ts: the physics worker one of the pool's
+// threads or beside them; the pool's threads kept looking for work through a
+// step, or only where they leave the page's drawing a core: auto; the page's
+// defaults when not given); given several, each combination is measured in
+// turn, or the pairs `--setups here:auto,beside:1` name. `--rounds N` repeats the whole sequence N
+// times, so that the settings alternate on a machine whose load drifts.
 //
 // For each thread count T (and each ribbon setting) the page opens with `?threads=T`, then:
 // 1. runs for `seconds` while an arrow key is pressed and the canvas clicked
@@ -33,13 +44,20 @@
 //    not, so it is held off the window that times the engine;
 // 5. the same window again with the page drawing (the balloons not drawn):
 //    `physics_ms_while_drawing`, what this machine's page shows.
+// Both windows also time each thread's part of each stage (unless
+// `--thread-times=0`; two clock reads per task of a parallel pass):
+// `physics_stage_threads_ms` (and `…_while_drawing`), per stage the ms a step
+// each thread was busy, waited at a barrier and idled, the step's thread
+// first, and the barriers and parallel passes it crossed; printed as tables.
 // Ends with one JSON line: {"balloons", "steps", "ribbons": "off"|"on"|"both",
 // "ribbon": the ribbon tied on (or null), "runs": [{"threads", "ribbons",
 // "physics_ms": {median, mean, p95}, "physics_stages_ms": {stage: mean},
 // "realtime_factor", "realtime_factor_wall", "frame_ms": {median, p95},
 // "state_hash", "steps", "physics_ms_while_drawing", ...}], "modes": [{"ribbons",
 // "speedup_mean": {"T": mean at 1 thread over mean at T}, "speedup_median",
-// "speedup_mean_while_drawing", "hashes": {"T": hash}, "hashes_equal"}],
+// "speedup_mean_while_drawing", "hashes": {"T": hash}, "hashes_equal"}] (one
+// a ribbon setting and pool setting, over the rounds: each ratio from the
+// means of the rounds' means, and each round's ratio in "…_rounds"),
 // "ribbon_cost" (with both: {"T": {"mean", "median"}: with over without}),
 // "hashes_equal", ...}; a table of the same figures goes to standard error.
 // Exits 1 when the hashes of one ribbon setting differ across thread counts.
@@ -59,12 +77,25 @@ function ribbonsArg(value) {
   return settings;
 }
 
+/** A comma list of `allowed` values. */
+function listArg(name, text, allowed) {
+  const values = text.split(",").map((v) => v.trim());
+  for (const v of values) if (!allowed.includes(v)) throw new Error(`${name}: expected ${allowed.join(" or ")} (a comma list), found ${JSON.stringify(v)}`);
+  return values;
+}
+
 function parseArgs(argv) {
-  const opts = { balloons: 10000, threads: [1, 2], steps: 300, seconds: 10, ribbons: [false] };
+  const opts = { balloons: 10000, threads: [1, 2], steps: 300, seconds: 10, ribbons: [false], rounds: 1, pool: [null], spin: [null], threadTimes: true };
   for (let i = 2; i < argv.length; i++) {
     const arg = argv[i];
     if (arg.startsWith("--ribbons=")) {
       opts.ribbons = ribbonsArg(arg.slice("--ribbons=".length));
+      continue;
+    }
+    if (arg.startsWith("--thread-times=")) {
+      const v = arg.slice("--thread-times=".length);
+      if (v !== "0" && v !== "1") throw new Error(`--thread-times: expected 0 or 1, found ${JSON.stringify(v)}`);
+      opts.threadTimes = v === "1";
       continue;
     }
     const value = () => {
@@ -81,7 +112,18 @@ function parseArgs(argv) {
       case "--steps": opts.steps = intArg(arg, value(), 1, 20000); break;
       case "--seconds": opts.seconds = intArg(arg, value(), 1, 600); break;
       case "--ribbons": opts.ribbons = RIBBON_SETTINGS.on; break;
-      default: throw new Error(`unknown argument ${JSON.stringify(arg)} (node e2e/measure.mjs [--balloons N] [--threads 1,2] [--steps S] [--seconds S] [--ribbons | --ribbons=0|1|both])`);
+      case "--rounds": opts.rounds = intArg(arg, value(), 1, 100); break;
+      case "--pool": opts.pool = listArg(arg, value(), ["here", "beside"]); break;
+      case "--spin": opts.spin = listArg(arg, value(), ["auto", "0", "1"]); break;
+      case "--setups":
+        opts.setups = value().split(",").map((pair) => {
+          const [pool, spin] = pair.split(":");
+          listArg("--setups (POOL:SPIN pairs)", pool, ["here", "beside"]);
+          listArg("--setups (POOL:SPIN pairs)", spin ?? "", ["auto", "0", "1"]);
+          return { pool, spin };
+        });
+        break;
+      default: throw new Error(`unknown argument ${JSON.stringify(arg)} (node e2e/measure.mjs [--balloons N] [--threads 1,2] [--steps S] [--seconds S] [--ribbons | --ribbons=0|1|both] [--rounds N] [--pool here|beside[,…]] [--spin auto|0|1[,…]] [--setups POOL:SPIN,…] [--thread-times=0|1])`);
     }
   }
   return opts;
@@ -209,15 +251,29 @@ async function settleDrawing(page, timeoutMs = 300_000) {
   if (!settled) throw new Error(`the page's frames did not settle within ${timeoutMs / 1000} s of holding its drawing`);
 }
 
-/** Measures the page on `threads` threads, each balloon on a ribbon where `ribbons`. */
-async function measureThreads(browser, url, opts, threads, ribbons, dt) {
+/** A run's name in the log and the tables. */
+function runLabel(threads, ribbons, setup) {
+  const pool = threads > 1 ? `, pool ${setup.pool ?? "default"}, spin ${setup.spin ?? "default"}` : "";
+  return `${threads} thread(s), ${ribbons ? "with" : "without"} ribbons${pool}`;
+}
+
+/** The window's per-thread figures by stage (stepMeter's `threadStages`), rounded: {stage: {wall, barriers, passes, busy, barrier, idle}}. */
+function stageThreads(rows) {
+  const ms = (v) => v.map((x) => round(x, 2));
+  return Object.fromEntries(
+    (rows ?? []).map((r) => [r.stage, { wall: round(r.wall_ms, 2), barriers: round(r.barriers, 1), passes: round(r.passes, 1), busy: ms(r.busy_ms), barrier: ms(r.barrier_ms), idle: ms(r.idle_ms) }]),
+  );
+}
+
+/** Measures the page on `threads` threads, each balloon on a ribbon where `ribbons`, its pool as `setup` says. */
+async function measureThreads(browser, url, opts, threads, ribbons, setup, dt) {
   const page = await browser.newPage({ viewport });
-  const label = `${threads} thread(s), ${ribbons ? "with" : "without"} ribbons`;
+  const label = runLabel(threads, ribbons, setup);
   const errors = [];
   page.on("pageerror", (e) => errors.push(e.message));
   try {
     const started = Date.now();
-    await page.goto(url(threads, ribbons));
+    await page.goto(url(threads, ribbons, setup));
     await page.waitForFunction(() => window.__up?.ready(), null, { timeout: 900_000, polling: 500 });
     const loadSeconds = (Date.now() - started) / 1000;
     const inPage = await page.evaluate(() => ({
@@ -253,7 +309,7 @@ async function measureThreads(browser, url, opts, threads, ribbons, dt) {
     const timeWindow = async (held) => {
       if (held) await settleDrawing(page);
       else await page.evaluate(() => window.__up.holdDrawing(false));
-      return page.evaluate((steps) => window.__up.measureSteps(steps), opts.steps);
+      return page.evaluate(([steps, threadTimes]) => window.__up.measureSteps(steps, threadTimes), [opts.steps, opts.threadTimes]);
     };
     const window_ = await timeWindow(true);
     const physics = summary(window_.engineMs, 2);
@@ -268,6 +324,8 @@ async function measureThreads(browser, url, opts, threads, ribbons, dt) {
     return {
       threads,
       ribbons,
+      pool: setup.pool,
+      spin: setup.spin,
       ribbons_in_page: inPage.ribbons,
       threads_in_page: inPage.threads,
       isolated: inPage.isolated,
@@ -276,6 +334,9 @@ async function measureThreads(browser, url, opts, threads, ribbons, dt) {
       physics_wall_ms: wall,
       // The engine's stages over the same window: each one's mean ms per step (which ones scale).
       physics_stages_ms: Object.fromEntries(window_.stageMeanMs.map(([name, ms]) => [name, round(ms, 2)])),
+      // Each thread's part of each stage over the same window (the step's thread first), and while drawing.
+      physics_stage_threads_ms: stageThreads(window_.threadStages),
+      physics_stage_threads_ms_while_drawing: stageThreads(whileDrawing.threadStages),
       // The same window while the page draws (the balloons not drawn): SwiftShader on the same cores.
       physics_ms_while_drawing: { median: physicsWhileDrawing.median, mean: physicsWhileDrawing.mean, p95: physicsWhileDrawing.p95, max: physicsWhileDrawing.max },
       // Simulated seconds per second at the window's mean (1: real time), and what the page
@@ -322,54 +383,121 @@ async function engineDefaults() {
   return { ribbon, dt: defaults.sim.dt };
 }
 
-/** The figures within one ribbon setting: speed-ups over one thread and the hashes by thread count. */
-function modeSummary(measured, ribbons) {
-  const runs = measured.filter((r) => r.ribbons === ribbons);
-  const base = runs.find((r) => r.threads === 1);
+/** A pool setting's name: "pool=here spin=0" ("default" where the page's default is measured). */
+const setupName = (setup) => `pool=${setup.pool ?? "default"} spin=${setup.spin ?? "default"}`;
+
+const mean = (xs) => (xs.length ? xs.reduce((a, b) => a + b, 0) / xs.length : null);
+
+/**
+ * The figures within one ribbon setting and one pool setting, over the
+ * rounds: speed-ups over one thread (the rounds' means of each, then their
+ * ratio; and each round's own ratio) and the hashes by thread count.
+ */
+function modeSummary(measured, ribbons, setup) {
+  const name = setupName(setup);
+  const base = measured.filter((r) => r.ribbons === ribbons && r.threads === 1);
+  const runs = measured.filter((r) => r.ribbons === ribbons && r.threads > 1 && setupName(r) === name);
+  const counts = [...new Set(runs.map((r) => r.threads))];
   const ratio = (key, field = "physics_ms") =>
-    base ? Object.fromEntries(runs.filter((r) => r !== base).map((r) => [String(r.threads), round(base[field][key] / r[field][key], 2)])) : {};
+    Object.fromEntries(counts.map((t) => [String(t), round(mean(base.map((r) => r[field][key])) / mean(runs.filter((r) => r.threads === t).map((r) => r[field][key])), 2)]));
+  const perRound = (key, field = "physics_ms") =>
+    Object.fromEntries(
+      counts.map((t) => [
+        String(t),
+        runs
+          .filter((r) => r.threads === t)
+          .map((r) => {
+            const b = base.find((x) => x.round === r.round);
+            return b ? round(b[field][key] / r[field][key], 2) : null;
+          }),
+      ]),
+    );
+  const all = [...base, ...runs];
   return {
     ribbons,
+    pool: name,
+    rounds: Math.max(0, ...all.map((r) => r.round + 1)),
     speedup_mean: ratio("mean"),
     speedup_median: ratio("median"),
+    speedup_mean_rounds: perRound("mean"),
     // The same by the worker's clock around each step call (the engine's time, and any wait for the pool's workers).
     speedup_wall_mean: ratio("mean", "physics_wall_ms"),
     // While SwiftShader draws the page on the same cores.
     speedup_mean_while_drawing: ratio("mean", "physics_ms_while_drawing"),
-    hashes: Object.fromEntries(runs.map((r) => [String(r.threads), r.state_hash])),
-    hashes_equal: runs.every((r) => r.state_hash === runs[0].state_hash),
+    speedup_median_while_drawing: ratio("median", "physics_ms_while_drawing"),
+    speedup_mean_while_drawing_rounds: perRound("mean", "physics_ms_while_drawing"),
+    hashes: Object.fromEntries(all.map((r) => [String(r.threads), r.state_hash])),
+    hashes_equal: all.every((r) => r.state_hash === all[0].state_hash),
   };
 }
 
-/** With and without ribbons on each thread count: the step with ribbons over the step without. */
+/** With and without ribbons on each thread count and pool setting: the step with ribbons over the step without (means of the rounds). */
 function ribbonCost(measured) {
   const cost = {};
-  for (const withRibbons of measured.filter((r) => r.ribbons)) {
-    const without = measured.find((r) => !r.ribbons && r.threads === withRibbons.threads);
-    if (!without) continue;
-    const over = (key, field = "physics_ms") => round(withRibbons[field][key] / without[field][key], 2);
-    cost[String(withRibbons.threads)] = { mean: over("mean"), median: over("median"), wall_mean: over("mean", "physics_wall_ms") };
+  for (const key of new Set(measured.filter((r) => r.ribbons).map((r) => `${r.threads} ${setupName(r)}`))) {
+    const alike = (r) => `${r.threads} ${setupName(r)}` === key;
+    const on = measured.filter((r) => r.ribbons && alike(r));
+    const off = measured.filter((r) => !r.ribbons && alike(r));
+    if (!off.length) continue;
+    const over = (k, field = "physics_ms") => round(mean(on.map((r) => r[field][k])) / mean(off.map((r) => r[field][k])), 2);
+    cost[on[0].threads > 1 ? key : "1"] = { mean: over("mean"), median: over("median"), wall_mean: over("mean", "physics_wall_ms"), while_drawing_mean: over("mean", "physics_ms_while_drawing") };
   }
   return cost;
 }
 
+/** One window's per-thread figures as a table, up-bench's `--thread-times` layout: stages over 1 % of the step, and the total. */
+function threadTable(stages) {
+  const rows = Object.entries(stages);
+  if (!rows.length) return "";
+  const total = stages.total?.wall ?? 0;
+  const threads = rows[0][1].busy.length;
+  const head = ["stage, ms/step", "wall", "barriers", "passes", ...Array.from({ length: threads }, (_, t) => `${t === 0 ? "step's" : `t${t}`} busy/barrier/idle`)];
+  const body = rows
+    .filter(([name, r]) => name === "total" || r.wall >= 0.01 * total)
+    .map(([name, r]) => [name, r.wall.toFixed(2), r.barriers.toFixed(1), r.passes.toFixed(1), ...r.busy.map((b, t) => `${b.toFixed(2)}/${r.barrier[t].toFixed(2)}/${r.idle[t].toFixed(2)}`)]);
+  const all = [head, ...body];
+  const widths = head.map((_, c) => Math.max(...all.map((row) => (row[c] ?? "").length)));
+  return all.map((row) => row.map((cell, c) => (c === 0 ? cell.padEnd(widths[c]) : cell.padStart(widths[c]))).join("  ")).join("\n");
+}
+
 /** The runs as a table on standard error (standard output keeps the one JSON line). */
-function printTable(runs, cost) {
-  const rows = [["ribbons", "threads", "mean ms", "median ms", "p95 ms", "wall mean ms", "realtime", "realtime (wall)", "hash"]];
+function printTable(runs, modes, cost) {
+  const rows = [["round", "ribbons", "threads", "pool", "mean ms", "median ms", "p95 ms", "wall mean ms", "drawing mean ms", "drawing median ms", "realtime", "hash"]];
   for (const r of runs) {
-    if (r.error) rows.push([r.ribbons ? "on" : "off", String(r.threads), `failed: ${r.error}`]);
-    else rows.push([r.ribbons ? "on" : "off", String(r.threads), ...[r.physics_ms.mean, r.physics_ms.median, r.physics_ms.p95, r.physics_wall_ms.mean].map(String), `${r.realtime_factor}×`, `${r.realtime_factor_wall}×`, r.state_hash]);
+    const pool = r.threads > 1 ? setupName(r) : "single module";
+    if (r.error) rows.push([String(r.round + 1), r.ribbons ? "on" : "off", String(r.threads), pool, `failed: ${r.error}`]);
+    else
+      rows.push([
+        String(r.round + 1),
+        r.ribbons ? "on" : "off",
+        String(r.threads),
+        pool,
+        ...[r.physics_ms.mean, r.physics_ms.median, r.physics_ms.p95, r.physics_wall_ms.mean, r.physics_ms_while_drawing.mean, r.physics_ms_while_drawing.median].map(String),
+        `${r.realtime_factor}×`,
+        r.state_hash,
+      ]);
   }
   const widths = rows[0].map((_, c) => Math.max(...rows.map((row) => (row[c] ?? "").length)));
   for (const row of rows) console.error(row.map((cell, c) => (cell ?? "").padEnd(widths[c])).join("  ").trimEnd());
-  for (const [threads, c] of Object.entries(cost)) {
-    console.error(`ribbons' cost on ${threads} thread(s): ${c.mean}× by the mean, ${c.median}× by the median`);
+  for (const m of modes) {
+    for (const [t, s] of Object.entries(m.speedup_mean)) {
+      console.error(
+        `${t} threads over 1, ${m.ribbons ? "with" : "without"} ribbons, ${m.pool}: ${s}× by the mean (rounds ${m.speedup_mean_rounds[t].join(", ")}), ${m.speedup_median[t]}× by the median; while drawing ${m.speedup_mean_while_drawing[t]}× by the mean (rounds ${m.speedup_mean_while_drawing_rounds[t].join(", ")}), ${m.speedup_median_while_drawing[t]}× by the median`,
+      );
+    }
   }
-  const stages = runs.filter((r) => !r.error);
-  for (const r of stages) {
+  for (const [key, c] of Object.entries(cost)) {
+    console.error(`ribbons' cost on ${key} thread(s): ${c.mean}× by the mean, ${c.median}× by the median`);
+  }
+  for (const r of runs.filter((r) => !r.error)) {
+    const name = `round ${r.round + 1}, ${runLabel(r.threads, r.ribbons, r)}`;
     // The stages that take time (the others round to 0).
-    const list = Object.entries(r.physics_stages_ms).filter(([, ms]) => ms > 0).map(([name, ms]) => `${name} ${ms}`).join(", ");
-    console.error(`stages, ms a step (${r.ribbons ? "with" : "without"} ribbons, ${r.threads} thread(s)): ${list}`);
+    const list = Object.entries(r.physics_stages_ms).filter(([, ms]) => ms > 0).map(([stage, ms]) => `${stage} ${ms}`).join(", ");
+    console.error(`stages, ms a step (${name}): ${list}`);
+    if (Object.keys(r.physics_stage_threads_ms).length) {
+      console.error(`each thread's part of each stage, drawing held (${name}):\n${threadTable(r.physics_stage_threads_ms)}`);
+      console.error(`the same while drawing:\n${threadTable(r.physics_stage_threads_ms_while_drawing)}`);
+    }
   }
 }
 
@@ -380,39 +508,54 @@ const { ribbon, dt } = await engineDefaults();
 /** The scene measured, without or with the default scene's ribbon on every balloon. */
 const sceneOf = (ribbons) => ({ room: { width: side, depth: side }, balloons: [ribbons ? { count: opts.balloons, ribbon } : { count: opts.balloons }] });
 const settingName = opts.ribbons.length > 1 ? "both" : opts.ribbons[0] ? "on" : "off";
+/** The pool settings measured on more than one thread (null: the page's default). */
+const setups = opts.setups ?? opts.pool.flatMap((pool) => opts.spin.map((spin) => ({ pool, spin })));
 const server = await serveDist();
 const browser = await launchChromium();
 let failed = false;
 try {
-  const url = (threads, ribbons) => `${server.url}${TEST_PATH}&threads=${threads}#scene=${base64url(JSON.stringify(sceneOf(ribbons)))}`;
+  const url = (threads, ribbons, setup) => {
+    const pool = threads > 1 ? `${setup.pool ? `&pool=${setup.pool}` : ""}${setup.spin ? `&spin=${setup.spin}` : ""}` : "";
+    return `${server.url}${TEST_PATH}&threads=${threads}${pool}#scene=${base64url(JSON.stringify(sceneOf(ribbons)))}`;
+  };
   const runs = [];
-  // Without and with ribbons in turn on each thread count: the machine's load drifts alike over both.
-  for (const threads of opts.threads) {
-    for (const ribbons of opts.ribbons) {
-      const label = `${threads} thread(s), ${ribbons ? "with" : "without"} ribbons`;
-      try {
-        runs.push(await measureThreads(browser, url, opts, threads, ribbons, dt));
-      } catch (e) {
-        // The other runs are still measured; the run fails at the end.
-        log(`${label} failed: ${e.message}`);
-        runs.push({ threads, ribbons, error: e.message });
-        continue;
+  // Without and with ribbons in turn on each thread count and pool setting, round after round:
+  // the machine's load drifts alike over all of them.
+  for (let round_ = 0; round_ < opts.rounds; round_++) {
+    for (const threads of opts.threads) {
+      for (const ribbons of opts.ribbons) {
+        // One thread runs the single-threaded module: no pool to set.
+        for (const setup of threads > 1 ? setups : [{ pool: null, spin: null }]) {
+          const label = `round ${round_ + 1}, ${runLabel(threads, ribbons, setup)}`;
+          try {
+            runs.push({ round: round_, ...(await measureThreads(browser, url, opts, threads, ribbons, setup, dt)) });
+          } catch (e) {
+            // The other runs are still measured; the run fails at the end.
+            log(`${label} failed: ${e.message}`);
+            runs.push({ round: round_, threads, ribbons, pool: setup.pool, spin: setup.spin, error: e.message });
+            continue;
+          }
+          log(`${label}: ${JSON.stringify(runs.at(-1))}`);
+          log(`${label}: physics mean ${runs.at(-1).physics_ms.mean} ms per step, frame work median ${runs.at(-1).frame_ms?.median} ms`);
+        }
       }
-      log(`${label}: ${JSON.stringify(runs.at(-1))}`);
-      log(`${label}: physics mean ${runs.at(-1).physics_ms.mean} ms per step, frame work median ${runs.at(-1).frame_ms?.median} ms`);
     }
   }
   const measured = runs.filter((r) => !r.error);
-  const modes = opts.ribbons.map((ribbons) => modeSummary(measured, ribbons));
-  const hashesEqual = modes.every((m) => m.hashes_equal);
+  const modes = opts.ribbons.flatMap((ribbons) => setups.map((setup) => modeSummary(measured, ribbons, setup)));
+  const hashesEqual = opts.ribbons.every((ribbons) => {
+    const alike = measured.filter((r) => r.ribbons === ribbons);
+    return alike.every((r) => r.state_hash === alike[0].state_hash);
+  });
   const cost = ribbonCost(measured);
   failed = !hashesEqual || measured.length < runs.length;
-  printTable(runs, cost);
+  printTable(runs, modes, cost);
   console.log(
     JSON.stringify({
       balloons: measured[0]?.balloons ?? opts.balloons,
       room_m: [side, side],
       steps: opts.steps,
+      rounds: opts.rounds,
       ribbons: settingName,
       ribbon: opts.ribbons.includes(true) ? ribbon : null,
       dt,
@@ -426,7 +569,7 @@ try {
     }),
   );
   for (const m of modes.filter((m) => !m.hashes_equal)) {
-    console.error(`measure.mjs: the state hashes ${m.ribbons ? "with" : "without"} ribbons differ across thread counts: ${Object.entries(m.hashes).map(([t, h]) => `${t}: ${h}`).join(", ")}`);
+    console.error(`measure.mjs: the state hashes ${m.ribbons ? "with" : "without"} ribbons differ across thread counts (${m.pool}): ${Object.entries(m.hashes).map(([t, h]) => `${t}: ${h}`).join(", ")}`);
   }
 } finally {
   await browser.close();

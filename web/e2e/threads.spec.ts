@@ -92,9 +92,19 @@ test("a thread count in the address that is not one is refused with a message, a
   expect((await threadsOf(page)).threads).toBeGreaterThanOrEqual(1);
 });
 
-for (const threads of [1, 2, 4]) {
-  test(`on ${threads} thread(s) the state hash is the native run's after the same steps`, async ({ page }) => {
-    await open(page, `&threads=${threads}${sceneHash(SCENE)}`);
+/** Thread counts, and the pool's settings besides the page's default (sim/threadPool.ts's `requestedPool`). */
+const RUNS: [number, string][] = [
+  [1, ""],
+  [2, ""],
+  [4, ""],
+  [2, "&pool=beside&spin=1"],
+  [3, "&pool=here&spin=auto"],
+  [4, "&pool=beside&spin=0"],
+];
+
+for (const [threads, pool] of RUNS) {
+  test(`on ${threads} thread(s)${pool ? ` (${pool.slice(1)})` : ""} the state hash is the native run's after the same steps`, async ({ page }) => {
+    await open(page, `&threads=${threads}${pool}${sceneHash(SCENE)}`);
     expect((await threadsOf(page)).threads).toBe(threads);
     await pause(page);
     const dt = await page.evaluate(() => JSON.parse(window.__up!.sceneJson()).sim.dt as number);
@@ -123,6 +133,25 @@ test("make measure's window: the drawing held, the scene restarted and stepped o
   expect(await page.evaluate(() => window.__up!.frames().drawn), "no frame drawn while held").toBe(drawn);
   await page.evaluate(() => window.__up!.holdDrawing(false));
   await page.waitForFunction((d) => window.__up!.frames().drawn > d, drawn);
+});
+
+test("make measure's window gives each thread's part of each stage on 2 threads, and the same hash", async ({ page }) => {
+  // Enough balloons that the step is shared with the pool (a small one runs on the calling thread alone).
+  await open(page, `&threads=2${sceneHash({ room: { width: 5, depth: 5 }, balloons: [{ count: 300 }], sim: { seed: 3 } })}`);
+  const plain = await page.evaluate(() => window.__up!.measureSteps(30));
+  expect(plain.threadStages, "no figures unless asked").toEqual([]);
+  const timed = await page.evaluate(() => window.__up!.measureSteps(30, true));
+  expect(timed.stateHash, "timing the threads changes no result").toBe(plain.stateHash);
+  const total = timed.threadStages.at(-1)!;
+  expect(total.stage).toBe("total");
+  expect(total.wall_ms).toBeCloseTo(timed.stageMeanMs.at(-1)![1], 6);
+  expect(total.busy_ms).toHaveLength(2);
+  expect(total.passes, "the step's parallel passes are counted").toBeGreaterThan(0);
+  expect(total.busy_ms[1], "the pool's other thread ran some of them").toBeGreaterThan(0);
+  for (let t = 0; t < 2; t++) {
+    // Each thread's parts add up to no more than the step (its clock reads apart).
+    expect(total.busy_ms[t] + total.barrier_ms[t] + total.idle_ms[t]).toBeLessThanOrEqual(total.wall_ms * 1.01 + 0.05);
+  }
 });
 
 test.describe("served without the isolation headers", () => {

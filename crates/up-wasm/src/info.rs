@@ -200,4 +200,7 @@ pub struct EngineStats {
     pub ribbons: u32,
     /// Largest relative stretch any ribbon ended a step with since the world was built.
     pub ribbon_max_stretch: f32,
+    /// Each thread's busy, barrier and idle ms a step in each stage over the
+    /// same steps, "total" last: empty unless `set_thread_timing(true)`.
+    pub threads: Vec<crate::thread_stats::StageThreadTimes>,
 }

@@ -63,6 +63,7 @@ mod ribbons;
 mod squash;
 mod state;
 mod stats;
+mod thread_stats;
 #[cfg(feature = "threads")]
 mod threads;
 
@@ -87,8 +88,9 @@ pub use state::{
     State, CAPACITY, MAX_SPEED, MAX_SPIN, MAX_STEPS_PER_CALL, POSE_FLOATS, TREE_FLOATS,
 };
 
+pub use thread_stats::{set_thread_timing, StageThreadTimes};
 #[cfg(feature = "threads")]
-pub use threads::{init_thread_pool, thread_count};
+pub use threads::{init_thread_pool, init_thread_pool_here, set_keep_threads_awake, thread_count};
 
 use error::named;
 

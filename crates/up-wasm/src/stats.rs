@@ -1,17 +1,19 @@
 //! The step's stage times as the page reads them: summed over the steps
 //! between two `stats` calls (browsers coarsen `performance.now()`, so one
 //! step's timings are noisy) and averaged when read, with the last step's
-//! counts.
+//! counts, and each thread's part of each stage when timed (`thread_stats`).
 
 use up_physics::World;
 
 use crate::info::EngineStats;
+use crate::thread_stats::ThreadSums;
 
 /// Stage milliseconds summed over the steps since the last `take`.
 #[derive(Default)]
 pub struct StageSums {
     sums: Vec<(&'static str, f64)>,
     steps: u32,
+    threads: ThreadSums,
 }
 
 impl StageSums {
@@ -26,6 +28,7 @@ impl StageSums {
             sum.1 += ms;
         }
         self.steps += 1;
+        self.threads.add(world.counters());
     }
 
     /// Steps summed since the last `take` (for the tests).
@@ -66,6 +69,7 @@ impl StageSums {
             max_penetration: s.max_penetration,
             ribbons: world.ribbon_count() as u32,
             ribbon_max_stretch: world.ribbon_max_stretch(),
+            threads: self.threads.take(),
         }
     }
 }

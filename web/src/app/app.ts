@@ -7,7 +7,7 @@ import { createStage, type Stage } from "../render/stage";
 import { WorldView } from "../render/worldView";
 import { saveScreenshot } from "../render/screenshot";
 import { SimBridge } from "../sim/bridge";
-import { MAX_THREADS, requestedThreads } from "../sim/threadPool";
+import { MAX_THREADS, requestedPool, requestedThreads } from "../sim/threadPool";
 import type { EngineStats } from "../sim/engine";
 import type { WorldInfo } from "../sim/protocol";
 import { Controls } from "../ui/controls";
@@ -118,7 +118,7 @@ export class App {
       airField: (field) => this.air.takeField(field),
     });
     const { threads, error: threadsError } = requestedThreads(location.search, navigator.hardwareConcurrency);
-    this.bridge.init(new URL("wasm/up_wasm.wasm", document.baseURI).href, this.link.takeInitial(), threads);
+    this.bridge.init(new URL("wasm/up_wasm.wasm", document.baseURI).href, this.link.takeInitial(), threads, requestedPool(location.search));
     const stageStart = performance.now();
     this.stage = createStage(page.app, this.budget);
     this.startup.stageMs = performance.now() - stageStart;

@@ -27,8 +27,8 @@ export function createTestHook(app: App) {
     /** Measurements (make measure): the main thread's frame work and render call, and a reset to start a window. */
     frameMeter: () => app.frameMeter.summary(),
     resetFrameMeter: () => app.frameMeter.reset(),
-    /** Measurements: the scene restarted and `steps` steps timed in the worker; resolves with the times and the state hash. */
-    measureSteps: (steps: number) => app.bridge.measureSteps(steps),
+    /** Measurements: the scene restarted and `steps` steps timed in the worker (each thread's part of each stage too when `threadTimes`); resolves with the times and the state hash. */
+    measureSteps: (steps: number, threadTimes = false) => app.bridge.measureSteps(steps, threadTimes),
     /** Measurements: balloons and their ribbons drawn or not (the frame's work goes on; SwiftShader's drawing of thousands takes the CPU). */
     drawBalloons: (on: boolean) => {
       world.balloons?.setVisible(on);
@@ -37,6 +37,7 @@ export function createTestHook(app: App) {
     /** Measurements: frames that do nothing (the GPU gets nothing to draw), or their work again (`App.drawingHeld`). */
     holdDrawing: (held: boolean) => {
       app.drawingHeld = held;
+      app.bridge.setDrawing(!held);
     },
     /**
      * Measurements: returns once the GPU has finished every frame sent so far

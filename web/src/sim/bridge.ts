@@ -9,6 +9,7 @@ import { frameViews } from "./frameLayout";
 import type { ForcesPayload } from "./forcesFrame";
 import { setEngineConstants } from "../scene/sceneSchema";
 import type { StepsMeasured } from "./stepMeter";
+import { DEFAULT_POOL, type PoolSettings } from "./threadPool";
 
 const NO_AIR_SOURCES: Float32Array = new Float32Array(0);
 
@@ -28,6 +29,8 @@ export interface BridgeEvents {
 export class SimBridge {
   private worker: Worker;
   private wasmUrl = "";
+  /** How the engine's pool runs (kept for `restart`). */
+  private pool: PoolSettings = DEFAULT_POOL;
   private rate = 1;
   /** What a restarted engine is given once it is ready (it drops commands before). */
   private restore: { paused: boolean; rate: number } | null = null;
@@ -153,10 +156,11 @@ export class SimBridge {
     return Math.min(1, Math.max(0, (nowAbs - f.stepTime) / (this.info.dt * 1000)));
   }
 
-  /** Starts the engine of module `wasmUrl` (the single-threaded one) on `threads` threads, with `sceneJson` (null: the default scene). */
-  init(wasmUrl: string, sceneJson: string | null, threads: number): void {
+  /** Starts the engine of module `wasmUrl` (the single-threaded one) on `threads` threads, its pool run as `pool` says, with `sceneJson` (null: the default scene). */
+  init(wasmUrl: string, sceneJson: string | null, threads: number, pool: PoolSettings = DEFAULT_POOL): void {
     this.wasmUrl = wasmUrl;
-    this.send({ type: "init", wasmUrl, sceneJson, threads });
+    this.pool = pool;
+    this.send({ type: "init", wasmUrl, sceneJson, threads, pool });
   }
 
   /**
@@ -174,7 +178,7 @@ export class SimBridge {
     this.current = null;
     this.worker = this.startWorker();
     this.restore = { paused: this.paused, rate: this.rate };
-    this.init(this.wasmUrl, sceneJson, threads);
+    this.init(this.wasmUrl, sceneJson, threads, this.pool);
   }
 
   /** The world's state hash (16 hex digits) and the steps taken since it was built. */
@@ -208,12 +212,21 @@ export class SimBridge {
     });
   }
 
-  /** Measurements: restarts the scene and times `steps` steps in the worker (sim/stepMeter.ts); the page draws on meanwhile. */
-  measureSteps(steps: number): Promise<StepsMeasured> {
+  /**
+   * Measurements: restarts the scene and times `steps` steps in the worker
+   * (sim/stepMeter.ts), with each thread's part of each stage when
+   * `threadTimes`; the page draws on meanwhile.
+   */
+  measureSteps(steps: number, threadTimes = false): Promise<StepsMeasured> {
     return new Promise((resolve) => {
       this.measurements.push(resolve);
-      this.send({ type: "measureSteps", steps });
+      this.send({ type: "measureSteps", steps, threadTimes });
     });
+  }
+
+  /** Tells the worker whether the page draws its frames (the pool's spinning depends on it). */
+  setDrawing(on: boolean): void {
+    this.send({ type: "drawing", on });
   }
 
   load(sceneJson: string | null): void {

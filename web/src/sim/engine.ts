@@ -10,7 +10,7 @@ import type * as Glue from "../../public/wasm/up_wasm";
 import { SQUASH_STRIDE } from "./frameLayout";
 
 export type { AirCommand, AirGrid, FanDef } from "../../public/wasm/up_wasm";
-export type { AdvanceReport, BodyCard, Constants, EngineStats, Finish, FloatCounts, LiveRange, LiveSetting, NamedColor, Scene, SceneLimits, WorldSummary } from "../../public/wasm/up_wasm";
+export type { AdvanceReport, BodyCard, Constants, EngineStats, StageThreadTimes, Finish, FloatCounts, LiveRange, LiveSetting, NamedColor, Scene, SceneLimits, WorldSummary } from "../../public/wasm/up_wasm";
 
 /** The glue module as `import()` returns it. */
 export type GlueModule = typeof Glue;
@@ -394,6 +394,15 @@ export class Engine {
 
   stats(): Glue.EngineStats {
     return this.call(() => this.e.stats());
+  }
+
+  /**
+   * Times each thread's part of every stage from the next step on (`stats`'s
+   * `threads`), or stops: two clock reads per task of a parallel pass while
+   * on. For every engine of this module instance.
+   */
+  setThreadTiming(on: boolean): void {
+    this.glue.set_thread_timing(on);
   }
 
   /** The last step's contacts, at most `max` of them (and at most `constants.max_contacts`). */

@@ -8,13 +8,14 @@ import type { AirCommand, Constants, EngineStats, Finish, FurnitureMesh, LiveSet
 import type { FloatSample } from "../ui/floatPlot";
 import type { ForcesPayload } from "./forcesFrame";
 import type { StepsMeasured } from "./stepMeter";
+import type { PoolSettings } from "./threadPool";
 import type { AirField } from "./airLayout";
 
 export type Vec3Tuple = [number, number, number];
 
 export type ToWorker =
   /** `wasmUrl`: the single-threaded module; the worker runs the threaded one next to it when it can and `threads` > 1. */
-  | { type: "init"; wasmUrl: string; sceneJson: string | null; threads: number }
+  | { type: "init"; wasmUrl: string; sceneJson: string | null; threads: number; pool: PoolSettings }
   | { type: "load"; sceneJson: string | null }
   /** Builds the world from a scene file in TOML (the teaching scenes). */
   | { type: "loadToml"; sceneToml: string }
@@ -40,8 +41,10 @@ export type ToWorker =
   | { type: "return"; buffer: ArrayBuffer }
   /** Asks the engine whether it would load `sceneJson`; answered by `validated` with the same `id`. */
   | { type: "validate"; id: number; sceneJson: string }
-  /** Measurements: the scene from its start, `steps` steps timed one by one (sim/stepMeter.ts). */
-  | { type: "measureSteps"; steps: number }
+  /** Whether the page draws its frames (it does unless they are held): the pool spins only where it leaves the drawing a core (threadPool.ts). */
+  | { type: "drawing"; on: boolean }
+  /** Measurements: the scene from its start, `steps` steps timed one by one (sim/stepMeter.ts); `threadTimes`: each thread's part of each stage too. */
+  | { type: "measureSteps"; steps: number; threadTimes: boolean }
   /** Asks for the world's state hash and the steps taken since it was built; answered by `hash` with the same `id`. */
   | { type: "hash"; id: number }
   /** Asks for the last 10 s of frames sent, as a .glb; answered by `gltf` with the same `id`. */

@@ -48,6 +48,27 @@ describe("measureSteps", () => {
     expect(measured.stateHash).not.toBe(hashHex(engine.stateHash()));
   }, 60_000);
 
+  it("gives each thread's part of each stage only while the engine times its threads", () => {
+    engine.loadSceneJson(SCENE);
+    expect(measureSteps(engine, 3).threadStages).toEqual([]);
+    engine.setThreadTiming(true);
+    let r;
+    try {
+      r = measureSteps(engine, 6);
+    } finally {
+      engine.setThreadTiming(false);
+    }
+    const total = r.threadStages.at(-1)!;
+    expect(total.stage).toBe("total");
+    expect(r.threadStages.map((s) => s.stage)).toContain("solve");
+    // One thread (the single-threaded module): the step's thread is busy through every stage.
+    expect(total.busy_ms).toHaveLength(1);
+    expect(total.wall_ms).toBeCloseTo(r.stageMeanMs.at(-1)![1], 6);
+    expect(total.busy_ms[0]).toBeCloseTo(total.wall_ms, 6);
+    expect(total.barrier_ms[0]).toBe(0);
+    expect(total.barriers).toBe(0);
+  }, 30_000);
+
   it("refuses a window that is not a whole number of steps in range", () => {
     engine.loadSceneJson(SCENE);
     for (const bad of [0, -1, 2.5, MAX_MEASURED_STEPS + 1, Number.NaN]) {

@@ -5,7 +5,7 @@
 // window is the same on any number of threads, so runs on different thread
 // counts can be checked against each other at the same step.
 
-import type { EngineStats } from "./engine";
+import type { EngineStats, StageThreadTimes } from "./engine";
 
 /** The most steps one measuring request may take (the worker answers nothing else meanwhile). */
 export const MAX_MEASURED_STEPS = 20000;
@@ -18,6 +18,12 @@ export interface StepsMeasured {
   wallMs: number[];
   /** Each of the engine's stages (broadphase, …, "total" last): its mean ms per step over the window. */
   stageMeanMs: [string, number][];
+  /**
+   * Each thread's busy, barrier and idle ms per step in each stage over the
+   * window (the step's thread first, "total" last), and the barriers and
+   * passes each crossed: empty unless the engine timed its threads.
+   */
+  threadStages: StageThreadTimes[];
   /** The engine's state hash after the window: 16 hex digits, as the `up` CLI prints it. */
   stateHash: string;
   /** Bodies, awake bodies and contacts after the window. */
@@ -53,6 +59,35 @@ function addStages(sums: [string, number][], stats: EngineStats): void {
   }
 }
 
+/** Adds one step's per-thread figures to `sums` (by stage name; the threads' lists grow to the most seen). */
+function addThreads(sums: StageThreadTimes[], stats: EngineStats): void {
+  const add = (into: number[], from: number[]) => {
+    from.forEach((ms, t) => {
+      into[t] = (into[t] ?? 0) + ms;
+    });
+  };
+  for (const row of stats.threads) {
+    let sum = sums.find((s) => s.stage === row.stage);
+    if (!sum) {
+      sum = { stage: row.stage, wall_ms: 0, busy_ms: [], barrier_ms: [], idle_ms: [], barriers: 0, passes: 0 };
+      sums.push(sum);
+    }
+    sum.wall_ms += row.wall_ms;
+    sum.barriers += row.barriers;
+    sum.passes += row.passes;
+    add(sum.busy_ms, row.busy_ms);
+    add(sum.barrier_ms, row.barrier_ms);
+    add(sum.idle_ms, row.idle_ms);
+  }
+}
+
+/** Sums over `steps` steps as means a step, "total" last. */
+function threadMeans(sums: StageThreadTimes[], steps: number): StageThreadTimes[] {
+  const mean = (v: number[]) => v.map((ms) => ms / steps);
+  const rows = sums.map((s) => ({ ...s, wall_ms: s.wall_ms / steps, busy_ms: mean(s.busy_ms), barrier_ms: mean(s.barrier_ms), idle_ms: mean(s.idle_ms), barriers: s.barriers / steps, passes: s.passes / steps }));
+  return [...rows.filter((r) => r.stage !== "total"), ...rows.filter((r) => r.stage === "total")];
+}
+
 /** Steps `engine` `steps` times, timing each step. */
 export function measureSteps(engine: SteppedEngine, steps: number, clock: () => number = () => performance.now()): StepsMeasured {
   if (!Number.isInteger(steps) || steps < 1 || steps > MAX_MEASURED_STEPS) {
@@ -63,6 +98,7 @@ export function measureSteps(engine: SteppedEngine, steps: number, clock: () => 
   const engineMs: number[] = [];
   const wallMs: number[] = [];
   const stageSums: [string, number][] = [];
+  const threadSums: StageThreadTimes[] = [];
   for (let i = 0; i < steps; i++) {
     const t0 = clock();
     engine.step(1);
@@ -70,6 +106,7 @@ export function measureSteps(engine: SteppedEngine, steps: number, clock: () => 
     const stats = engine.stats();
     engineMs.push(total(stats));
     addStages(stageSums, stats);
+    addThreads(threadSums, stats);
   }
   const last = engine.stats();
   return {
@@ -77,6 +114,7 @@ export function measureSteps(engine: SteppedEngine, steps: number, clock: () => 
     engineMs,
     wallMs,
     stageMeanMs: stageSums.map(([name, sum]) => [name, sum / steps]),
+    threadStages: threadMeans(threadSums, steps),
     stateHash: hashHex(engine.stateHash()),
     bodies: last.bodies,
     awake: last.awake,

@@ -1,5 +1,5 @@
 import { describe, expect, it } from "vitest";
-import { MAX_THREADS, NOT_ISOLATED_TEXT, defaultThreads, moduleUrl, requestedThreads } from "./threadPool";
+import { DEFAULT_POOL, MAX_THREADS, NOT_ISOLATED_TEXT, defaultThreads, keepThreadsAwake, moduleUrl, requestedPool, requestedThreads } from "./threadPool";
 import { threadsText } from "../ui/hud";
 
 describe("the thread count", () => {
@@ -40,5 +40,26 @@ describe("the module", () => {
   it("is named in the HUD: the threads, or one line saying the page is not isolated", () => {
     expect(threadsText(3, true)).toBe("Threads: 3");
     expect(threadsText(1, false)).toBe(NOT_ISOLATED_TEXT);
+  });
+});
+
+describe("the pool's settings", () => {
+  it("are the address's `pool` and `spin` where valid, each else the default", () => {
+    expect(requestedPool("?threads=2")).toEqual(DEFAULT_POOL);
+    expect(requestedPool("?pool=beside&spin=1")).toEqual({ here: false, spin: "on" });
+    expect(requestedPool("?pool=here&spin=0")).toEqual({ here: true, spin: "off" });
+    expect(requestedPool("?spin=auto")).toEqual({ here: DEFAULT_POOL.here, spin: "auto" });
+    expect(requestedPool("?pool=elsewhere&spin=2")).toEqual(DEFAULT_POOL);
+  });
+
+  it("spin as asked, or by themselves only where they leave the page's drawing a core", () => {
+    const auto = { here: true, spin: "auto" } as const;
+    expect(keepThreadsAwake(auto, 2, 2, true)).toBe(false);
+    expect(keepThreadsAwake(auto, 2, 2, false)).toBe(true);
+    expect(keepThreadsAwake(auto, 3, 4, true)).toBe(true);
+    expect(keepThreadsAwake(auto, 4, 4, true)).toBe(false);
+    expect(keepThreadsAwake(auto, 2, undefined, true)).toBe(false);
+    expect(keepThreadsAwake({ here: true, spin: "on" }, 2, 2, true)).toBe(true);
+    expect(keepThreadsAwake({ here: false, spin: "off" }, 2, 8, false)).toBe(false);
   });
 });

@@ -43,10 +43,65 @@ export function moduleUrl(singleUrl: string, threads: number, isolated: boolean)
   return new URL("threads/up_wasm.wasm", singleUrl).href;
 }
 
+/**
+ * How the pool runs beside the page's own threads (the physics worker, the
+ * main thread, the GPU process), chosen by measurement (docs/perf-log.md)
+ * and overridable by the address for measuring:
+ * - `here` (`?pool=here`, the default): the physics worker is the pool's
+ *   first thread and takes its share of every pass, so T threads step the
+ *   world with T − 1 workers started; `beside` (`?pool=beside`): T workers
+ *   started, the physics worker handing each step to them and sleeping.
+ * - `spin` (`?spin=1|0|auto`): whether the pool's threads look for work
+ *   through a whole step instead of sleeping between its passes
+ *   (`keepThreadsAwake`). Spinning shortens every pass's hand-over, but
+ *   takes cores that the page's drawing needs when the pool has them all.
+ */
+export interface PoolSettings {
+  here: boolean;
+  spin: "auto" | "on" | "off";
+}
+
+/**
+ * The page's pool: the physics worker in it (never slower, one worker fewer,
+ * one hand-over a step fewer), spinning through a step. `auto` was not faster
+ * while the page drew on this project's 2-core machine (docs/perf-log.md,
+ * 2026-12-05), so it stays a choice to measure, not the default.
+ */
+export const DEFAULT_POOL: PoolSettings = { here: true, spin: "on" };
+
+/** The pool's settings the address asks for (`pool=here|beside`, `spin=auto|1|0`), the defaults otherwise. */
+export function requestedPool(search: string): PoolSettings {
+  const params = new URLSearchParams(search);
+  const pool = params.get("pool");
+  const spin = params.get("spin");
+  return {
+    here: pool === "here" ? true : pool === "beside" ? false : DEFAULT_POOL.here,
+    spin: spin === "1" ? "on" : spin === "0" ? "off" : spin === "auto" ? "auto" : DEFAULT_POOL.spin,
+  };
+}
+
+/**
+ * Whether the pool's `threads` threads keep looking for work through a step:
+ * as `settings.spin` says, and for `auto` unless the page draws while the
+ * pool takes every core but one (`cores` − 1 leaves one to the main thread
+ * and the GPU process, which a visitor's GPU barely needs and SwiftShader
+ * needs whole). A thread that spins while another needs its core holds back
+ * the block that thread runs, and every thread then waits at the barrier.
+ */
+export function keepThreadsAwake(settings: PoolSettings, threads: number, cores: number | undefined, drawing: boolean): boolean {
+  if (settings.spin !== "auto") return settings.spin === "on";
+  const spare = Number.isInteger(cores) && cores! > 0 ? cores! - threads : 0;
+  return !drawing || spare >= 1;
+}
+
 /** The threaded module's glue: the single-threaded one's exports and its pool's. */
 export interface ThreadedGlue {
   /** wasm-bindgen-rayon: fills rayon's pool with `threads` Web Workers sharing the module's memory. */
   initThreadPool(threads: number): Promise<void>;
+  /** rayon's pool of `threads` (at least 2) with the calling thread its first, and `threads` − 1 Web Workers. */
+  initThreadPoolHere(threads: number): Promise<void>;
+  /** Whether a step keeps the pool's threads looking for work through it (on until told otherwise). */
+  set_keep_threads_awake(on: boolean): void;
   /** Threads in the pool, once `initThreadPool` has resolved. */
   thread_count(): number;
 }
@@ -56,16 +111,27 @@ export interface StartedEngine {
   engine: Engine;
   threads: number;
   isolated: boolean;
+  /** The threaded module's pool switch (`keepThreadsAwake`), or null on one thread. */
+  setKeepAwake: ((on: boolean) => void) | null;
 }
 
 /**
  * Instantiates the module for `threads` threads from its `bytes` and `glue`
- * (`moduleUrl`'s), and, when threaded, starts its pool before any step.
+ * (`moduleUrl`'s), and, when threaded, starts its pool as `settings` say
+ * before any step.
  */
-export async function startEngine(glue: GlueModule, bytes: BufferSource, threads: number, isolated: boolean): Promise<StartedEngine> {
+export async function startEngine(
+  glue: GlueModule,
+  bytes: BufferSource,
+  threads: number,
+  isolated: boolean,
+  settings: PoolSettings = DEFAULT_POOL,
+): Promise<StartedEngine> {
   const engine = Engine.load(glue, bytes);
-  if (!isolated || threads <= 1) return { engine, threads: 1, isolated };
+  if (!isolated || threads <= 1) return { engine, threads: 1, isolated, setKeepAwake: null };
   const pool = glue as unknown as ThreadedGlue;
-  await pool.initThreadPool(threads);
-  return { engine, threads: pool.thread_count(), isolated };
+  if (settings.here) await pool.initThreadPoolHere(threads);
+  else await pool.initThreadPool(threads);
+  pool.set_keep_threads_awake(keepThreadsAwake(settings, threads, globalThis.navigator?.hardwareConcurrency, true));
+  return { engine, threads: pool.thread_count(), isolated, setKeepAwake: (on) => pool.set_keep_threads_awake(on) };
 }

@@ -7,7 +7,7 @@
 // the balloons float and sends that for the plot.
 
 import { Engine, glueUrl, type GlueModule } from "./engine";
-import { moduleUrl, startEngine } from "./threadPool";
+import { DEFAULT_POOL, keepThreadsAwake, moduleUrl, startEngine, type PoolSettings, type StartedEngine } from "./threadPool";
 import { RIBBON_POINT_STRIDE, checkLayout, frameFloats, frameViews } from "./frameLayout";
 import type { FromWorker, ToWorker, WorldInfo } from "./protocol";
 import { TimeLapse, censusInterval } from "./timeLapse";
@@ -38,6 +38,10 @@ class WorkerState {
   /** Threads that step the engine, and whether the page may share memory with workers (else one thread). */
   threads = 1;
   isolated = false;
+  /** How the pool runs beside the page's threads (threadPool.ts), its spinning switch, and whether the page draws. */
+  pool: PoolSettings = DEFAULT_POOL;
+  setKeepAwake: StartedEngine["setKeepAwake"] = null;
+  drawing = true;
   /** The engine once the module is instantiated (validation requests wait for it). */
   started: Promise<Engine> | null = null;
   /** The scene of the current world, to rebuild it after a trap. */
@@ -80,6 +84,11 @@ const state = new WorkerState();
 const probe = new ForceProbe();
 /** The air's sources in the frames, and its field while shown. */
 const air = new AirSampler();
+
+/** The pool's threads spin through a step or sleep between its passes, as the settings and the page's drawing say. */
+function applyKeepAwake(): void {
+  state.setKeepAwake?.(keepThreadsAwake(state.pool, state.threads, navigator.hardwareConcurrency, state.drawing));
+}
 
 function post(message: FromWorker, transfer: Transferable[] = []): void {
   scope.postMessage(message, transfer);
@@ -225,8 +234,12 @@ function restartAfterTrap(error: unknown): boolean {
   // A glue module holds one instance: a fresh import gives a fresh one (and a
   // threaded one a fresh pool; the old pool's workers stay asleep).
   state.started = Engine.importGlue(state.glueHref, state.restarts)
-    .then((glue) => startEngine(glue, bytes, state.threads, state.isolated))
-    .then((started) => started.engine);
+    .then((glue) => startEngine(glue, bytes, state.threads, state.isolated, state.pool))
+    .then((started) => {
+      state.setKeepAwake = started.setKeepAwake;
+      applyKeepAwake();
+      return started.engine;
+    });
   state.started
     .then((e) => {
       state.engine = e;
@@ -368,9 +381,12 @@ function handle(msg: ToWorker): void {
       state.glueHref = glueUrl(wasmUrl);
       state.started = Promise.all([Engine.fetchBytes(wasmUrl), Engine.importGlue(state.glueHref)]).then(async ([bytes, glue]: [ArrayBuffer, GlueModule]) => {
         state.wasmBytes = bytes;
-        const started = await startEngine(glue, bytes, msg.threads, isolated);
+        state.pool = msg.pool;
+        const started = await startEngine(glue, bytes, msg.threads, isolated, msg.pool);
         state.threads = started.threads;
         state.isolated = started.isolated;
+        state.setKeepAwake = started.setKeepAwake;
+        applyKeepAwake();
         checkLayout(started.engine.constants);
         checkForceLayout(started.engine.constants);
         checkAirLayout(started.engine.constants);
@@ -421,6 +437,10 @@ function handle(msg: ToWorker): void {
     case "debug":
       state.sendContacts = msg.on;
       state.dirty = true;
+      return;
+    case "drawing":
+      state.drawing = msg.on;
+      applyKeepAwake();
       return;
     case "showAir":
       air.setShow(msg.on);
@@ -524,7 +544,15 @@ function handle(msg: ToWorker): void {
         // The page rebuilds its world on "ready": told after the window, so that
         // the rebuild does not take cores from the steps being timed.
         const info = load(state.currentSceneJson, undefined, false);
-        post({ type: "stepsMeasured", ...measureSteps(state.engine, msg.steps) });
+        // Each thread's part of each stage, timed for this window only (two clock reads a task).
+        state.engine.setThreadTiming(msg.threadTimes);
+        let measured;
+        try {
+          measured = measureSteps(state.engine, msg.steps);
+        } finally {
+          state.engine.setThreadTiming(false);
+        }
+        post({ type: "stepsMeasured", ...measured });
         state.steps = msg.steps;
         if (info) post({ type: "ready", info });
         break;

@@ -44,7 +44,7 @@ pub(crate) fn with_threads_kept_awake<R: Send>(work: impl FnOnce() -> R + Send) 
     let Some(owner) = rayon::current_thread_index() else {
         return work();
     };
-    if threads_here() <= 1 || KEPT.get() {
+    if threads_here() <= 1 || KEPT.get() || !super::keep_awake_switch::keep_threads_awake() {
         return work();
     }
     let over = AtomicBool::new(false);

@@ -8,6 +8,7 @@
 
 #[cfg(feature = "parallel")]
 pub(crate) mod keep_awake;
+pub mod keep_awake_switch;
 pub(crate) mod spare;
 #[cfg(feature = "parallel")]
 pub(crate) mod staged;
