@@ -36,6 +36,7 @@ use super::collide::NearTriangle;
 use super::lane_group::RibbonLanes;
 use super::lane_pushes::NearInput;
 use super::nearby::NearbyBodies;
+use super::touch::RibbonTouch;
 use super::{
     Ribbon, AIR_VISCOSITY, NORMAL_DRAG_COEFFICIENT, RIBBON_WIDTH, TANGENT_DRAG_COEFFICIENT,
     WEIGHT_DRAG_COEFFICIENT, WEIGHT_RADIUS,
@@ -218,6 +219,8 @@ pub(crate) struct RibbonStage {
     pub moving: Vec<bool>,
     /// The sleeping ribbons' boxes, for the wake pass.
     pub point_boxes: PointBoxes,
+    /// The ribbons' contacts with each other.
+    pub touch: RibbonTouch,
 }
 
 /// Per ribbon slot: its points' box as the last step it was solved left
@@ -247,18 +250,25 @@ impl PointBoxes {
 pub(crate) struct RibbonSubsteps<'a> {
     /// Packed in lane groups (`RibbonLanes::add`).
     pub active: &'a mut RibbonLanes,
+    /// The step's pairs of segments that may touch (`touch`).
+    pub touch: &'a mut RibbonTouch,
     pub input: SubstepInput<'a>,
 }
 
 impl SubstepPart for RibbonSubsteps<'_> {
     fn substep(&mut self, states: &mut [BodyState]) {
-        substep(self.active, &self.input, states);
+        substep(self.active, self.touch, &self.input, states);
     }
 }
 
 /// One substep of every lane group; then the ribbons' pulls on their
 /// balloons, in the ribbons' order.
-fn substep(lanes: &mut RibbonLanes, input: &SubstepInput, states: &mut [BodyState]) {
+fn substep(
+    lanes: &mut RibbonLanes,
+    touch: &mut RibbonTouch,
+    input: &SubstepInput,
+    states: &mut [BodyState],
+) {
     let read: &[BodyState] = states;
     // A crowd's leaves placed once for all its ribbons.
     let all_leaves = 2 * lanes.order.len() >= input.centers.len();
@@ -268,11 +278,28 @@ fn substep(lanes: &mut RibbonLanes, input: &SubstepInput, states: &mut [BodyStat
         states: read,
         bodies: &lanes.bodies,
     };
-    fill_chunks(&mut lanes.groups[..lanes.used], GROUP_CHUNK, |_, groups| {
-        for g in groups {
-            g.substep(&near);
-        }
-    });
+    let groups = &mut lanes.groups[..lanes.used];
+    if touch.is_empty() {
+        fill_chunks(groups, GROUP_CHUNK, |_, groups| {
+            for g in groups {
+                g.substep(&near);
+            }
+        });
+    } else {
+        // The ribbons' contacts with each other between the pushes and the
+        // chains' solve, on one thread in the pairs' order.
+        fill_chunks(groups, GROUP_CHUNK, |_, groups| {
+            for g in groups {
+                g.substep_before_solve(&near);
+            }
+        });
+        touch.project(groups);
+        fill_chunks(groups, GROUP_CHUNK, |_, groups| {
+            for g in groups {
+                g.substep_solve(&near);
+            }
+        });
+    }
     let inv_h = 1.0 / input.h;
     for &(g, l) in &lanes.order {
         let (group, l) = (&lanes.groups[g as usize], l as usize);

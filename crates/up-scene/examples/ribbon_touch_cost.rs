@@ -1,0 +1,48 @@
+//! The step's cost with the ribbons' contacts on and off, alternated in one
+//! process: `cargo run -p up-scene --release --example ribbon_touch_cost --
+//! SCENE COUNT STEPS REPEATS` (COUNT 0: the scene's own balloon count).
+//! Prints each run's mean and median step, ms, and the ratio of the means.
+
+use std::time::Instant;
+
+use up_scene::build::build_world;
+use up_scene::scene::Scene;
+
+fn run(scene: &Scene, contacts: bool, steps: usize) -> (f64, f64) {
+    let mut world = build_world(scene).unwrap_or_else(|e| panic!("{e}")).world;
+    world.set_ribbon_contacts(contacts);
+    let mut times: Vec<f64> = (0..steps)
+        .map(|_| {
+            let start = Instant::now();
+            world.step();
+            start.elapsed().as_secs_f64() * 1e3
+        })
+        .collect();
+    let mean = times.iter().sum::<f64>() / steps as f64;
+    times.sort_by(f64::total_cmp);
+    (mean, times[steps / 2])
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let path = args.first().map_or("assets/scenes/bouquet.toml", |s| s);
+    let arg = |k: usize, default: usize| args.get(k).map_or(default, |s| s.parse().unwrap());
+    let (count, steps, repeats) = (arg(1, 0), arg(2, 300), arg(3, 3));
+    let mut scene = Scene::from_path(path).unwrap_or_else(|e| panic!("{e}"));
+    if count > 0 {
+        scene.balloons[0].count = count as u64;
+    }
+    let (mut on, mut off) = (0.0, 0.0);
+    for _ in 0..repeats {
+        for contacts in [false, true] {
+            let (mean, median) = run(&scene, contacts, steps);
+            println!("contacts {contacts:5}: mean {mean:.3} ms, median {median:.3} ms");
+            if contacts {
+                on += mean;
+            } else {
+                off += mean;
+            }
+        }
+    }
+    println!("on / off, by the means: {:.3}", on / off);
+}
