@@ -21,6 +21,7 @@ impl RibbonTouch {
     /// plus `margin` m (gravity's fall and the speculative distance).
     pub(crate) fn find_pairs(&mut self, lanes: &RibbonLanes, dt: f32, margin: f32) {
         self.pairs.clear();
+        self.push_out = super::OVERLAP_PUSH_OUT_SPEED * dt;
         self.ribbons.clear();
         self.segment_boxes.clear();
         if !self.enabled || lanes.order.is_empty() {
@@ -131,7 +132,7 @@ impl RibbonTouch {
         for &i in &self.near_a {
             for &j in &self.near_b {
                 if boxes_a[i as usize].overlaps(&boxes_b[j as usize]) {
-                    push_pairs(&mut self.pairs, lanes, (&ra, i), (&rb, j));
+                    push_pairs(&mut self.pairs, self.push_out, lanes, (&ra, i), (&rb, j));
                 }
             }
         }
@@ -154,7 +155,7 @@ impl RibbonTouch {
         for i in 0..n {
             for j in i + SELF_GAP..n.min(i.saturating_add(widest).saturating_add(1)) {
                 if boxes[i as usize].overlaps(&boxes[j as usize]) {
-                    push_pairs(&mut self.pairs, lanes, (&r, i), (&r, j));
+                    push_pairs(&mut self.pairs, self.push_out, lanes, (&r, i), (&r, j));
                 }
             }
         }
@@ -165,6 +166,7 @@ impl RibbonTouch {
 /// the two capsules, and each weighted end against the other segment.
 fn push_pairs(
     pairs: &mut Vec<Touching>,
+    push_out: f32,
     lanes: &RibbonLanes,
     (a, i): (&RibbonBox, u32),
     (b, j): (&RibbonBox, u32),
@@ -185,8 +187,9 @@ fn push_pairs(
         end_a: false,
         end_b: false,
         normal: Vec3::ZERO,
+        allowed: 0.0,
     };
-    pair.normal = super::contact::separation(&pair, &lanes.groups);
+    super::contact::begin(&mut pair, &lanes.groups, push_out);
     pairs.push(pair);
     for (end_a, end_b) in [(weighted(a, i), false), (false, weighted(b, j))] {
         if end_a || end_b {
@@ -195,7 +198,7 @@ fn push_pairs(
                 end_b,
                 ..pair
             };
-            end.normal = super::contact::separation(&end, &lanes.groups);
+            super::contact::begin(&mut end, &lanes.groups, push_out);
             pairs.push(end);
         }
     }

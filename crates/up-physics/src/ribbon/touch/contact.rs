@@ -69,17 +69,23 @@ fn radius(e: &Ends, s: f32, end: bool) -> f32 {
     }
 }
 
-/// The unit line from `pair`'s closest point on `a` to that on `b` as they
-/// stand (the pair's side when first found); any unit vector if they meet.
-pub(super) fn separation(pair: &Touching, groups: &[LaneGroup]) -> Vec3 {
+/// Readies `pair` as found at the step's start: its side (the unit line
+/// from its closest point on `a` to that on `b`; any unit vector if they
+/// meet) and the overlap it may keep this step, of the `push_out` m taken
+/// out of what it began with.
+pub(super) fn begin(pair: &mut Touching, groups: &[LaneGroup], push_out: f32) {
     let (a, b) = (ends(groups, pair.a), ends(groups, pair.b));
     let (s, t) = parameters(pair, &a, &b);
     let d = at(b.p, t) - at(a.p, s);
-    if d.length() > NO_DIRECTION {
-        return d.normalize();
-    }
-    let across = (a.p[1] - a.p[0]).cross(b.p[1] - b.p[0]);
-    across.try_normalize().unwrap_or(Vec3::Y)
+    let distance = d.length();
+    pair.normal = if distance > NO_DIRECTION {
+        d / distance
+    } else {
+        let across = (a.p[1] - a.p[0]).cross(b.p[1] - b.p[0]);
+        across.try_normalize().unwrap_or(Vec3::Y)
+    };
+    let overlap = radius(&a, s, pair.end_a) + radius(&b, t, pair.end_b) - distance;
+    pair.allowed = (overlap - push_out).max(0.0);
 }
 
 impl RibbonTouch {
@@ -111,7 +117,7 @@ fn project_pair(pair: &mut Touching, groups: &mut [LaneGroup], friction: f32) {
         (pair.normal, 0.0)
     };
     pair.normal = normal;
-    let depth = radius(&a, s, pair.end_a) + radius(&b, t, pair.end_b) - distance;
+    let depth = radius(&a, s, pair.end_a) + radius(&b, t, pair.end_b) - pair.allowed - distance;
     if depth <= 0.0 {
         return;
     }

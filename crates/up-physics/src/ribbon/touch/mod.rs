@@ -44,6 +44,12 @@ use up_geom::Aabb;
 /// often crimped, grips at least as well).
 pub const RIBBON_ON_RIBBON_FRICTION: f32 = 0.4;
 
+/// Fastest two capsules that begin a step overlapping are pushed apart, m/s
+/// (laid out on one spot, as a bouquet's weights are): at once, they would
+/// fly apart; those that overlap only within the step (a crossing caught)
+/// are pushed out whole.
+pub const OVERLAP_PUSH_OUT_SPEED: f32 = 0.1;
+
 /// A segment: points `index` and `index + 1` of the ribbon in lane `lane`
 /// of lane group `group`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -65,6 +71,9 @@ pub(crate) struct Touching {
     /// From `a` toward `b` as they last stood (found, or last projected): the
     /// side `b` keeps.
     pub normal: Vec3,
+    /// How far they may still overlap this step, m: what they began the
+    /// step overlapping less `OVERLAP_PUSH_OUT_SPEED` times the step.
+    pub allowed: f32,
 }
 
 /// An awake ribbon's box for the step, and what says whether it can touch
@@ -96,6 +105,9 @@ pub(crate) struct RibbonTouch {
     pub enabled: bool,
     /// Friction of a ribbon on a ribbon (`WorldDef::ribbon_friction`).
     pub friction: f32,
+    /// How much of a pair's overlap at the step's start is taken out in the
+    /// step, m.
+    pub push_out: f32,
     /// The step's pairs, in the order they are projected.
     pub pairs: Vec<Touching>,
     ribbons: Vec<RibbonBox>,
@@ -110,6 +122,7 @@ impl Default for RibbonTouch {
         RibbonTouch {
             enabled: true,
             friction: RIBBON_ON_RIBBON_FRICTION,
+            push_out: 0.0,
             pairs: Vec::new(),
             ribbons: Vec::new(),
             sorted: Vec::new(),
