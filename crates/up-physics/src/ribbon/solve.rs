@@ -7,7 +7,9 @@
 //!    apart, viscous when slow) on its velocity relative to the moving air
 //!    (`crate::air`, sampled at each point once a step, at the first
 //!    substep);
-//! 2. points are pushed out of the balloons near the ribbon and out of the room;
+//! 2. points are pushed out of the balloons near the ribbon and out of the
+//!    room; where segments of ribbons may touch this step, the pairs are
+//!    projected apart (`touch`), on one thread, between this and 3;
 //! 3. the chain, knot included, is brought back to its lengths by direct
 //!    solves (`chain`; follow-the-leader if a jerk outruns them), and the
 //!    room's push repeated for what that moved;
