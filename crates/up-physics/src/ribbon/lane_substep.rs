@@ -23,14 +23,31 @@ const AIR_SAMPLE_EVERY: usize = 4;
 impl LaneGroup {
     /// One substep of the group's ribbons, reading the balloons' `states`.
     pub(crate) fn substep(&mut self, near: &NearInput) {
+        self.substep_before_solve(near);
+        self.substep_solve(near);
+    }
+
+    /// The substep up to the chains' solve: the knots placed, the points'
+    /// fall and the pushes out of balloons and room (the ribbons' contacts
+    /// with each other, `touch`, come between this and `substep_solve`).
+    pub(crate) fn substep_before_solve(&mut self, near: &NearInput) {
         let (input, states) = (near.input, near.states);
         let h = input.h;
-        let knots = self.place_knots(states);
+        self.place_knots(states);
         self.start.copy_from_slice(&self.points);
         self.fall(input, h);
         self.carry_grabbed(h);
         self.push_out_of_balloons(near);
         self.push_out_of_room(input.triangles, self.substeps == 0);
+    }
+
+    /// The rest of the substep: the chains' solve, the room's push again and
+    /// the velocities.
+    pub(crate) fn substep_solve(&mut self, near: &NearInput) {
+        let (input, states) = (near.input, near.states);
+        let h = input.h;
+        // The same knots as before the solve's part (the bodies have not moved).
+        let knots = self.place_knots(states);
         let unconverged = self.solve_chains(&knots);
         if unconverged.any() {
             self.follow_the_leader(unconverged);

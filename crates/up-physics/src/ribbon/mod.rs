@@ -21,7 +21,8 @@
 //! within its length of the point.
 //!
 //! Balloons push ribbons aside and take the opposite impulse (a few
-//! milligrams' worth); ribbons do not collide with each other. A ribbon
+//! milligrams' worth); ribbons touch each other, and themselves, as capsules
+//! with friction (`touch`), unless the world turns that off. A ribbon
 //! sleeps and wakes with its balloon, and keeps its balloon awake while it
 //! still moves.
 
@@ -34,8 +35,10 @@ mod lane_pushes;
 mod lane_substep;
 pub(crate) mod nearby;
 pub(crate) mod solve;
+pub(crate) mod touch;
 
 pub use hang_path::hang_path;
+pub use touch::{OVERLAP_PUSH_OUT_SPEED, RIBBON_ON_RIBBON_FRICTION};
 
 use std::collections::BTreeMap;
 

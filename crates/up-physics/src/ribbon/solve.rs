@@ -7,7 +7,9 @@
 //!    apart, viscous when slow) on its velocity relative to the moving air
 //!    (`crate::air`, sampled at each point once a step, at the first
 //!    substep);
-//! 2. points are pushed out of the balloons near the ribbon and out of the room;
+//! 2. points are pushed out of the balloons near the ribbon and out of the
+//!    room; where segments of ribbons may touch this step, the pairs are
+//!    projected apart (`touch`), on one thread, between this and 3;
 //! 3. the chain, knot included, is brought back to its lengths by direct
 //!    solves (`chain`; follow-the-leader if a jerk outruns them), and the
 //!    room's push repeated for what that moved;
@@ -36,6 +38,7 @@ use super::collide::NearTriangle;
 use super::lane_group::RibbonLanes;
 use super::lane_pushes::NearInput;
 use super::nearby::NearbyBodies;
+use super::touch::RibbonTouch;
 use super::{
     Ribbon, AIR_VISCOSITY, NORMAL_DRAG_COEFFICIENT, RIBBON_WIDTH, TANGENT_DRAG_COEFFICIENT,
     WEIGHT_DRAG_COEFFICIENT, WEIGHT_RADIUS,
@@ -218,6 +221,8 @@ pub(crate) struct RibbonStage {
     pub moving: Vec<bool>,
     /// The sleeping ribbons' boxes, for the wake pass.
     pub point_boxes: PointBoxes,
+    /// The ribbons' contacts with each other.
+    pub touch: RibbonTouch,
 }
 
 /// Per ribbon slot: its points' box as the last step it was solved left
@@ -247,18 +252,25 @@ impl PointBoxes {
 pub(crate) struct RibbonSubsteps<'a> {
     /// Packed in lane groups (`RibbonLanes::add`).
     pub active: &'a mut RibbonLanes,
+    /// The step's pairs of segments that may touch (`touch`).
+    pub touch: &'a mut RibbonTouch,
     pub input: SubstepInput<'a>,
 }
 
 impl SubstepPart for RibbonSubsteps<'_> {
     fn substep(&mut self, states: &mut [BodyState]) {
-        substep(self.active, &self.input, states);
+        substep(self.active, self.touch, &self.input, states);
     }
 }
 
 /// One substep of every lane group; then the ribbons' pulls on their
 /// balloons, in the ribbons' order.
-fn substep(lanes: &mut RibbonLanes, input: &SubstepInput, states: &mut [BodyState]) {
+fn substep(
+    lanes: &mut RibbonLanes,
+    touch: &mut RibbonTouch,
+    input: &SubstepInput,
+    states: &mut [BodyState],
+) {
     let read: &[BodyState] = states;
     lanes.bodies.place(input, read);
     let near = NearInput {
@@ -266,11 +278,28 @@ fn substep(lanes: &mut RibbonLanes, input: &SubstepInput, states: &mut [BodyStat
         states: read,
         bodies: &lanes.bodies,
     };
-    fill_chunks(&mut lanes.groups[..lanes.used], GROUP_CHUNK, |_, groups| {
-        for g in groups {
-            g.substep(&near);
-        }
-    });
+    let groups = &mut lanes.groups[..lanes.used];
+    if touch.is_empty() {
+        fill_chunks(groups, GROUP_CHUNK, |_, groups| {
+            for g in groups {
+                g.substep(&near);
+            }
+        });
+    } else {
+        // The ribbons' contacts with each other between the pushes and the
+        // chains' solve, on one thread in the pairs' order.
+        fill_chunks(groups, GROUP_CHUNK, |_, groups| {
+            for g in groups {
+                g.substep_before_solve(&near);
+            }
+        });
+        touch.project(groups);
+        fill_chunks(groups, GROUP_CHUNK, |_, groups| {
+            for g in groups {
+                g.substep_solve(&near);
+            }
+        });
+    }
     let inv_h = 1.0 / input.h;
     for &(g, l) in &lanes.order {
         let (group, l) = (&lanes.groups[g as usize], l as usize);

@@ -78,6 +78,21 @@ pub struct WorldDef {
     pub enable_continuous: bool,
     /// The static room, one-sided, normals pointing into the room. `None`: free space.
     pub room: Option<TriMesh>,
+    /// Whether ribbons touch each other and themselves (`ribbon::touch`);
+    /// true. Off, they pass through each other, at less cost.
+    #[serde(default = "ribbon_contacts_on")]
+    pub ribbon_contacts: bool,
+    /// Friction of a ribbon on a ribbon; `RIBBON_ON_RIBBON_FRICTION` (0.4, a guess).
+    #[serde(default = "ribbon_on_ribbon_friction")]
+    pub ribbon_friction: f32,
+}
+
+fn ribbon_contacts_on() -> bool {
+    true
+}
+
+fn ribbon_on_ribbon_friction() -> f32 {
+    crate::ribbon::RIBBON_ON_RIBBON_FRICTION
 }
 
 impl Default for WorldDef {
@@ -109,6 +124,8 @@ impl Default for WorldDef {
             time_to_sleep: 0.5,
             enable_continuous: true,
             room: None,
+            ribbon_contacts: true,
+            ribbon_friction: crate::ribbon::RIBBON_ON_RIBBON_FRICTION,
         }
     }
 }
@@ -202,6 +219,7 @@ impl WorldDef {
             "> 0 m/s",
         )?;
         within(&limits::FRICTION, "friction", self.friction)?;
+        within(&limits::FRICTION, "ribbon_friction", self.ribbon_friction)?;
         let e = self.restitution;
         within(&limits::RESTITUTION, "restitution", e)?;
         let th = self.restitution_threshold;

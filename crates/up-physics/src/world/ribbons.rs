@@ -140,6 +140,31 @@ impl World {
         }
     }
 
+    /// Turns the ribbons' contacts with each other on or off from the next
+    /// step (`WorldDef::ribbon_contacts`).
+    pub fn set_ribbon_contacts(&mut self, on: bool) {
+        self.def.ribbon_contacts = on;
+    }
+
+    /// Sets the friction of a ribbon on a ribbon (`WorldDef::ribbon_friction`).
+    pub fn set_ribbon_friction(&mut self, friction: f32) -> Result<(), PhysicsError> {
+        if !(friction >= 0.0 && friction.is_finite()) {
+            return Err(PhysicsError::BadParameter {
+                key: "ribbon_friction",
+                value: friction,
+                expected: "≥ 0".to_string(),
+            });
+        }
+        self.def.ribbon_friction = friction;
+        Ok(())
+    }
+
+    /// Pairs of ribbon segments that may touch this step (found before
+    /// the substeps; 0 with contacts off or no ribbon awake).
+    pub fn ribbon_contact_pairs(&self) -> usize {
+        self.stages.ribbons.touch.pairs.len()
+    }
+
     pub fn ribbon_count(&self) -> usize {
         self.ribbons.len()
     }

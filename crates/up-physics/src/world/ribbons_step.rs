@@ -111,6 +111,7 @@ impl World {
         let b = &self.bodies;
         let awake = |body| self.handles.dense(body).is_some_and(|i| b.awake[i]);
         if !self.ribbons.iter().any(|(_, r)| awake(r.body)) {
+            stage.touch.pairs.clear();
             return; // every ribbon sleeps, or there are none
         }
         let n = self.bodies.len();
@@ -188,6 +189,9 @@ impl World {
         }
         stage.awake = count;
         stage.lanes.finish_packing();
+        stage.touch.enabled = self.def.ribbon_contacts;
+        stage.touch.friction = self.def.ribbon_friction;
+        stage.touch.find_pairs(&stage.lanes, dt, margin);
     }
 
     /// Hands the points back to the ribbons, each knot where its balloon

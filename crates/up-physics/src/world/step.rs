@@ -201,6 +201,7 @@ impl World {
         let ribbons = &mut stages.ribbons;
         let mut ribbons = RibbonSubsteps {
             active: &mut ribbons.lanes,
+            touch: &mut ribbons.touch,
             input: SubstepInput {
                 h: params.dt / params.substeps as f32,
                 gravity: self.def.gravity,

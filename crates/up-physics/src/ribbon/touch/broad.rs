@@ -1,0 +1,220 @@
+//! The step's pairs of segments that may touch (`RibbonTouch::find_pairs`):
+//! the awake ribbons' boxes swept along x, then, for two ribbons whose boxes
+//! meet, each one's segments near the other's box tested box against box.
+//! Every order is fixed (the ribbons' solver order, ties broken by it), so
+//! the pairs come out the same on any number of threads.
+
+use glam::Vec3;
+use up_geom::Aabb;
+
+use super::super::lane_group::RibbonLanes;
+use super::super::RIBBON_RADIUS;
+use super::{RibbonBox, RibbonTouch, Segment, Touching};
+
+/// The first segments' separation that two segments of one ribbon must
+/// have to be paired: neighbours share a point and bend about it.
+const SELF_GAP: u32 = 2;
+
+impl RibbonTouch {
+    /// Pairs the segments of the awake ribbons in `lanes` that may touch
+    /// within a step of `dt` s: each point may move its speed times `dt`
+    /// plus `margin` m (gravity's fall and the speculative distance).
+    pub(crate) fn find_pairs(&mut self, lanes: &RibbonLanes, dt: f32, margin: f32) {
+        self.pairs.clear();
+        self.push_out = super::OVERLAP_PUSH_OUT_SPEED * dt;
+        self.ribbons.clear();
+        self.segment_boxes.clear();
+        if !self.enabled || lanes.order.is_empty() {
+            return;
+        }
+        for &(g, l) in &lanes.order {
+            let group = &lanes.groups[g as usize];
+            let l_ = l as usize;
+            let n = group.points.len() - 1;
+            let mut aabb = Aabb::EMPTY;
+            let (mut speed, mut along, mut shortest) = (0.0f32, 0.0f32, f32::MAX);
+            let mut before: Vec3 = group.points[0].lane(l_);
+            for i in 0..=n {
+                let p: Vec3 = group.points[i].lane(l_);
+                aabb = aabb.including(p);
+                speed = speed.max(group.velocities[i].lane(l_).length());
+                if i > 0 {
+                    let length = p.distance(before);
+                    along += length;
+                    shortest = shortest.min(length);
+                }
+                before = p;
+            }
+            let ends = group.points[0].lane(l_).distance(group.points[n].lane(l_));
+            let reach = speed * dt + margin;
+            let radius = RIBBON_RADIUS.max(group.end_radius.as_array()[l_]);
+            self.ribbons.push(RibbonBox {
+                aabb: aabb.expanded(reach + radius),
+                group: g,
+                lane: l,
+                segments: n as u32,
+                reach,
+                radius,
+                slack: (along - ends).max(0.0),
+                shortest,
+                first_box: u32::MAX,
+            });
+        }
+        self.sorted.clear();
+        self.sorted.extend(0..self.ribbons.len() as u32);
+        let ribbons = &self.ribbons;
+        self.sorted.sort_unstable_by(|&i, &j| {
+            let (a, b) = (
+                ribbons[i as usize].aabb.min.x,
+                ribbons[j as usize].aabb.min.x,
+            );
+            a.total_cmp(&b).then(i.cmp(&j))
+        });
+        for s in 0..self.sorted.len() {
+            let i = self.sorted[s] as usize;
+            self.pair_with_itself(lanes, i);
+            let max_x = self.ribbons[i].aabb.max.x;
+            for t in s + 1..self.sorted.len() {
+                let j = self.sorted[t] as usize;
+                if self.ribbons[j].aabb.min.x > max_x {
+                    break;
+                }
+                if self.ribbons[i].aabb.overlaps(&self.ribbons[j].aabb) {
+                    self.pair_ribbons(lanes, i.min(j), i.max(j));
+                }
+            }
+        }
+    }
+
+    /// Ribbon `k`'s segments' boxes, made once a step when first needed.
+    fn boxes_of(&mut self, lanes: &RibbonLanes, k: usize) -> u32 {
+        let r = self.ribbons[k];
+        if r.first_box != u32::MAX {
+            return r.first_box;
+        }
+        let first = self.segment_boxes.len() as u32;
+        let group = &lanes.groups[r.group as usize];
+        let l = r.lane as usize;
+        let n = r.segments as usize;
+        let end_radius = group.end_radius.as_array()[l];
+        for i in 0..n {
+            let radius = if i + 1 == n {
+                end_radius.max(RIBBON_RADIUS)
+            } else {
+                RIBBON_RADIUS
+            };
+            let (p, q) = (group.points[i].lane(l), group.points[i + 1].lane(l));
+            let aabb = Aabb::new(p.min(q), p.max(q)).expanded(r.reach + radius);
+            self.segment_boxes.push(aabb);
+        }
+        self.ribbons[k].first_box = first;
+        first
+    }
+
+    /// The segments of ribbons `a` and `b` (`a < b`, in solver order) whose
+    /// boxes meet.
+    fn pair_ribbons(&mut self, lanes: &RibbonLanes, a: usize, b: usize) {
+        if tied_together(lanes, &self.ribbons[a], &self.ribbons[b]) {
+            return;
+        }
+        let (first_a, first_b) = (self.boxes_of(lanes, a), self.boxes_of(lanes, b));
+        let (ra, rb) = (self.ribbons[a], self.ribbons[b]);
+        let boxes_a = &self.segment_boxes[first_a as usize..][..ra.segments as usize];
+        let boxes_b = &self.segment_boxes[first_b as usize..][..rb.segments as usize];
+        self.near_a.clear();
+        self.near_b.clear();
+        let near = |boxes: &[Aabb], other: &Aabb, out: &mut Vec<u32>| {
+            let within = |i: &usize| boxes[*i].overlaps(other);
+            out.extend((0..boxes.len()).filter(within).map(|i| i as u32));
+        };
+        near(boxes_a, &rb.aabb, &mut self.near_a);
+        near(boxes_b, &ra.aabb, &mut self.near_b);
+        for &i in &self.near_a {
+            for &j in &self.near_b {
+                if boxes_a[i as usize].overlaps(&boxes_b[j as usize]) {
+                    push_pairs(&mut self.pairs, self.push_out, lanes, (&ra, i), (&rb, j));
+                }
+            }
+        }
+    }
+
+    /// Ribbon `k`'s segments `SELF_GAP` or more apart whose boxes meet, of
+    /// those the ribbon's slack lets come near each other: two points `m`
+    /// segments apart along a ribbon whose ends are its length less `slack`
+    /// apart are at least `(m − 1)·shortest − slack` apart.
+    fn pair_with_itself(&mut self, lanes: &RibbonLanes, k: usize) {
+        let r = self.ribbons[k];
+        let n = r.segments;
+        let within = r.slack + 2.0 * (r.reach + r.radius);
+        if n <= SELF_GAP || (SELF_GAP - 1) as f32 * r.shortest > within {
+            return;
+        }
+        let widest = (within / r.shortest.max(1e-6)) as u32 + 1;
+        let first = self.boxes_of(lanes, k) as usize;
+        let boxes = &self.segment_boxes[first..][..n as usize];
+        for i in 0..n {
+            for j in i + SELF_GAP..n.min(i.saturating_add(widest).saturating_add(1)) {
+                if boxes[i as usize].overlaps(&boxes[j as usize]) {
+                    push_pairs(&mut self.pairs, self.push_out, lanes, (&r, i), (&r, j));
+                }
+            }
+        }
+    }
+}
+
+/// The contacts of segment `i` of ribbon `a` and segment `j` of ribbon `b`:
+/// the two capsules, and each weighted end against the other segment.
+fn push_pairs(
+    pairs: &mut Vec<Touching>,
+    push_out: f32,
+    lanes: &RibbonLanes,
+    (a, i): (&RibbonBox, u32),
+    (b, j): (&RibbonBox, u32),
+) {
+    let segment = |r: &RibbonBox, index: u32| Segment {
+        group: r.group,
+        lane: r.lane,
+        index,
+    };
+    let weighted = |r: &RibbonBox, index: u32| {
+        index + 1 == r.segments
+            && lanes.groups[r.group as usize].end_radius.as_array()[r.lane as usize] > RIBBON_RADIUS
+    };
+    let (sa, sb) = (segment(a, i), segment(b, j));
+    let mut pair = Touching {
+        a: sa,
+        b: sb,
+        end_a: false,
+        end_b: false,
+        normal: Vec3::ZERO,
+        allowed: 0.0,
+    };
+    super::contact::begin(&mut pair, &lanes.groups, push_out);
+    pairs.push(pair);
+    for (end_a, end_b) in [(weighted(a, i), false), (false, weighted(b, j))] {
+        if end_a || end_b {
+            let mut end = Touching {
+                end_a,
+                end_b,
+                ..pair
+            };
+            super::contact::begin(&mut end, &lanes.groups, push_out);
+            pairs.push(end);
+        }
+    }
+}
+
+/// Whether ribbons `a` and `b` are tied at one point (their held ends
+/// within a ribbon's width): one knot holds them, and near it they have no
+/// side of each other to keep; they are left to pass through each other.
+fn tied_together(lanes: &RibbonLanes, a: &RibbonBox, b: &RibbonBox) -> bool {
+    let held_end = |r: &RibbonBox| {
+        let g = &lanes.groups[r.group as usize];
+        let (l, n) = (r.lane as usize, r.segments as usize);
+        (g.inv_mass[n].as_array()[l] == 0.0).then(|| g.points[n].lane(l))
+    };
+    match (held_end(a), held_end(b)) {
+        (Some(p), Some(q)) => p.distance(q) < 2.0 * RIBBON_RADIUS,
+        _ => false,
+    }
+}

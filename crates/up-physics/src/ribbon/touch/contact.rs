@@ -1,0 +1,148 @@
+//! One substep's projection of the ribbons' contacts (`RibbonTouch::project`):
+//! each pair's closest points pushed apart to the sum of their radii, on the
+//! side the pair keeps, with Coulomb friction on their slide over the
+//! substep, in the pairs' order.
+
+use glam::Vec3;
+
+use super::super::lane_group::LaneGroup;
+use super::super::RIBBON_RADIUS;
+use super::{closest, RibbonTouch, Segment, Touching};
+
+/// Closer than this, the closest points give no direction, m.
+const NO_DIRECTION: f32 = 1e-7;
+
+/// A segment as it stands: its two points, where they began the substep,
+/// their inverse masses and the radius at its end point.
+struct Ends {
+    p: [Vec3; 2],
+    start: [Vec3; 2],
+    inv_mass: [f32; 2],
+    end_radius: f32,
+    last: bool,
+}
+
+fn ends(groups: &[LaneGroup], s: Segment) -> Ends {
+    let g = &groups[s.group as usize];
+    let (l, i) = (s.lane as usize, s.index as usize);
+    Ends {
+        p: [g.points[i].lane(l), g.points[i + 1].lane(l)],
+        start: [g.start[i].lane(l), g.start[i + 1].lane(l)],
+        inv_mass: [g.inv_mass[i].as_array()[l], g.inv_mass[i + 1].as_array()[l]],
+        end_radius: g.end_radius.as_array()[l],
+        last: i + 2 == g.points.len(),
+    }
+}
+
+/// Moves segment `s`'s points by `d0` and `d1`.
+fn shift(groups: &mut [LaneGroup], s: Segment, d0: Vec3, d1: Vec3) {
+    let g = &mut groups[s.group as usize];
+    let (l, i) = (s.lane as usize, s.index as usize);
+    let p0: Vec3 = g.points[i].lane(l);
+    let p1: Vec3 = g.points[i + 1].lane(l);
+    g.points[i].set_lane(l, p0 + d0);
+    g.points[i + 1].set_lane(l, p1 + d1);
+}
+
+/// The closest points' parameters on `a` and `b` for `pair`.
+fn parameters(pair: &Touching, a: &Ends, b: &Ends) -> (f32, f32) {
+    if pair.end_a {
+        (1.0, closest::point_segment(a.p[1], b.p[0], b.p[1]))
+    } else if pair.end_b {
+        (closest::point_segment(b.p[1], a.p[0], a.p[1]), 1.0)
+    } else {
+        closest::segments(a.p[0], a.p[1], b.p[0], b.p[1])
+    }
+}
+
+fn at(p: [Vec3; 2], s: f32) -> Vec3 {
+    p[0] + (p[1] - p[0]) * s
+}
+
+/// Radius of `e` at parameter `s` in a contact that is (`end`) or is not its
+/// weighted end's: the weight's only at the end itself.
+fn radius(e: &Ends, s: f32, end: bool) -> f32 {
+    if end || (e.last && s >= 1.0) {
+        e.end_radius.max(RIBBON_RADIUS)
+    } else {
+        RIBBON_RADIUS
+    }
+}
+
+/// Readies `pair` as found at the step's start: its side (the unit line
+/// from its closest point on `a` to that on `b`; any unit vector if they
+/// meet) and the overlap it may keep this step, of the `push_out` m taken
+/// out of what it began with.
+pub(super) fn begin(pair: &mut Touching, groups: &[LaneGroup], push_out: f32) {
+    let (a, b) = (ends(groups, pair.a), ends(groups, pair.b));
+    let (s, t) = parameters(pair, &a, &b);
+    let d = at(b.p, t) - at(a.p, s);
+    let distance = d.length();
+    pair.normal = if distance > NO_DIRECTION {
+        d / distance
+    } else {
+        let across = (a.p[1] - a.p[0]).cross(b.p[1] - b.p[0]);
+        across.try_normalize().unwrap_or(Vec3::Y)
+    };
+    let overlap = radius(&a, s, pair.end_a) + radius(&b, t, pair.end_b) - distance;
+    pair.allowed = (overlap - push_out).max(0.0);
+}
+
+impl RibbonTouch {
+    /// Projects every pair once, in order, on the groups' points as the
+    /// substep's fall and pushes left them.
+    pub(crate) fn project(&mut self, groups: &mut [LaneGroup]) {
+        for pair in &mut self.pairs {
+            project_pair(pair, groups, self.friction);
+        }
+    }
+}
+
+/// `pair` pushed apart, if its capsules overlap or have passed through each
+/// other, with friction.
+fn project_pair(pair: &mut Touching, groups: &mut [LaneGroup], friction: f32) {
+    let (a, b) = (ends(groups, pair.a), ends(groups, pair.b));
+    let (s, t) = parameters(pair, &a, &b);
+    let d = at(b.p, t) - at(a.p, s);
+    let distance = d.length();
+    // Turned more than a right angle since last seen: passed through.
+    let (normal, distance) = if distance > NO_DIRECTION {
+        let n = d / distance;
+        if n.dot(pair.normal) < 0.0 {
+            (-n, -distance)
+        } else {
+            (n, distance)
+        }
+    } else {
+        (pair.normal, 0.0)
+    };
+    pair.normal = normal;
+    let depth = radius(&a, s, pair.end_a) + radius(&b, t, pair.end_b) - pair.allowed - distance;
+    if depth <= 0.0 {
+        return;
+    }
+    let wa = [(1.0 - s) * a.inv_mass[0], s * a.inv_mass[1]];
+    let wb = [(1.0 - t) * b.inv_mass[0], t * b.inv_mass[1]];
+    let w = (1.0 - s) * wa[0] + s * wa[1] + (1.0 - t) * wb[0] + t * wb[1];
+    if w <= 0.0 {
+        return;
+    }
+    // The push: b along the normal, a against it, by inverse mass.
+    let push = normal * (depth / w);
+    // Friction on what the closest points slid past each other this
+    // substep, taken out whole while the push could hold it, else by
+    // the push times the coefficient.
+    let slid = (at(b.p, t) - at(b.start, t)) - (at(a.p, s) - at(a.start, s));
+    let slid = slid - slid.dot(normal) * normal;
+    let slide = slid.length();
+    let limit = friction * depth;
+    let held = if slide > limit && slide > 0.0 {
+        limit / slide
+    } else {
+        1.0
+    };
+    let grip = -slid * (held / w);
+    let impulse = push + grip;
+    shift(groups, pair.a, -wa[0] * impulse, -wa[1] * impulse);
+    shift(groups, pair.b, wb[0] * impulse, wb[1] * impulse);
+}

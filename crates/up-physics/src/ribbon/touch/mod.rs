@@ -1,0 +1,141 @@
+//! Ribbons touching ribbons: each segment is a capsule of `RIBBON_RADIUS`
+//! (a weighted end a sphere of its weight's radius), and segments of
+//! different ribbons, and of one ribbon with itself two segments apart or
+//! more, do not pass through each other.
+//!
+//! Once a step, before the substeps, the segments that may touch are paired
+//! (`broad`): each awake ribbon's box, widened by how far its points can
+//! move in the step (their speed, gravity's fall and a margin), swept along
+//! x for boxes that meet, then the two ribbons' segment boxes against each
+//! other; a ribbon against itself only where it is slack enough to fold back
+//! on itself. The pairs are speculative, found before they touch, so that a
+//! segment swept fast across another is caught in the substep it would
+//! cross.
+//!
+//! In each substep, between the points' fall and pushes and the chains'
+//! direct solve (`LaneGroup::substep_before_solve`, `substep_solve`), every
+//! pair is projected in the pairs' fixed order (`contact`): the closest
+//! points of the two segments as they now are, pushed apart to the sum of
+//! their radii along the line between them, each segment's two points by
+//! their share and inverse mass (so each ribbon pushes the other), with
+//! position-level Coulomb friction on what the closest points slid past each
+//! other over the substep (Müller et al., "Detailed rigid body simulation
+//! with extended position based dynamics", 2020). A pair keeps the side it
+//! was found on: when the line between the closest points turns more than a
+//! right angle in one substep, the segments passed through each other, and
+//! they are pushed back to the side they came from. The chain's solve then
+//! restores the lengths; the next substep's projection takes up what it
+//! moved back.
+//!
+//! The pass runs on one thread in a fixed order, so the result is the same
+//! on any number of threads; with no pair in a step the substeps run as
+//! they would without it (one pass per group, bit for bit), so ribbons that
+//! never touch, and sleeping ones, cost no more than the pairing.
+
+mod broad;
+mod closest;
+mod contact;
+
+use glam::Vec3;
+use up_geom::Aabb;
+
+/// Friction of a ribbon on a ribbon, polypropylene on polypropylene: a
+/// guess (film on film is quoted at 0.3–0.5; curling ribbon, ribbed and
+/// often crimped, grips at least as well).
+pub const RIBBON_ON_RIBBON_FRICTION: f32 = 0.4;
+
+/// Fastest two capsules that begin a step overlapping are pushed apart, m/s
+/// (laid out on one spot, as a bouquet's weights are): at once, they would
+/// fly apart; those that overlap only within the step (a crossing caught)
+/// are pushed out whole.
+pub const OVERLAP_PUSH_OUT_SPEED: f32 = 0.1;
+
+/// A segment: points `index` and `index + 1` of the ribbon in lane `lane`
+/// of lane group `group`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Segment {
+    pub group: u32,
+    pub lane: u32,
+    pub index: u32,
+}
+
+/// Two segments that may touch this step.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Touching {
+    pub a: Segment,
+    pub b: Segment,
+    /// The contact is `a`'s (or `b`'s) weighted end, a sphere, against the
+    /// other segment.
+    pub end_a: bool,
+    pub end_b: bool,
+    /// From `a` toward `b` as they last stood (found, or last projected): the
+    /// side `b` keeps.
+    pub normal: Vec3,
+    /// How far they may still overlap this step, m: what they began the
+    /// step overlapping less `OVERLAP_PUSH_OUT_SPEED` times the step.
+    pub allowed: f32,
+}
+
+/// An awake ribbon's box for the step, and what says whether it can touch
+/// itself.
+#[derive(Clone, Copy, Debug)]
+struct RibbonBox {
+    aabb: Aabb,
+    group: u32,
+    lane: u32,
+    segments: u32,
+    /// How far any of its points may move this step, and its points'
+    /// largest radius, m.
+    reach: f32,
+    radius: f32,
+    /// Its length along its points less the distance between its ends, and
+    /// its shortest segment, m.
+    slack: f32,
+    shortest: f32,
+    /// Its segments' boxes start here in `RibbonTouch::segment_boxes`
+    /// (`u32::MAX`: not made this step).
+    first_box: u32,
+}
+
+/// The ribbons' contacts with each other, kept between steps for their
+/// buffers (no allocation a step once grown).
+#[derive(Clone, Debug)]
+pub(crate) struct RibbonTouch {
+    /// Whether ribbons touch at all (`WorldDef::ribbon_contacts`).
+    pub enabled: bool,
+    /// Friction of a ribbon on a ribbon (`WorldDef::ribbon_friction`).
+    pub friction: f32,
+    /// How much of a pair's overlap at the step's start is taken out in the
+    /// step, m.
+    pub push_out: f32,
+    /// The step's pairs, in the order they are projected.
+    pub pairs: Vec<Touching>,
+    ribbons: Vec<RibbonBox>,
+    sorted: Vec<u32>,
+    segment_boxes: Vec<Aabb>,
+    near_a: Vec<u32>,
+    near_b: Vec<u32>,
+}
+
+impl Default for RibbonTouch {
+    fn default() -> Self {
+        RibbonTouch {
+            enabled: true,
+            friction: RIBBON_ON_RIBBON_FRICTION,
+            push_out: 0.0,
+            pairs: Vec::new(),
+            ribbons: Vec::new(),
+            sorted: Vec::new(),
+            segment_boxes: Vec::new(),
+            near_a: Vec::new(),
+            near_b: Vec::new(),
+        }
+    }
+}
+
+impl RibbonTouch {
+    /// No pair this step: the substeps run without the pass.
+    pub fn is_empty(&self) -> bool {
+        self.pairs.is_empty()
+    }
+}

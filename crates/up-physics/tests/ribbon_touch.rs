@@ -1,0 +1,139 @@
+//! Ribbons touching ribbons (`ribbon::touch`), physics against physics: a
+//! ribbon dropped across a taut one hangs over it (ignored: it does not
+//! yet); the same with the contacts off falls through it.
+
+mod common;
+
+use common::*;
+use glam::{Quat, Vec3};
+use up_physics::ribbon::RibbonDef;
+use up_physics::{DistanceJointDef, DistanceLimit, JointAnchor, RibbonId, World, WorldDef};
+
+/// The reference balloon's knot, in its mesh frame.
+const KNOT: Vec3 = Vec3::new(0.0, -0.2, 0.0);
+const SEGMENTS: u32 = 24;
+
+/// A balloon whose knot is held at `knot` by a short rope (its lift pulls
+/// it up against the rope), with a ribbon of `length` m tied to `anchor`
+/// if given.
+fn held_ribbon(
+    world: &mut World,
+    shape: up_physics::ShapeId,
+    knot: Vec3,
+    length: f32,
+    anchor: Option<Vec3>,
+) -> RibbonId {
+    let body = add(world, shape, knot - KNOT, Quat::IDENTITY);
+    world
+        .add_distance_joint(&DistanceJointDef {
+            a: JointAnchor::Body { body, point: KNOT },
+            b: JointAnchor::Fixed(knot),
+            length: 0.001,
+            limit: DistanceLimit::Rope,
+            compliance: 0.0,
+        })
+        .unwrap();
+    world
+        .add_ribbon(&RibbonDef {
+            anchor,
+            ..RibbonDef::new(body, KNOT, length, SEGMENTS)
+        })
+        .unwrap()
+}
+
+/// Height of the taut ribbon's middle (it runs along z at x = 0, laid
+/// sagging at its length between its ends at 1.5 and 1.45 m).
+const TAUT_HEIGHT: f32 = 1.418;
+
+/// The taut ribbon along z from (0, 1.5, −0.5) to its anchor at
+/// (0, 1.45, 0.49), 1 m long; the other, 0.95 m, held below it at
+/// (−0.35, 1.35, 0), its end carried straight up above its knot and over
+/// the taut one to (0.3, 2.0, 0) (nearly straight, clear above it), then
+/// let go; the dropped ribbon's points after
+/// `seconds` more.
+fn drape(contacts: bool, seconds: f32) -> (Vec<Vec3>, f32) {
+    let def = WorldDef {
+        room: Some(room(4.0, 4.0, 3.0, None)),
+        ribbon_contacts: contacts,
+        enable_sleep: false,
+        ..WorldDef::default()
+    };
+    let (mut world, shape) = world_with(def);
+    let anchor = Vec3::new(0.0, 1.45, 0.49);
+    held_ribbon(
+        &mut world,
+        shape,
+        Vec3::new(0.0, 1.5, -0.5),
+        1.0,
+        Some(anchor),
+    );
+    let dropped = held_ribbon(&mut world, shape, Vec3::new(-0.35, 1.35, 0.0), 0.95, None);
+    world
+        .grab_ribbon(dropped, SEGMENTS as usize, Vec3::new(-0.35, 2.28, 0.05))
+        .unwrap();
+    for _ in 0..90 {
+        world.step();
+    }
+    world.set_grab_target(Vec3::new(0.3, 2.0, 0.0)).unwrap();
+    for _ in 0..90 {
+        world.step();
+    }
+    world.release_grab();
+    for _ in 0..(seconds * 60.0) as u32 {
+        world.step();
+    }
+    let points = world.ribbon_points(dropped).unwrap().to_vec();
+    let speed = world
+        .ribbon_velocities(dropped)
+        .unwrap()
+        .iter()
+        .map(|v| v.length_squared())
+        .sum::<f32>()
+        / points.len() as f32;
+    (points, speed.sqrt())
+}
+
+/// The highest point of `points` within 3 cm of the taut ribbon's line
+/// (x = 0): its index and height.
+fn crest(points: &[Vec3]) -> Option<(usize, f32)> {
+    points
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| p.x.abs() < 0.03)
+        .map(|(i, p)| (i, p.y))
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+}
+
+#[test]
+#[ignore = "fails today: the dropped ribbon lands on the taut one, then slips through it as its two halves fold into a sharp V about it"]
+fn a_ribbon_dropped_across_a_taut_one_hangs_over_it() {
+    let (points, rms) = drape(true, 10.0);
+    let end = *points.last().unwrap();
+    let (top, height) = crest(&points).expect("no point near the taut ribbon");
+    let below = |side: &[Vec3]| side.iter().filter(|p| p.y < TAUT_HEIGHT - 0.05).count();
+    let (near, far) = (below(&points[..top]), below(&points[top..]));
+    println!(
+        "draped: resting at {height:.4} m (the taut ribbon at {TAUT_HEIGHT}), point {top}; {near} points below it on the knot's side, {far} on the far side; end at {end}; rms speed {rms:.4} m/s"
+    );
+    assert!(
+        height > TAUT_HEIGHT - 0.01,
+        "fell through: highest near the taut ribbon at {height}"
+    );
+    assert!(near >= 3 && far >= 3, "halves below: {near} and {far}");
+    assert!(
+        end.y < TAUT_HEIGHT - 0.1,
+        "the far half does not hang: {end}"
+    );
+    assert!(rms < 0.01, "still moving at {rms} m/s after 10 s");
+}
+
+#[test]
+fn without_contacts_the_dropped_ribbon_falls_through() {
+    let (points, _) = drape(false, 10.0);
+    let height = crest(&points).map_or(f32::MIN, |c| c.1);
+    println!("contacts off: highest near the taut ribbon {height}");
+    assert!(
+        height < TAUT_HEIGHT - 0.01,
+        "rested on the taut ribbon with contacts off"
+    );
+}
