@@ -9,6 +9,13 @@
 //! on every platform (no fast-math, libm for transcendental functions, no
 //! hash-map iteration on the step's path).
 
+// Threads in WebAssembly need a nightly std built with atomics; on it, a
+// thread waiting at a stage's barrier sleeps on the count (`threading::staged`).
+#![cfg_attr(
+    all(target_arch = "wasm32", target_feature = "atomics"),
+    feature(stdarch_wasm_atomic_wait)
+)]
+
 pub mod air;
 mod body;
 mod broad_phase;

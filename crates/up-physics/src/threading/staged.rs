@@ -32,8 +32,13 @@ use crate::threading::tasks::threads_here;
 use crate::threading::thread_times;
 
 /// Spins before a waiting thread yields its core (to a thread that holds a
-/// block, when there are more threads than cores).
+/// block, when there are more threads than cores); in WebAssembly, where it
+/// then sleeps until woken (`give_way`), it spins longer first, since a wake
+/// costs microseconds and most waits at a barrier are shorter.
+#[cfg(not(all(target_arch = "wasm32", target_feature = "atomics")))]
 const SPINS_BEFORE_YIELD: u32 = 64;
+#[cfg(all(target_arch = "wasm32", target_feature = "atomics"))]
+const SPINS_BEFORE_YIELD: u32 = 4_096;
 
 /// An atomic alone on its cache line (128 bytes: some cores fetch lines in
 /// pairs), so that threads updating neighbours do not contend.
@@ -231,7 +236,10 @@ pub(crate) fn run_in_stages(stages: &Stages, run: impl Fn(usize) + Sync) {
                 }
             }
             // Release: the blocks' writes are seen by whoever sees the count.
-            done.0.fetch_add(ran, Ordering::Release);
+            let counted = done.0.fetch_add(ran, Ordering::Release) + ran;
+            if counted >= stages.starts[s + 1] as usize {
+                wake_waiters(&done.0);
+            }
         }
     };
     // One thread here (`tasks::alone`, or a layout for one): it takes every
@@ -296,10 +304,47 @@ fn wait_until_done(done: &AtomicUsize, blocks: usize, failed: &AtomicBool) -> bo
             spins += 1;
             spin_loop();
         } else {
-            std::thread::yield_now();
+            give_way(done, blocks);
         }
     }
     true
+}
+
+/// Lets another thread have this core while `done` is under `blocks`.
+#[cfg(not(all(target_arch = "wasm32", target_feature = "atomics")))]
+fn give_way(_done: &AtomicUsize, _blocks: usize) {
+    std::thread::yield_now();
+}
+
+/// Lets another thread have this core while `done` is under `blocks`:
+/// `yield_now` does nothing in WebAssembly, so a waiting thread would hold
+/// its core from the very thread whose block it waits for (the page's own
+/// threads, drawing, take cores too). It sleeps on the count instead, woken
+/// by the stage's last block (`wake_waiters`), or after a millisecond, so
+/// that a panicked block, which wakes no one, is still noticed.
+#[cfg(all(target_arch = "wasm32", target_feature = "atomics"))]
+fn give_way(done: &AtomicUsize, blocks: usize) {
+    let seen = done.load(Ordering::Acquire);
+    if seen < blocks {
+        // SAFETY: the count outlives the wait, and a usize is an i32 on wasm32;
+        // a wait that finds the count moved returns at once.
+        unsafe {
+            core::arch::wasm32::memory_atomic_wait32(done.as_ptr().cast(), seen as i32, 1_000_000);
+        }
+    }
+}
+
+/// Wakes the threads asleep on a stage's count (`give_way`); natively none sleep.
+#[cfg(not(all(target_arch = "wasm32", target_feature = "atomics")))]
+fn wake_waiters(_done: &AtomicUsize) {}
+
+/// Wakes the threads asleep on a stage's count (`give_way`).
+#[cfg(all(target_arch = "wasm32", target_feature = "atomics"))]
+fn wake_waiters(done: &AtomicUsize) {
+    // SAFETY: the count is a live i32-sized atomic.
+    unsafe {
+        core::arch::wasm32::memory_atomic_notify(done.as_ptr().cast(), u32::MAX);
+    }
 }
 
 #[cfg(test)]
