@@ -79,16 +79,14 @@ pub struct WorldDef {
     /// The static room, one-sided, normals pointing into the room. `None`: free space.
     pub room: Option<TriMesh>,
     /// Whether ribbons touch each other and themselves (`ribbon::touch`);
-    /// true. Off, they pass through each other, at less cost.
-    #[serde(default = "ribbon_contacts_on")]
+    /// false. Off, they pass through each other: with ten thousand ribbons
+    /// laid crossing on the floor the contacts still cost twice the ribbons'
+    /// own solve, so a scene asks for them (a bouquet's are cheap).
+    #[serde(default)]
     pub ribbon_contacts: bool,
     /// Friction of a ribbon on a ribbon; `RIBBON_ON_RIBBON_FRICTION` (0.4, a guess).
     #[serde(default = "ribbon_on_ribbon_friction")]
     pub ribbon_friction: f32,
-}
-
-fn ribbon_contacts_on() -> bool {
-    true
 }
 
 fn ribbon_on_ribbon_friction() -> f32 {
@@ -124,7 +122,7 @@ impl Default for WorldDef {
             time_to_sleep: 0.5,
             enable_continuous: true,
             room: None,
-            ribbon_contacts: true,
+            ribbon_contacts: false,
             ribbon_friction: crate::ribbon::RIBBON_ON_RIBBON_FRICTION,
         }
     }

@@ -104,6 +104,8 @@ pub fn world_def(scene: &Scene) -> WorldDef {
         angular_damping: sim.angular_damping,
         enable_sleep: sim.sleep,
         enable_continuous: sim.continuous,
+        ribbon_contacts: sim.ribbon_contacts,
+        ribbon_friction: sim.ribbon_friction,
         temperature_schedule: scene.air.temperature_schedule(),
         ..WorldDef::default()
     }

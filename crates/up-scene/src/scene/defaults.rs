@@ -143,6 +143,8 @@ impl Default for SimSpec {
             contact_damping_ratio: def.contact_damping_ratio,
             sleep: def.enable_sleep,
             continuous: def.enable_continuous,
+            ribbon_contacts: def.ribbon_contacts,
+            ribbon_friction: def.ribbon_friction,
         }
     }
 }

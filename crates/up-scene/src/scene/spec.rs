@@ -398,6 +398,10 @@ pub struct SimSpec {
     pub sleep: bool,
     /// Sweep fast balloons against the room (time of impact); true.
     pub continuous: bool,
+    /// Ribbons touch each other (no ribbon passes through another); false.
+    pub ribbon_contacts: bool,
+    /// Friction of a ribbon on a ribbon; 0.4 (a guess). Range [0, 10].
+    pub ribbon_friction: f32,
 }
 
 impl PartialEq for Scene {
