@@ -4,15 +4,17 @@
 //! for bit what its ribbon would alone; the balloons' states, the force
 //! fields, a grab and the pushes are read and made lane by lane.
 
+use std::cell::RefCell;
+
 use glam::Vec3;
 
-use super::chain::{div, norm, solve_chains, Knots};
+use super::chain::{div, norm, solve_chains, ChainRows, Knots};
 use super::lane_group::{set_matrix, LaneGroup};
 use super::lane_pushes::NearInput;
 use super::solve::{SubstepInput, CHAIN_ITERATIONS, CHAIN_TOLERANCE};
 use crate::forces::field::PointSample;
 use crate::solver::body_state::BodyState;
-use crate::solver::lanes::{set, F4, LANES, V4};
+use crate::solver::lanes::{prefetch, set, F4, LANES, V4};
 
 /// A segment shorter than this gives the ribbon no direction at a point, m.
 const NO_DIRECTION: f32 = 1e-9;
@@ -20,13 +22,24 @@ const NO_DIRECTION: f32 = 1e-9;
 /// linear between (`sample_air`).
 const AIR_SAMPLE_EVERY: usize = 4;
 
+thread_local! {
+    /// The chains' solve's working rows, one set a thread: written and read
+    /// within one group's solve, they stay in the cache from group to group
+    /// (a set a group would add a third to what a substep walks through).
+    static ROWS: RefCell<ChainRows> = RefCell::new(ChainRows::default());
+}
+
 impl LaneGroup {
     /// One substep of the group's ribbons, reading the balloons' `states`.
     pub(crate) fn substep(&mut self, near: &NearInput) {
         let (input, states) = (near.input, near.states);
         let h = input.h;
+        // Fetched while the knots' balloons are read (a substep walks
+        // through every group, more than the cache holds).
+        prefetch(&self.velocities);
+        prefetch(&self.inv_mass);
+        prefetch(&self.start);
         let knots = self.place_knots(states);
-        self.start.copy_from_slice(&self.points);
         self.fall(input, h);
         self.carry_grabbed(h);
         self.push_out_of_balloons(near);
@@ -60,10 +73,12 @@ impl LaneGroup {
 
     /// Gravity, the fields' forces and drag on each point (drag implicit,
     /// across and along the ribbon apart, on the velocity relative to the
-    /// air), then its move over the substep. In still air, or where no
-    /// lane's point feels any, the still-air arithmetic runs unchanged.
+    /// air), then its move over the substep; `start` keeps where each point
+    /// began it (in the same pass). In still air, or where no lane's point
+    /// feels any, the still-air arithmetic runs unchanged.
     fn fall(&mut self, input: &SubstepInput, h: f32) {
         let n = self.points.len() - 1;
+        self.start[0] = self.points[0];
         if self.substeps == 0 {
             if let Some(air) = input.air {
                 self.sample_air(air);
@@ -74,6 +89,7 @@ impl LaneGroup {
         let hg = h * input.gravity;
         let hg = V4::new(F4::splat(hg.x), F4::splat(hg.y), F4::splat(hg.z));
         for i in 1..=n {
+            self.start[i] = self.points[i];
             let inv_mass = self.inv_mass[i];
             let movable = inv_mass.simd_ne(F4::ZERO);
             let mut v = self.velocities[i] + hg;
@@ -196,24 +212,27 @@ impl LaneGroup {
         self.impulse = V4::ZERO;
         let tolerance = F4::splat(CHAIN_TOLERANCE) * self.segment_length;
         let mut moving = self.live_mask;
-        for _ in 0..CHAIN_ITERATIONS {
-            let (impulse, worst) = solve_chains(
-                &mut self.points,
-                &self.inv_mass,
-                self.segment_length,
-                knots,
-                moving,
-                &mut self.rows,
-            );
-            // The knot moves with its body's share before the next solve.
-            let knot = self.points[0] + knots.point_motion(impulse);
-            self.points[0] = V4::select(moving, knot, self.points[0]);
-            self.impulse = V4::select(moving, self.impulse + impulse, self.impulse);
-            moving &= !worst.simd_lt(tolerance);
-            if !moving.any() {
-                break;
+        ROWS.with_borrow_mut(|rows| {
+            rows.resize(self.points.len() - 1);
+            for _ in 0..CHAIN_ITERATIONS {
+                let (impulse, worst) = solve_chains(
+                    &mut self.points,
+                    &self.inv_mass,
+                    self.segment_length,
+                    knots,
+                    moving,
+                    rows,
+                );
+                // The knot moves with its body's share before the next solve.
+                let knot = self.points[0] + knots.point_motion(impulse);
+                self.points[0] = V4::select(moving, knot, self.points[0]);
+                self.impulse = V4::select(moving, self.impulse + impulse, self.impulse);
+                moving &= !worst.simd_lt(tolerance);
+                if !moving.any() {
+                    break;
+                }
             }
-        }
+        });
         moving
     }
 
