@@ -116,49 +116,28 @@ pub(crate) fn solve_chains(
     let n = points.len() - 1;
     debug_assert!(n as u32 <= MAX_SEGMENTS && inv_mass.len() == points.len());
     let (dir, upper, rhs) = (&mut rows.dir[..n], &mut rows.upper[..n], &mut rows.rhs[..n]);
-    let (zero, no_length) = (F4::ZERO, F4::splat(NO_LENGTH));
-    let taut_length = F4::splat(1.0 - SLACK) * segment_length;
-    let mut taut_knot = zero;
+    let zero = F4::ZERO;
     let mut worst = zero;
-    for j in 0..n {
-        let d = points[j + 1] - points[j];
-        let len = norm(d);
-        // A segment of no length has no direction: it keeps its neighbour's.
-        let before = if j > 0 {
-            dir[j - 1]
-        } else {
-            V4::new(zero, F4::splat(-1.0), zero)
-        };
-        dir[j] = V4::select(len.simd_gt(no_length), div(d, len), before);
-        // The ribbon keeps its length along itself, both ways (it bends at
-        // its points); its segment at the knot pulls the balloon but never
-        // pushes it: slack, its row is left out (λ_0 = 0).
-        rhs[j] = segment_length - len;
-        if j == 0 {
-            taut_knot = len.simd_gt(taut_length);
-            rhs[0] = select(taut_knot, rhs[0], zero);
-        }
-        worst = max_of_number(worst, rhs[j].abs());
-    }
+    // Row 0: the knot's segment, coupled to row 1 only while taut.
+    let len = segment(points, 0, V4::new(zero, F4::splat(-1.0), zero), dir);
+    let taut_knot = len.simd_gt(F4::splat(1.0 - SLACK) * segment_length);
+    rhs[0] = select(taut_knot, segment_length - len, zero);
+    worst = max_of_number(worst, rhs[0].abs());
     let knot_w = knot.inv_mass_along(dir[0]);
-    let w = |i: usize| if i == 0 { knot_w } else { inv_mass[i] };
-    // Forward sweep: `upper` becomes c'_j and `rhs` d'_j. Rows 0 and 1 are
-    // coupled only while the knot's segment is taut.
+    // One pass down: each row's segment found (its direction, how far it is
+    // from its length), then the row before it eliminated (the Thomas
+    // algorithm's forward sweep: `upper` becomes c'_j and `rhs` d'_j), so
+    // the sweep's chain of divisions overlaps the next segment's norm.
+    let mut w_j = knot_w;
     let mut previous_upper = zero;
     let mut previous_rhs = zero;
     for j in 0..n {
-        let lower = if j > 0 {
-            let lower = -w(j) * dir[j - 1].dot(dir[j]);
-            if j == 1 {
-                select(taut_knot, lower, zero)
-            } else {
-                lower
-            }
-        } else {
-            zero
-        };
+        let w_next = inv_mass[j + 1];
         let c = if j + 1 < n {
-            let c = -w(j + 1) * dir[j].dot(dir[j + 1]);
+            let len = segment(points, j + 1, dir[j], dir);
+            rhs[j + 1] = segment_length - len;
+            worst = max_of_number(worst, rhs[j + 1].abs());
+            let c = -w_next * dir[j].dot(dir[j + 1]);
             if j == 0 {
                 select(taut_knot, c, zero)
             } else {
@@ -167,29 +146,53 @@ pub(crate) fn solve_chains(
         } else {
             zero
         };
-        let pivot = w(j) + w(j + 1) - lower * previous_upper;
+        let lower = if j > 0 {
+            let lower = -w_j * dir[j - 1].dot(dir[j]);
+            if j == 1 {
+                select(taut_knot, lower, zero)
+            } else {
+                lower
+            }
+        } else {
+            zero
+        };
+        let pivot = w_j + w_next - lower * previous_upper;
         let mut solved = !pivot.abs().simd_lt(F4::splat(TINY));
         if j == 0 {
             solved &= taut_knot;
         }
-        upper[j] = select(solved, c / pivot, zero);
-        rhs[j] = select(solved, (rhs[j] - lower * previous_rhs) / pivot, zero);
-        previous_upper = upper[j];
-        previous_rhs = rhs[j];
+        previous_upper = select(solved, c / pivot, zero);
+        previous_rhs = select(solved, (rhs[j] - lower * previous_rhs) / pivot, zero);
+        upper[j] = previous_upper;
+        rhs[j] = previous_rhs;
+        w_j = w_next;
     }
-    // Back substitution: `rhs` becomes λ_j.
-    for j in (0..n.saturating_sub(1)).rev() {
-        rhs[j] -= upper[j] * rhs[j + 1];
-    }
+    // One pass up: back substitution (`rhs` becomes λ_j), and each point
+    // moved as soon as both its segments' λ are known:
     // Δx_i = w_i·(λ_{i−1}·n_{i−1} − λ_i·n_i).
-    for i in 1..=n {
-        let pull_back = rhs[i - 1] * dir[i - 1];
-        let pull_on = if i < n { rhs[i] * dir[i] } else { V4::ZERO };
-        let moved = points[i] + inv_mass[i] * (pull_back - pull_on);
+    let mut lambda_after = rhs[n - 1];
+    let moved = points[n] + inv_mass[n] * (lambda_after * dir[n - 1] - V4::ZERO);
+    points[n] = V4::select(moving, moved, points[n]);
+    for j in (0..n - 1).rev() {
+        let lambda = rhs[j] - upper[j] * lambda_after;
+        let i = j + 1;
+        let moved = points[i] + inv_mass[i] * (lambda * dir[j] - lambda_after * dir[i]);
         points[i] = V4::select(moving, moved, points[i]);
+        lambda_after = lambda;
     }
     // The knot's share: Δx_0 = −w_0·λ_0·n_0, an impulse −λ_0·n_0.
-    (-rhs[0] * dir[0], worst)
+    (-lambda_after * dir[0], worst)
+}
+
+/// Segment `j` of the chains (from point `j` to `j + 1`): its unit direction
+/// into `dir[j]` (`before`'s where it has no length: it keeps its
+/// neighbour's), and its length.
+#[inline(always)]
+fn segment(points: &[V4], j: usize, before: V4, dir: &mut [V4]) -> F4 {
+    let d = points[j + 1] - points[j];
+    let len = norm(d);
+    dir[j] = V4::select(len.simd_gt(F4::splat(NO_LENGTH)), div(d, len), before);
+    len
 }
 
 #[cfg(test)]

@@ -15,9 +15,9 @@
 use std::ops::Range;
 
 use super::body_spheres::BodySpheres;
-use super::chain::ChainRows;
 use super::collide::{Grip, NearBalloon};
 use super::lane_pushes::NearSlot;
+use super::lane_room::RoomSlot;
 use super::solve::ActiveRibbon;
 use super::{Ribbon, MAX_SEGMENTS};
 use crate::solver::lanes::{set, F4, LANES, M4, V4};
@@ -69,6 +69,12 @@ pub(crate) struct LaneGroup {
     /// its friction against the room over the step's substeps; plain, not
     /// lane-shuffled, since only the scalar room push reads it.
     pub grips: Vec<Grip>,
+    /// The room's triangles near the lanes lined up across them, the lanes
+    /// that have any (bit `l` for lane `l`), and per point the lanes whose
+    /// grip holds friction (`lane_room`).
+    pub room_slots: Vec<RoomSlot>,
+    pub room_lanes: u32,
+    pub gripped: Vec<u8>,
     /// Per point, once `windy`: the air's velocity there this step, sampled
     /// at the first substep (`lane_substep`); and per lane the fastest of it.
     pub air: Vec<V4>,
@@ -92,7 +98,6 @@ pub(crate) struct LaneGroup {
     pub h: f32,
     /// The near balloons' bounds lined up across the lanes.
     pub near_slots: Vec<NearSlot>,
-    pub rows: ChainRows,
 }
 
 impl LaneGroup {
@@ -114,7 +119,7 @@ impl LaneGroup {
         self.air_speed = F4::ZERO;
         self.inv_mass.resize(points, F4::ZERO);
         self.grips.resize(points * LANES, Grip::new(Vec3::ZERO));
-        self.rows.resize(segments);
+        self.room_lanes = 0;
         self.step_impulse = V4::ZERO;
         self.substeps = 0;
         self.h = 0.0;

@@ -159,26 +159,33 @@ impl LaneGroup {
     }
 
     /// Pushes each ribbon's movable points out of the room's triangles near
-    /// it; `first`: the step's first push, its friction from nothing yet.
+    /// it, those that may touch it (`near_room`); `first`: the step's first
+    /// push, its friction from nothing yet.
     pub(super) fn push_out_of_room(&mut self, triangles: &[NearTriangle], first: bool) {
-        for l in 0..self.live {
-            let range = &self.lanes[l].triangles;
-            let near = &triangles[range.start as usize..range.end as usize];
-            if near.is_empty() {
-                continue;
-            }
-            for i in 1..self.points.len() {
-                if self.inv_mass[i].as_array()[l] == 0.0 {
-                    continue;
+        if first {
+            self.line_up_room(triangles);
+            for l in (0..self.live).filter(|l| self.room_lanes & (1 << l) != 0) {
+                for (i, start) in self.start.iter().enumerate() {
+                    self.grips[i * LANES + l] = Grip::new(start.lane(l));
                 }
+            }
+        }
+        if self.room_lanes == 0 {
+            return;
+        }
+        for i in 1..self.points.len() {
+            let mut lanes = self.near_room(i);
+            while lanes != 0 {
+                let l = lanes.trailing_zeros() as usize;
+                lanes &= lanes - 1;
+                let range = &self.lanes[l].triangles;
+                let near = &triangles[range.start as usize..range.end as usize];
                 let (start, radius) = (self.start[i].lane(l), self.radius(i).as_array()[l]);
                 let mut point: Vec3 = self.points[i].lane(l);
                 let grip = &mut self.grips[i * LANES + l];
-                if first {
-                    *grip = Grip::new(start);
-                }
                 push_out_of_room(&mut point, start, radius, ROOM_FRICTION, near, grip);
                 self.points[i].set_lane(l, point);
+                self.note_grip(l, i);
             }
         }
     }

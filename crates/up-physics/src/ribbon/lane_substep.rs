@@ -4,15 +4,17 @@
 //! for bit what its ribbon would alone; the balloons' states, the force
 //! fields, a grab and the pushes are read and made lane by lane.
 
+use std::cell::RefCell;
+
 use glam::Vec3;
 
-use super::chain::{div, norm, solve_chains, Knots};
+use super::chain::{div, norm, solve_chains, ChainRows, Knots};
 use super::lane_group::{set_matrix, LaneGroup};
 use super::lane_pushes::NearInput;
 use super::solve::{SubstepInput, CHAIN_ITERATIONS, CHAIN_TOLERANCE};
 use crate::forces::field::PointSample;
 use crate::solver::body_state::BodyState;
-use crate::solver::lanes::{set, F4, LANES, V4};
+use crate::solver::lanes::{prefetch, set, F4, LANES, V4};
 
 /// A segment shorter than this gives the ribbon no direction at a point, m.
 const NO_DIRECTION: f32 = 1e-9;
@@ -20,35 +22,53 @@ const NO_DIRECTION: f32 = 1e-9;
 /// linear between (`sample_air`).
 const AIR_SAMPLE_EVERY: usize = 4;
 
+thread_local! {
+    /// The chains' solve's working rows, one set a thread: written and read
+    /// within one group's solve, they stay in the cache from group to group
+    /// (a set a group would add a third to what a substep walks through).
+    static ROWS: RefCell<ChainRows> = RefCell::new(ChainRows::default());
+}
+
 impl LaneGroup {
     /// One substep of the group's ribbons, reading the balloons' `states`.
     pub(crate) fn substep(&mut self, near: &NearInput) {
-        self.substep_before_solve(near);
-        self.substep_solve(near);
+        let knots = self.substep_before_solve(near);
+        self.solve_and_finish(near, &knots);
     }
 
     /// The substep up to the chains' solve: the knots placed, the points'
     /// fall and the pushes out of balloons and room (the ribbons' contacts
     /// with each other, `touch`, come between this and `substep_solve`).
-    pub(crate) fn substep_before_solve(&mut self, near: &NearInput) {
+    pub(crate) fn substep_before_solve(&mut self, near: &NearInput) -> Knots {
         let (input, states) = (near.input, near.states);
         let h = input.h;
-        self.place_knots(states);
-        self.start.copy_from_slice(&self.points);
+        // Fetched while the knots' balloons are read (a substep walks
+        // through every group, more than the cache holds).
+        prefetch(&self.velocities);
+        prefetch(&self.inv_mass);
+        prefetch(&self.start);
+        let knots = self.place_knots(states);
         self.fall(input, h);
         self.carry_grabbed(h);
         self.push_out_of_balloons(near);
         self.push_out_of_room(input.triangles, self.substeps == 0);
+        knots
     }
 
     /// The rest of the substep: the chains' solve, the room's push again and
     /// the velocities.
     pub(crate) fn substep_solve(&mut self, near: &NearInput) {
+        // The same knots as before the solve's part (the bodies have not
+        // moved), placed again since the contacts between may have moved them.
+        let knots = self.place_knots(near.states);
+        self.solve_and_finish(near, &knots);
+    }
+
+    /// `substep_solve` with the knots as `substep_before_solve` placed them.
+    fn solve_and_finish(&mut self, near: &NearInput, knots: &Knots) {
         let (input, states) = (near.input, near.states);
         let h = input.h;
-        // The same knots as before the solve's part (the bodies have not moved).
-        let knots = self.place_knots(states);
-        let unconverged = self.solve_chains(&knots);
+        let unconverged = self.solve_chains(knots);
         if unconverged.any() {
             self.follow_the_leader(unconverged);
         }
@@ -77,10 +97,12 @@ impl LaneGroup {
 
     /// Gravity, the fields' forces and drag on each point (drag implicit,
     /// across and along the ribbon apart, on the velocity relative to the
-    /// air), then its move over the substep. In still air, or where no
-    /// lane's point feels any, the still-air arithmetic runs unchanged.
+    /// air), then its move over the substep; `start` keeps where each point
+    /// began it (in the same pass). In still air, or where no lane's point
+    /// feels any, the still-air arithmetic runs unchanged.
     fn fall(&mut self, input: &SubstepInput, h: f32) {
         let n = self.points.len() - 1;
+        self.start[0] = self.points[0];
         if self.substeps == 0 {
             if let Some(air) = input.air {
                 self.sample_air(air);
@@ -91,6 +113,7 @@ impl LaneGroup {
         let hg = h * input.gravity;
         let hg = V4::new(F4::splat(hg.x), F4::splat(hg.y), F4::splat(hg.z));
         for i in 1..=n {
+            self.start[i] = self.points[i];
             let inv_mass = self.inv_mass[i];
             let movable = inv_mass.simd_ne(F4::ZERO);
             let mut v = self.velocities[i] + hg;
@@ -213,24 +236,27 @@ impl LaneGroup {
         self.impulse = V4::ZERO;
         let tolerance = F4::splat(CHAIN_TOLERANCE) * self.segment_length;
         let mut moving = self.live_mask;
-        for _ in 0..CHAIN_ITERATIONS {
-            let (impulse, worst) = solve_chains(
-                &mut self.points,
-                &self.inv_mass,
-                self.segment_length,
-                knots,
-                moving,
-                &mut self.rows,
-            );
-            // The knot moves with its body's share before the next solve.
-            let knot = self.points[0] + knots.point_motion(impulse);
-            self.points[0] = V4::select(moving, knot, self.points[0]);
-            self.impulse = V4::select(moving, self.impulse + impulse, self.impulse);
-            moving &= !worst.simd_lt(tolerance);
-            if !moving.any() {
-                break;
+        ROWS.with_borrow_mut(|rows| {
+            rows.resize(self.points.len() - 1);
+            for _ in 0..CHAIN_ITERATIONS {
+                let (impulse, worst) = solve_chains(
+                    &mut self.points,
+                    &self.inv_mass,
+                    self.segment_length,
+                    knots,
+                    moving,
+                    rows,
+                );
+                // The knot moves with its body's share before the next solve.
+                let knot = self.points[0] + knots.point_motion(impulse);
+                self.points[0] = V4::select(moving, knot, self.points[0]);
+                self.impulse = V4::select(moving, self.impulse + impulse, self.impulse);
+                moving &= !worst.simd_lt(tolerance);
+                if !moving.any() {
+                    break;
+                }
             }
-        }
+        });
         moving
     }
 

@@ -32,6 +32,7 @@ pub(crate) mod collide;
 mod hang_path;
 mod lane_group;
 mod lane_pushes;
+mod lane_room;
 mod lane_substep;
 pub(crate) mod nearby;
 pub(crate) mod solve;
