@@ -189,27 +189,28 @@ impl Counters {
 
 /// Times the stages of one step into `Counters`: `lap(stage)` gives the
 /// stage the milliseconds since the last lap. A clock read a stage, no
-/// allocation.
+/// allocation; the threads' part (ten kilobytes) is made and copied only
+/// while the threads are timed, since a step of one awake balloon costs
+/// about as much as making it.
 pub(crate) struct StageClock {
     last: f64,
-    counters: Counters,
+    ms: [f64; Stage::COUNT],
     /// When the threads are timed: the step's thread's slot, the slots'
-    /// reading at the last lap, and the guard marking this thread's steps.
-    threads: Option<(usize, Reading, thread_times::Stepping)>,
+    /// reading at the last lap, the guard marking this thread's steps, and
+    /// each thread's part so far.
+    threads: Option<(usize, Reading, thread_times::Stepping, ThreadCounters)>,
 }
 
 impl StageClock {
     /// Starts the step's clock; `threads`: the threads its passes may share.
     pub fn start(threads: usize) -> Self {
-        let mut counters = Counters::default();
         let threads = thread_times::timing().then(|| {
             let (timed, owner) = ThreadCounters::begin(threads);
-            counters.threads = timed;
-            (owner, Reading::now(), thread_times::Stepping::enter())
+            (owner, Reading::now(), thread_times::Stepping::enter(), timed)
         });
         Self {
             last: now_ms(),
-            counters,
+            ms: [0.0; Stage::COUNT],
             threads,
         }
     }
@@ -217,12 +218,10 @@ impl StageClock {
     pub fn lap(&mut self, stage: Stage) {
         let now = now_ms();
         let wall = now - self.last;
-        self.counters.ms[stage as usize] = wall;
-        if let Some((owner, last, _)) = &mut self.threads {
+        self.ms[stage as usize] = wall;
+        if let Some((owner, last, _, timed)) = &mut self.threads {
             let reading = Reading::now();
-            self.counters
-                .threads
-                .record(stage, wall, *owner, last, &reading);
+            timed.record(stage, wall, *owner, last, &reading);
             *last = reading;
         }
         // The readings are not the stages' time: the next stage starts after them.
@@ -233,10 +232,16 @@ impl StageClock {
         };
     }
 
-    /// The counters, with the total.
-    pub fn finish(mut self) -> Counters {
-        self.counters.total_ms = self.counters.ms.iter().sum();
-        self.counters
+    /// Writes the step's times, with the total, into `counters`.
+    pub fn finish(self, counters: &mut Counters) {
+        counters.ms = self.ms;
+        counters.total_ms = self.ms.iter().sum();
+        match self.threads {
+            Some((_, _, _, timed)) => counters.threads = timed,
+            // Cleared once, when the timing went off.
+            None if counters.threads.threads() > 0 => counters.threads = ThreadCounters::default(),
+            None => {}
+        }
     }
 }
 

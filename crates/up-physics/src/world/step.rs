@@ -188,7 +188,7 @@ impl World {
 
         self.time += self.def.dt as f64;
         self.step_count += 1;
-        self.counters = clock.finish();
+        clock.finish(&mut self.counters);
     }
 
     /// The substeps: velocities, contacts, joints (`solver`), and the awake
