@@ -297,7 +297,8 @@ mod tests {
         for stage in Stage::ALL {
             clock.lap(stage);
         }
-        let mut counters = clock.finish();
+        let mut counters = Counters::default();
+        clock.finish(&mut counters);
         for (k, ms) in counters.ms.iter_mut().enumerate() {
             *ms = (k + 1) as f64;
         }
