@@ -206,7 +206,12 @@ impl StageClock {
     pub fn start(threads: usize) -> Self {
         let threads = thread_times::timing().then(|| {
             let (timed, owner) = ThreadCounters::begin(threads);
-            (owner, Reading::now(), thread_times::Stepping::enter(), timed)
+            (
+                owner,
+                Reading::now(),
+                thread_times::Stepping::enter(),
+                timed,
+            )
         });
         Self {
             last: now_ms(),

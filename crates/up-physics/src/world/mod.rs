@@ -114,6 +114,7 @@ impl Stages {
             joined: &self.joined,
             contacts: &self.narrow.found.contacts,
             kept_awake: &self.ribbons.moving,
+            awake_ribbons: &self.ribbons.active[..self.ribbons.awake],
         };
         (input, &mut self.sleep)
     }
