@@ -189,27 +189,46 @@ impl Counters {
 
 /// Times the stages of one step into `Counters`: `lap(stage)` gives the
 /// stage the milliseconds since the last lap. A clock read a stage, no
-/// allocation.
+/// allocation once warm; the threads' part (ten kilobytes) is filled and
+/// copied only while the threads are timed, in a box the world keeps
+/// between steps: made or moved every step, it cost a step of one awake
+/// balloon a tenth of its time.
 pub(crate) struct StageClock {
     last: f64,
-    counters: Counters,
-    /// When the threads are timed: the step's thread's slot, the slots'
-    /// reading at the last lap, and the guard marking this thread's steps.
-    threads: Option<(usize, Reading, thread_times::Stepping)>,
+    ms: [f64; Stage::COUNT],
+    threads: Option<ThreadClock>,
+}
+
+/// The clock's part when the threads are timed: the step's thread's slot,
+/// the slots' reading at the last lap, the guard marking this thread's
+/// steps, and each thread's part so far.
+struct ThreadClock {
+    owner: usize,
+    last: Reading,
+    _stepping: thread_times::Stepping,
+    timed: Box<ThreadCounters>,
 }
 
 impl StageClock {
-    /// Starts the step's clock; `threads`: the threads its passes may share.
-    pub fn start(threads: usize) -> Self {
-        let mut counters = Counters::default();
-        let threads = thread_times::timing().then(|| {
+    /// Starts the step's clock; `threads`: the threads its passes may share;
+    /// `spare`: the box the last timed step's `finish` gave back.
+    pub fn start(threads: usize, spare: &mut Option<Box<ThreadCounters>>) -> Self {
+        let threads = if thread_times::timing() {
             let (timed, owner) = ThreadCounters::begin(threads);
-            counters.threads = timed;
-            (owner, Reading::now(), thread_times::Stepping::enter())
-        });
+            let mut boxed = spare.take().unwrap_or_default();
+            *boxed = timed;
+            Some(ThreadClock {
+                owner,
+                last: Reading::now(),
+                _stepping: thread_times::Stepping::enter(),
+                timed: boxed,
+            })
+        } else {
+            None
+        };
         Self {
             last: now_ms(),
-            counters,
+            ms: [0.0; Stage::COUNT],
             threads,
         }
     }
@@ -217,13 +236,11 @@ impl StageClock {
     pub fn lap(&mut self, stage: Stage) {
         let now = now_ms();
         let wall = now - self.last;
-        self.counters.ms[stage as usize] = wall;
-        if let Some((owner, last, _)) = &mut self.threads {
+        self.ms[stage as usize] = wall;
+        if let Some(t) = &mut self.threads {
             let reading = Reading::now();
-            self.counters
-                .threads
-                .record(stage, wall, *owner, last, &reading);
-            *last = reading;
+            t.timed.record(stage, wall, t.owner, &t.last, &reading);
+            t.last = reading;
         }
         // The readings are not the stages' time: the next stage starts after them.
         self.last = if self.threads.is_some() {
@@ -233,10 +250,20 @@ impl StageClock {
         };
     }
 
-    /// The counters, with the total.
-    pub fn finish(mut self) -> Counters {
-        self.counters.total_ms = self.counters.ms.iter().sum();
-        self.counters
+    /// Writes the step's times, with the total, into `counters`; gives the
+    /// threads' box back to `spare`.
+    pub fn finish(self, counters: &mut Counters, spare: &mut Option<Box<ThreadCounters>>) {
+        counters.ms = self.ms;
+        counters.total_ms = self.ms.iter().sum();
+        match self.threads {
+            Some(t) => {
+                counters.threads = *t.timed;
+                *spare = Some(t.timed);
+            }
+            // Cleared once, when the timing went off.
+            None if counters.threads.threads() > 0 => counters.threads = ThreadCounters::default(),
+            None => {}
+        }
     }
 }
 
@@ -288,11 +315,12 @@ mod tests {
 
     #[test]
     fn the_phases_sum_to_the_stages() {
-        let mut clock = StageClock::start(1);
+        let mut clock = StageClock::start(1, &mut None);
         for stage in Stage::ALL {
             clock.lap(stage);
         }
-        let mut counters = clock.finish();
+        let mut counters = Counters::default();
+        clock.finish(&mut counters, &mut None);
         for (k, ms) in counters.ms.iter_mut().enumerate() {
             *ms = (k + 1) as f64;
         }
@@ -307,5 +335,21 @@ mod tests {
         assert_eq!(phases, counters.total_ms());
         assert_eq!(counters.ms(Stage::Gas), 1.0);
         assert_eq!(counters.phases()[0], ("gas", 1.0));
+    }
+
+    /// Timed, the clock hands each thread's part over and keeps its box for
+    /// the next step; untimed again, the part is cleared.
+    #[test]
+    fn the_threads_part_is_handed_over_while_timed_and_cleared_after() {
+        let (mut spare, mut counters) = (None, Counters::default());
+        set_thread_timing(true);
+        let mut clock = StageClock::start(1, &mut spare);
+        clock.lap(Stage::Gas);
+        clock.finish(&mut counters, &mut spare);
+        set_thread_timing(false);
+        assert_eq!(counters.threads().threads(), 1);
+        assert!(spare.is_some());
+        StageClock::start(1, &mut spare).finish(&mut counters, &mut spare);
+        assert_eq!(counters.threads().threads(), 0);
     }
 }

@@ -1,6 +1,8 @@
 //! Sleeping: a settled group of touching balloons stops costing anything.
 //!
-//! A body is rested once it has been slow for `time_to_sleep`. Each step the
+//! A body is rested once it has been slow for `time_to_sleep` (a balloon
+//! hovering on its ribbon, touching nothing, once slow by a finer measure:
+//! it may be creeping down, `rest`). Each step the
 //! rested bodies that no restless body reaches fall asleep, in groups of
 //! touching or joined ones (union-find over contacts and joints); those a
 //! restless body reaches or is joined to stay awake between it and the
@@ -64,6 +66,8 @@ pub(crate) struct SleepInput<'a> {
     /// ribbon (`world::air_step`): it may not rest. Empty in the wake pass,
     /// which runs before the ribbons have moved.
     pub kept_awake: &'a [bool],
+    /// The ribbons solved this step (their balloons' dense indices).
+    pub awake_ribbons: &'a [crate::ribbon::solve::ActiveRibbon],
 }
 
 /// The sleep passes' buffers.
@@ -78,4 +82,6 @@ pub(crate) struct SleepBuffers {
     pub wake_islands: Vec<u32>,
     /// Per group root in `update_sleep`: the island it sleeps in.
     pub island_of_root: Vec<u32>,
+    /// Per body, in `update_sleep`: it hangs on its ribbon touching nothing.
+    pub hovering: Vec<bool>,
 }

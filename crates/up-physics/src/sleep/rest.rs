@@ -10,6 +10,32 @@ use crate::contact::{WarmStartCache, STATIC_BODY};
 use crate::threading::tasks::fill_chunks;
 use crate::world::{roots_within, PLACE_CHUNK};
 
+/// The share of the sleep speed under which a balloon hanging on its
+/// ribbon, touching nothing, is slow. Such a balloon whose lift has passed
+/// what its ribbon holds up starts down slowly: the floor's friction gives
+/// the lying points up over tens of seconds at 0.2–5 mm/s before the knot
+/// drops a segment. At the sleep speed it would rest in that creep and
+/// wake only once its gas has moved on by the wake threshold, to come down
+/// two segments at once; settled on its ribbon it is still to 0.1 mm/s.
+pub(crate) const HOVER_REST_SHARE: f32 = 0.2;
+
+/// Marks in `hovering` (per body) the balloons whose ribbons were solved
+/// this step that touch nothing.
+fn mark_hovering<'a>(input: &SleepInput, n: usize, hovering: &'a mut Vec<bool>) -> &'a [bool] {
+    hovering.clear();
+    hovering.resize(n, false);
+    for r in input.awake_ribbons {
+        hovering[r.state as usize] = true;
+    }
+    for c in input.contacts {
+        hovering[c.body_a as usize] = false;
+        if c.body_b != STATIC_BODY {
+            hovering[c.body_b as usize] = false;
+        }
+    }
+    hovering
+}
+
 /// Sleep timers, then the rested bodies that fall asleep.
 ///
 /// A body is rested once it has been slow for `time_to_sleep`. Rested
@@ -19,7 +45,9 @@ use crate::world::{roots_within, PLACE_CHUNK};
 /// pushes, and would be woken at once by the next step's wake pass anyway.
 /// So a big pile in which a few balloons still shuffle sleeps everywhere
 /// else, where whole-island sleep would keep all of it awake. `grabbed`
-/// never rests; `warm` holds the impulses the step stored.
+/// never rests; `warm` holds the impulses the step stored. A balloon
+/// hovering on its ribbon is slow only under a finer speed
+/// (`HOVER_REST_SHARE`).
 pub(crate) fn update_sleep(
     input: &SleepInput,
     grabbed: Option<usize>,
@@ -38,13 +66,20 @@ pub(crate) fn update_sleep(
     );
     let kept_awake = input.kept_awake;
     let (linear_speed, angular_speed) = (rules.linear_speed, rules.angular_speed);
+    let hover_speed = linear_speed * HOVER_REST_SHARE;
+    let hovering = mark_hovering(input, n, &mut buffers.hovering);
     fill_chunks(&mut bodies.sleep_time, PLACE_CHUNK, |first, times| {
         for (k, time) in times.iter_mut().enumerate() {
             let i = first + k;
             if !awake[i] {
                 continue;
             }
-            let slow = linear_velocity[i].norm() < linear_speed
+            let limit = if hovering[i] {
+                hover_speed
+            } else {
+                linear_speed
+            };
+            let slow = linear_velocity[i].norm() < limit
                 && angular_velocity[i].norm() < angular_speed
                 && !kept_awake.get(i).copied().unwrap_or(false);
             if slow && grabbed != Some(i) {

@@ -318,6 +318,8 @@ impl Coloring {
         #[cfg(feature = "parallel")]
         self.constraint_at.clear();
         let mut counts = [[0u32; 3]; SERIAL + 1];
+        // The colours below it hold every constraint but the serial rest's.
+        let mut colours_used = 0;
         self.zone_counts.clear();
         self.zone_counts.resize((SERIAL + 1) * 3 * zone_count, 0);
         self.kind.clear();
@@ -348,15 +350,22 @@ impl Coloring {
                 (Moving::Both, 0)
             };
             self.color.push((color as u16, sides, zone as u8));
+            if color < SERIAL {
+                colours_used = colours_used.max(color + 1);
+            }
             counts[color][sides as usize] += 1;
             self.zone_counts[zone_index(color, sides, zone, zone_count)] += 1;
         }
 
         // Each zone's first place in its run: the zones' counts summed before it.
-        for run in self.zone_counts.chunks_exact_mut(zone_count) {
-            let mut before = 0;
-            for count in run {
-                (*count, before) = (before, before + *count);
+        for color in (0..colours_used).chain([SERIAL]) {
+            let first = zone_index(color, Moving::Both, 0, zone_count);
+            let runs = &mut self.zone_counts[first..first + 3 * zone_count];
+            for run in runs.chunks_exact_mut(zone_count) {
+                let mut before = 0;
+                for count in run {
+                    (*count, before) = (before, before + *count);
+                }
             }
         }
 
@@ -366,7 +375,10 @@ impl Coloring {
         self.blocks.clear(crate::threading::tasks::threads_here());
         let mut first_group = [[0u32; 3]; SERIAL + 1];
         let mut start = 0u32;
-        for (color, counts) in counts.iter().enumerate() {
+        // An empty colour adds no run and no stage: only those in use are
+        // walked (a step of a few contacts would spend more on the empty ones).
+        for color in (0..colours_used).chain([SERIAL]) {
+            let counts = &counts[color];
             #[cfg(feature = "parallel")]
             let colour_runs = self.ranges.len();
             for moving in Moving::ALL {

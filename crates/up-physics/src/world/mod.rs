@@ -94,6 +94,9 @@ struct Stages {
     air_now: crate::air::AirNow,
     /// Islands the moving air woke (`air_step`).
     air_woken: Vec<u32>,
+    /// The step's clock's box for each thread's times, between timed steps
+    /// (`counters::StageClock`).
+    thread_times: Option<Box<crate::counters::ThreadCounters>>,
 }
 
 impl Stages {
@@ -114,6 +117,7 @@ impl Stages {
             joined: &self.joined,
             contacts: &self.narrow.found.contacts,
             kept_awake: &self.ribbons.moving,
+            awake_ribbons: &self.ribbons.active[..self.ribbons.awake],
         };
         (input, &mut self.sleep)
     }

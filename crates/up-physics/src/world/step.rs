@@ -115,7 +115,7 @@ impl World {
         let threads = crate::threading::tasks::threads_here();
         #[cfg(not(feature = "parallel"))]
         let threads = 1;
-        let mut clock = StageClock::start(threads);
+        let mut clock = StageClock::start(threads, &mut self.stages.thread_times);
 
         self.update_gas();
         clock.lap(Stage::Gas);
@@ -188,7 +188,7 @@ impl World {
 
         self.time += self.def.dt as f64;
         self.step_count += 1;
-        self.counters = clock.finish();
+        clock.finish(&mut self.counters, &mut self.stages.thread_times);
     }
 
     /// The substeps: velocities, contacts, joints (`solver`), and the awake
