@@ -240,7 +240,7 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
             layout.centres
         } else {
             let weighted = weighted_ribbon(scene, i, knot - root.center, &bounds);
-            let centres = match &weighted {
+            let mut centres = match &weighted {
                 Some(ribbon) => place_spheres_clear_of_ribbons(
                     count,
                     root.radius,
@@ -259,6 +259,17 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
                     &mut rng,
                 ),
             };
+            if centres.len() < count {
+                // The layers are full: the gaps between them, more densely.
+                centres.extend(spawn::fill_gaps(
+                    count - centres.len(),
+                    root.radius,
+                    &region,
+                    &inside,
+                    &mut occupied,
+                    weighted.as_ref(),
+                ));
+            }
             if centres.len() < count {
                 return Err(SceneError::DoesNotFit {
                     at: scene.locate(&format!("balloons[{i}].count")),
