@@ -240,6 +240,7 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
             layout.centres
         } else {
             let weighted = weighted_ribbon(scene, i, knot - root.center, &bounds);
+            let before = occupied.clone();
             let mut centres = match &weighted {
                 Some(ribbon) => place_spheres_clear_of_ribbons(
                     count,
@@ -269,6 +270,22 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
                     &mut occupied,
                     weighted.as_ref(),
                 ));
+            }
+            if centres.len() < count {
+                // Still short: the whole group in the gaps, packed as densely
+                // as they go (the next level in the hollows of the one below).
+                let mut packed = before;
+                let dense = spawn::fill_gaps(
+                    count,
+                    root.radius,
+                    &region,
+                    &inside,
+                    &mut packed,
+                    weighted.as_ref(),
+                );
+                if dense.len() > centres.len() {
+                    (centres, occupied) = (dense, packed);
+                }
             }
             if centres.len() < count {
                 return Err(SceneError::DoesNotFit {

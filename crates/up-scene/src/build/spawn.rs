@@ -38,7 +38,7 @@ pub struct SpawnRegion {
 
 /// Bounding spheres already placed, bucketed for overlap queries (lookups only:
 /// the map's iteration order never affects the result).
-#[derive(Default)]
+#[derive(Clone, Default)]
 pub struct Occupancy {
     spheres: Vec<(Vec3, f32)>,
     /// Parallel to `spheres`: a weighted ribbon's path (`insert_path`),
@@ -281,15 +281,17 @@ fn place(
     placed
 }
 
-/// Lattice steps per cell edge in `fill_gaps`: candidates every quarter cell.
-const GAP_STEPS_PER_CELL: f32 = 4.0;
+/// Lattice steps per cell edge in `fill_gaps`: candidates every sixth of a cell.
+const GAP_STEPS_PER_CELL: f32 = 6.0;
+/// m between a balloon laid in the gaps and anything placed before it.
+const GAP_CLEARANCE: f32 = 0.005;
 
 /// Where the layers leave no whole cell free but the room still has room
 /// (a second group above a first, among the columns of weighted ribbons, a
 /// pyramid's slopes): up to `count` more bounding spheres of `radius` at
-/// points of a lattice a quarter of a cell apart, lowest first, each clear
-/// of everything placed by the layers' own gap (`cell_size`) and inside the
-/// room with its bounding cube. Deterministic, no draws: what the layers
+/// points of a lattice a sixth of a cell apart, lowest first, each
+/// `GAP_CLEARANCE` clear of everything placed and inside the room with its
+/// bounding cube. Deterministic, no draws: what the layers
 /// placed stays as it was, so a scene that fits its layers lays out as
 /// before. A weighted ribbon's path is kept clear and reserved as `place`
 /// does.
@@ -303,8 +305,9 @@ pub(super) fn fill_gaps(
 ) -> Vec<Vec3> {
     let mut placed = Vec::new();
     let c = cell_size(radius);
-    // Keeps the layers' clearance: a cell's gap between two bounding spheres.
-    let reach = 0.5 * c;
+    // Clear of every placed sphere by `GAP_CLEARANCE`: true distances, so the
+    // next level settles into the hollows of the one below.
+    let reach = radius + GAP_CLEARANCE;
     let step = c / GAP_STEPS_PER_CELL;
     let lo = region.min + Vec3::splat(radius);
     let (hi_x, hi_z, hi_y) = (
