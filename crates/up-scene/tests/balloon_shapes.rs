@@ -92,15 +92,64 @@ fn every_shape_lifts_what_its_volume_displaces_less_its_weight() {
             m.fit.coverage
         );
         assert_eq!(m.fit.coverage, 1.0, "{name}");
-        // The shaped foils' trees lie over their faces; the pillow keeps its
-        // axial one (3.8: printed).
-        let over_face = m.fit.axis.dot(Vec3::Z).abs() > 0.999;
+        // Every foil tree lies over its face.
+        if name.starts_with("foil") {
+            assert!(m.fit.axis.dot(Vec3::Z).abs() > 0.999, "{name}");
+        }
         assert!(
-            !over_face || m.fit.tightness <= 1.7,
+            m.fit.tightness <= tightness_bound(name),
             "{name}: tightness {}",
             m.fit.tightness
         );
         assert!(lift > 0.0, "{name} sinks");
+    }
+}
+
+/// Union of the leaves over the volume, at most: 1.5 for every shape but
+/// the star, whose thin arms the 64 leaves over its face still overcover
+/// (1.70).
+fn tightness_bound(name: &str) -> f32 {
+    if name.contains("star") {
+        1.75
+    } else {
+        1.5
+    }
+}
+
+fn digit(d: u8) -> String {
+    format!("kind = \"foil\"\nshape = \"digit\"\ntext = \"{d}\"\nsize_in = 34")
+}
+
+/// The tightness of every shape's tree, the ten digits among them
+/// (`--nocapture` prints them).
+#[test]
+fn every_shapes_tree_is_tight() {
+    let mut groups: Vec<(String, String)> = SHAPES
+        .iter()
+        .map(|(n, g)| (n.to_string(), g.to_string()))
+        .collect();
+    groups.extend((0..10).map(|d| (format!("foil 34″ digit {d}"), digit(d))));
+    for (name, group) in groups {
+        let b = built(&room_with(&group, 0));
+        let fit = &b.balloon_models[0].fit;
+        let widest = fit
+            .tree
+            .leaf_spheres()
+            .map(|s| s.radius)
+            .fold(0.0, f32::max);
+        println!(
+            "{name}: tightness {:.2}, {} leaves, root {:.3} m, widest leaf {:.3} m",
+            fit.tightness,
+            fit.tree.leaves().len(),
+            fit.tree.root().sphere().radius,
+            widest
+        );
+        assert_eq!(fit.coverage, 1.0, "{name}");
+        assert!(
+            fit.tightness <= tightness_bound(&name),
+            "{name}: {}",
+            fit.tightness
+        );
     }
 }
 
@@ -135,29 +184,18 @@ fn an_icosphere_of_ones_own_has_the_volume_of_its_sphere() {
     assert!((volume / ball - 1.0).abs() < 0.01, "{volume} vs {ball}");
 }
 
-/// A foil heart and a digit let go tilted by 30° right themselves, valve
-/// down, in still air. (A "3" does not: its film's centre lies about a
-/// centimetre to the side of its centre of buoyancy, and with only the 1 g
-/// valve below, that leans it by about 25°: printed, not asserted.)
+/// A foil heart, a star and every digit let go tilted by 30° right
+/// themselves, valve down, in still air: the valve sits on the lower edge
+/// where it hangs the film's weight straight below the centre of buoyancy.
 #[test]
-fn a_foil_heart_and_a_digit_float_upright() {
-    for (group, upright) in [
-        ("kind = \"foil\"\nshape = \"heart\"\nsize_in = 18", true),
-        (
-            "kind = \"foil\"\nshape = \"digit\"\ntext = \"0\"\nsize_in = 34",
-            true,
-        ),
-        (
-            "kind = \"foil\"\nshape = \"digit\"\ntext = \"8\"\nsize_in = 34",
-            true,
-        ),
-        ("kind = \"foil\"\nshape = \"star\"\nsize_in = 20", true),
-        (
-            "kind = \"foil\"\nshape = \"digit\"\ntext = \"3\"\nsize_in = 34",
-            false,
-        ),
-    ] {
-        let b = built(&room_with(group, 0));
+fn a_foil_heart_and_every_digit_float_upright() {
+    let mut groups = vec![
+        "kind = \"foil\"\nshape = \"heart\"\nsize_in = 18".to_string(),
+        "kind = \"foil\"\nshape = \"star\"\nsize_in = 20".to_string(),
+    ];
+    groups.extend((0..10).map(digit));
+    for group in groups {
+        let b = built(&room_with(&group, 0));
         let mut world = b.world;
         let m = &b.balloon_models[0];
         let pose = Pose {
@@ -168,22 +206,23 @@ fn a_foil_heart_and_a_digit_float_upright() {
         run(&mut world, 12.0);
         let p = world.pose(id).unwrap();
         let tilt = tilt_deg(p.rotation);
+        let valve = m.mesh.dimensions.knot_center;
         println!(
-            "{group:?}: tilt {tilt:.1}° after 12 s, at y = {:.1} m",
-            p.position.y
+            "{group:?}: tilt {tilt:.1}° after 12 s, at y = {:.1} m; valve at x = {:+.3} m",
+            p.position.y, valve.x
         );
-        assert!(!upright || tilt < 10.0, "{group}: {tilt}° from upright");
+        assert!(tilt < 10.0, "{group}: {tilt}° from upright");
         assert!(p.position.y > 3.0, "{group}: it did not rise");
     }
 }
 
 /// Two air-filled foil balloons laid flat, one on the other on the floor,
-/// rest with their centres at the drawn thickness within 1 cm: two hearts,
-/// two stars (fitted over their faces). The pillow keeps its axial tree,
-/// whose middle spheres span its width: two slide off each other.
+/// rest with their centres at the drawn thickness within 1 cm: two pillows,
+/// two hearts, two stars (each fitted over its face).
 #[test]
 fn foil_balloons_face_to_face_rest_at_their_drawn_thickness() {
     for group in [
+        "kind = \"foil\"\nsize_in = 18\ngas = \"air\"",
         "kind = \"foil\"\nshape = \"heart\"\nsize_in = 18\ngas = \"air\"",
         "kind = \"foil\"\nshape = \"star\"\nsize_in = 20\ngas = \"air\"",
     ] {
@@ -378,4 +417,24 @@ fn a_mesh_of_ones_own_floats_with_the_lift_its_volume_gives() {
         (rising / expected - 1.0).abs() < 0.05,
         "{rising} vs {expected}"
     );
+}
+
+/// The mixed room (1,500 latex balloons, 200 on weighted ribbons, 300 foil
+/// pillows in a 10 m room) lays every balloon it asks for: what its layers
+/// cannot hold goes in the gaps between them.
+#[test]
+fn the_mixed_room_lays_every_balloon() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../assets/scenes/mixed-room.toml"
+    );
+    let scene = Scene::from_path(path).unwrap_or_else(|e| panic!("{e}"));
+    let b = build_world(&scene).unwrap_or_else(|e| panic!("{e}"));
+    for (group, bodies) in scene.balloons.iter().zip(&b.group_bodies) {
+        assert_eq!(bodies.len() as u64, group.count);
+    }
+    // Nothing starts inside anything else.
+    let mut world = b.world;
+    let deepest = world.max_penetration_now();
+    assert!(deepest <= 0.0, "{deepest} m");
 }

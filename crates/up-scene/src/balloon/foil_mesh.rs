@@ -17,14 +17,10 @@
 //! The shape is a surface of revolution about Z but for that point, so
 //! `BalloonDimensions` describe it as a latex balloon's: the valve is its
 //! "knot", a small ball at the tip (its mass, not its shape). The sphere
-//! tree is the axial fitter's, along Y: its middle spheres span the disc's
-//! full width (R), so face-on the collision shape is far thicker than the
-//! pillow (tightness 3.8 with 5 leaves). The planar fitter
-//! (`up_geom::fit::planar_cover`) would lay 64 leaves over its face
-//! (tightness 1.41, face to face 1.5 cm more than drawn) but its bounding
-//! sphere would grow from 0.245 to 0.265 m, so a full room (the mixed room's
-//! 300 pillows) no longer holds them; the shaped foils use it. Everything
-//! scales with the diameter. Closed and watertight (one vertex per face
+//! tree is the planar fitter's (`up_geom::fit::planar_cover`), 64 leaves
+//! over its face: no leaf stands more than 5 mm past the faces, so two
+//! pillows face to face rest within a centimetre of their drawn thickness.
+//! Everything scales with the diameter. Closed and watertight (one vertex per face
 //! centre, rings share their seam vertex), wound counter-clockwise seen from
 //! outside, smooth per-vertex normals: 2,400 triangles.
 

@@ -24,13 +24,15 @@
 //! watertight, wound outward, with smooth normals.
 //!
 //! Body frame as the pillow's: origin at the inflated outline's centroid on
-//! the mid-plane, +Y up, faces towards ±Z; the valve at the rim straight
-//! below the origin (the lowest point of the outline if that line misses
-//! it), where the ribbon ties.
+//! the mid-plane, +Y up, faces towards ±Z; the valve on the outline's lower
+//! edge below the centre of buoyancy, or where it balances the film's
+//! weight (`foil_shape_balanced`), where the ribbon ties.
 
 use std::collections::HashMap;
 
 use glam::{Vec2, Vec3};
+
+use up_geom::fit::mesh_integrals::{shell_integrals, solid_integrals};
 
 use crate::balloon::mesh::{vertex_normals, BalloonDimensions, BalloonMesh, BalloonMeshError};
 use crate::balloon::outline::{Outline, OutlineKind};
@@ -104,8 +106,25 @@ impl Inflated {
 }
 
 /// The foil balloon of outline `kind`, `size_m` tall as sold (flat; the
-/// disc's diameter).
+/// disc's diameter), its valve on the lower edge straight below the centre
+/// of buoyancy (`foil_shape_balanced` with a weightless film).
 pub fn foil_shape(kind: OutlineKind, size_m: f32) -> Result<FoilShape, BalloonMeshError> {
+    foil_shape_balanced(kind, size_m, 0.0)
+}
+
+/// `foil_shape` with the valve where the balloon hangs upright: a film
+/// `film_per_valve` times as heavy as the valve (the 18″ heart's 8 g film
+/// on its 1 g valve: 8) has its centre where the surface's is, which on an
+/// outline without a mirror line (a "3", a "7") lies to one side of the
+/// centre of buoyancy; the valve goes as far to the other side as puts the
+/// whole mass straight below the centre of buoyancy, as number balloons
+/// are made to hang. It stays on the bottom of the outline (`valve_point`):
+/// the nearest such place when the balance point is off it.
+pub fn foil_shape_balanced(
+    kind: OutlineKind,
+    size_m: f32,
+    film_per_valve: f32,
+) -> Result<FoilShape, BalloonMeshError> {
     if !(size_m.is_finite() && size_m > 0.0) {
         return Err(BalloonMeshError::BadDiameter(size_m));
     }
@@ -211,7 +230,15 @@ pub fn foil_shape(kind: OutlineKind, size_m: f32) -> Result<FoilShape, BalloonMe
     }
     let normals = vertex_normals(&positions, &indices);
 
-    let valve = valve_point(&inflated, lo.y, &positions);
+    let solid = solid_integrals(&positions, &indices);
+    let shell = shell_integrals(&positions, &indices);
+    let ratio = if film_per_valve.is_finite() {
+        film_per_valve.max(0.0)
+    } else {
+        0.0
+    };
+    let balance_x = solid.centroid.x - ratio * (shell.centroid.x - solid.centroid.x);
+    let valve = valve_point(&inflated, lo, hi, balance_x, solid.centroid.y);
     let valve_radius = VALVE_RADIUS * size_m;
     let (mlo, mhi) = positions
         .iter()
@@ -315,20 +342,42 @@ fn rim_point(shape: &Inflated, inner: Vec2, outer: Vec2) -> Vec2 {
     inner.lerp(outer, (0.5 * (a + b)).clamp(1e-3, 1.0 - 1e-3))
 }
 
-/// The rim straight below the origin, else the lowest vertex of the mesh.
-fn valve_point(shape: &Inflated, low: f32, positions: &[Vec3]) -> Vec2 {
+/// Where the vertical at `x` first meets the outline going up from `lo.y`.
+fn lower_edge(shape: &Inflated, x: f32, lo: Vec2, hi: Vec2) -> Option<Vec2> {
     let steps = 4 * GRID_CELLS;
-    let h = -low / steps as f32;
-    for i in 0..steps {
-        let y = low + i as f32 * h;
-        if shape.distance(Vec2::new(0.0, y + h)) > 0.0 {
-            return rim_point(shape, Vec2::new(0.0, y + h), Vec2::new(0.0, y));
-        }
-    }
-    positions
+    let h = (hi.y - lo.y) / steps as f32;
+    (0..steps).find_map(|i| {
+        let (below, above) = (
+            Vec2::new(x, lo.y + i as f32 * h),
+            Vec2::new(x, lo.y + (i + 1) as f32 * h),
+        );
+        (shape.distance(above) > 0.0).then(|| rim_point(shape, above, below))
+    })
+}
+
+/// The valve: on the lower edge of the outline at the `x` nearest `target`
+/// where that edge lies well below the centre of buoyancy (at `centre_y`):
+/// at least half as far below it as the outline's lowest point, so a "7"
+/// keeps it under its stem, not under its bar, and a star between its two
+/// lower points.
+fn valve_point(shape: &Inflated, lo: Vec2, hi: Vec2, target: f32, centre_y: f32) -> Vec2 {
+    let n = 4 * GRID_CELLS;
+    let edges: Vec<Vec2> = (0..=n)
+        .filter_map(|i| lower_edge(shape, lo.x + (hi.x - lo.x) * i as f32 / n as f32, lo, hi))
+        .collect();
+    let bottom = edges.iter().map(|p| p.y).fold(f32::INFINITY, f32::min);
+    let deep = centre_y - 0.5 * (centre_y - bottom);
+    let nearest = edges
         .iter()
-        .min_by(|a, b| a.y.total_cmp(&b.y))
-        .map_or(Vec2::ZERO, |p| p.truncate())
+        .filter(|p| p.y <= deep)
+        .min_by(|a, b| (a.x - target).abs().total_cmp(&(b.x - target).abs()))
+        .copied()
+        .unwrap_or(Vec2::new(0.0, lo.y));
+    // On the sampled edge the best x is within a sample of `target`: the
+    // edge at `target` itself where that is deep enough too.
+    lower_edge(shape, target, lo, hi)
+        .filter(|p| p.y <= deep && (p.x - nearest.x).abs() <= (hi.x - lo.x) / n as f32)
+        .unwrap_or(nearest)
 }
 
 /// m²: the largest section by a horizontal plane, `∫ 2 z dx` along rows.

@@ -37,7 +37,7 @@ use up_physics::gas::EnvelopeKind;
 use up_physics::{Atmosphere, BalloonShape};
 
 use foil_mesh::{foil_frontal_area, foil_mesh};
-use foil_shape::foil_shape;
+use foil_shape::foil_shape_balanced;
 use mass::Moments;
 use mesh::{BalloonMesh, BalloonMeshError};
 pub use report::{CollidersReport, NodeReport};
@@ -229,10 +229,9 @@ pub fn build_balloon(
     build_balloon_with(spec, &BalloonSurface::Standard, atmosphere, leaves)
 }
 
-/// `build_balloon` on `surface`. A flat surface (a foil heart, star or
-/// digit, a flat mesh of one's own) is fitted over its mid-surface with
-/// `FLAT_LEAVES` leaves; the rest (the pillow too) along their axis with
-/// `leaves`.
+/// `build_balloon` on `surface`. A flat surface (a foil pillow, heart, star
+/// or digit, a flat mesh of one's own) is fitted over its mid-surface with
+/// `FLAT_LEAVES` leaves; the rest along their axis with `leaves`.
 pub fn build_balloon_with(
     spec: &BalloonSpec,
     surface: &BalloonSurface,
@@ -279,17 +278,18 @@ pub fn build_balloon_with(
         (BalloonSurface::Standard, EnvelopeKind::Latex) => (BalloonMesh::new(d)?, None),
         (BalloonSurface::Standard, EnvelopeKind::Foil) => (foil_mesh(d)?, None),
         (BalloonSurface::FoilOutline(kind), _) => {
-            let shape = foil_shape(*kind, d)?;
+            // The valve where it hangs the film's weight below the centre
+            // of buoyancy (a weightless valve can balance nothing).
+            let film_per_valve = if k > 0.0 { e / k } else { 0.0 };
+            let shape = foil_shape_balanced(*kind, d, film_per_valve)?;
             (shape.mesh, Some(shape.frontal_area_m2))
         }
         (BalloonSurface::Custom { mesh, .. }, _) => (mesh.clone(), None),
     };
     let custom = matches!(surface, BalloonSurface::Custom { .. });
     let flat = match surface {
-        // The pillow keeps its axial tree: spread over its face its leaves
-        // reach 2 cm past its rim and valve, and its bounding sphere grows
-        // from 0.245 to 0.265 m, which halves how many a full room holds.
-        BalloonSurface::Standard => false,
+        // The pillow is flat too; the latex balloon is round.
+        BalloonSurface::Standard => spec.kind == EnvelopeKind::Foil,
         BalloonSurface::FoilOutline(_) => true,
         BalloonSurface::Custom { .. } => is_flat(&mesh.positions, &mesh.indices),
     };

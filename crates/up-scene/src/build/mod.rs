@@ -242,7 +242,8 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
             layout.centres
         } else {
             let weighted = weighted_ribbon(scene, i, knot - root.center, &bounds);
-            let centres = match &weighted {
+            let before = occupied.clone();
+            let mut centres = match &weighted {
                 Some(ribbon) => place_spheres_clear_of_ribbons(
                     count,
                     root.radius,
@@ -261,6 +262,33 @@ pub fn build_world(scene: &Scene) -> Result<BuiltScene, SceneError> {
                     &mut rng,
                 ),
             };
+            if centres.len() < count {
+                // The layers are full: the gaps between them, more densely.
+                centres.extend(spawn::fill_gaps(
+                    count - centres.len(),
+                    root.radius,
+                    &region,
+                    &inside,
+                    &mut occupied,
+                    weighted.as_ref(),
+                ));
+            }
+            if centres.len() < count {
+                // Still short: the whole group in the gaps, packed as densely
+                // as they go (the next level in the hollows of the one below).
+                let mut packed = before;
+                let dense = spawn::fill_gaps(
+                    count,
+                    root.radius,
+                    &region,
+                    &inside,
+                    &mut packed,
+                    weighted.as_ref(),
+                );
+                if dense.len() > centres.len() {
+                    (centres, occupied) = (dense, packed);
+                }
+            }
             if centres.len() < count {
                 return Err(SceneError::DoesNotFit {
                     at: scene.locate(&format!("balloons[{i}].count")),

@@ -38,7 +38,7 @@ pub struct SpawnRegion {
 
 /// Bounding spheres already placed, bucketed for overlap queries (lookups only:
 /// the map's iteration order never affects the result).
-#[derive(Default)]
+#[derive(Clone, Default)]
 pub struct Occupancy {
     spheres: Vec<(Vec3, f32)>,
     /// Parallel to `spheres`: a weighted ribbon's path (`insert_path`),
@@ -281,6 +281,79 @@ fn place(
     placed
 }
 
+/// Lattice steps per cell edge in `fill_gaps`: candidates every sixth of a cell.
+const GAP_STEPS_PER_CELL: f32 = 6.0;
+/// m between a balloon laid in the gaps and anything placed before it.
+const GAP_CLEARANCE: f32 = 0.005;
+
+/// Where the layers leave no whole cell free but the room still has room
+/// (a second group above a first, among the columns of weighted ribbons, a
+/// pyramid's slopes): up to `count` more bounding spheres of `radius` at
+/// points of a lattice a sixth of a cell apart, lowest first, each
+/// `GAP_CLEARANCE` clear of everything placed and inside the room with its
+/// bounding cube. Deterministic, no draws: what the layers
+/// placed stays as it was, so a scene that fits its layers lays out as
+/// before. A weighted ribbon's path is kept clear and reserved as `place`
+/// does.
+pub(super) fn fill_gaps(
+    count: usize,
+    radius: f32,
+    region: &SpawnRegion,
+    inside: &dyn Fn(Vec3) -> bool,
+    occupied: &mut Occupancy,
+    ribbon: Option<&WeightedRibbon>,
+) -> Vec<Vec3> {
+    let mut placed = Vec::new();
+    let c = cell_size(radius);
+    // Clear of every placed sphere by `GAP_CLEARANCE`: true distances, so the
+    // next level settles into the hollows of the one below.
+    let reach = radius + GAP_CLEARANCE;
+    let step = c / GAP_STEPS_PER_CELL;
+    let lo = region.min + Vec3::splat(radius);
+    let (hi_x, hi_z, hi_y) = (
+        region.max.x - radius,
+        region.max.z - radius,
+        region.top - radius,
+    );
+    if count == 0 || lo.x > hi_x || lo.z > hi_z {
+        return placed;
+    }
+    let n = |from: f32, to: f32| ((to - from) / step).floor() as usize + 1;
+    let (nx, nz) = (n(lo.x, hi_x), n(lo.z, hi_z));
+    let cube_inside = |p: Vec3| {
+        (0..8).all(|k| {
+            let corner = |bit: usize| if k & bit == 0 { -radius } else { radius };
+            inside(p + Vec3::new(corner(1), corner(2), corner(4)))
+        }) && inside(p)
+    };
+    let mut y = lo.y;
+    while y <= hi_y && placed.len() < count {
+        for iz in 0..nz {
+            for ix in 0..nx {
+                if placed.len() == count {
+                    return placed;
+                }
+                let p = Vec3::new(lo.x + ix as f32 * step, y, lo.z + iz as f32 * step);
+                if occupied.overlaps_sphere(p, reach) || !cube_inside(p) {
+                    continue;
+                }
+                if let Some(ribbon) = ribbon {
+                    if !ribbon.clear(p, occupied) {
+                        continue;
+                    }
+                    occupied.insert(p, radius);
+                    ribbon.reserve(p, occupied);
+                } else {
+                    occupied.insert(p, radius);
+                }
+                placed.push(p);
+            }
+        }
+        y += step;
+    }
+    placed
+}
+
 /// Grids that hold at least `target` cells, coarsest (largest cells) first.
 pub(crate) fn coarse_grids(target: usize, width: f32, depth: f32, c: f32) -> Vec<Grid> {
     let max_nx = (width / c).floor() as usize;
@@ -446,6 +519,35 @@ mod tests {
         occ.insert(Vec3::new(0.99, 0.5, 0.0), 0.05);
         assert!(occ.overlaps_sphere(Vec3::new(1.05, 0.5, 0.0), 0.02));
         assert!(!occ.overlaps_sphere(Vec3::new(1.08, 0.5, 0.0), 0.02));
+    }
+
+    #[test]
+    fn the_gaps_take_what_the_layers_leave_without_overlap() {
+        // A round room 1 m across: no whole cell of a layer fits inside it,
+        // but balls do, at the lattice's points.
+        let inside = |p: Vec3| p.x * p.x + p.z * p.z <= 0.25 && p.y >= 0.0 && p.y <= 1.5;
+        let mut occ = Occupancy::default();
+        let mut rng = SplitMix64::new(3);
+        let region = floor_region(0.49, 1.5);
+        let r = 0.2;
+        let mut c = place_spheres(10, r, &region, &inside, &mut occ, &mut rng);
+        assert!(c.is_empty());
+        c.extend(fill_gaps(10, r, &region, &inside, &mut occ, None));
+        assert!(c.len() >= 3, "{c:?}");
+        assert_apart(&c, r);
+        for p in &c {
+            for k in 0..8 {
+                let corner = |bit: usize| if k & bit == 0 { -r } else { r };
+                assert!(
+                    inside(*p + Vec3::new(corner(1), corner(2), corner(4))),
+                    "{p}"
+                );
+            }
+        }
+        // None when nothing is missing; the same twice over.
+        assert!(fill_gaps(0, r, &region, &inside, &mut occ, None).is_empty());
+        let again = || fill_gaps(10, r, &region, &inside, &mut Occupancy::default(), None);
+        assert_eq!(again(), again());
     }
 
     #[test]
