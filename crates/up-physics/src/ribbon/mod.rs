@@ -21,8 +21,10 @@
 //! within its length of the point.
 //!
 //! Balloons push ribbons aside and take the opposite impulse (a few
-//! milligrams' worth); ribbons touch each other, and themselves, as capsules
-//! with friction (`touch`), unless the world turns that off. A ribbon
+//! milligrams' worth); where the world asks for it
+//! (`WorldDef::ribbon_contacts`), ribbons touch each other, and themselves,
+//! as capsules with friction (`touch`); otherwise they pass through each
+//! other. A ribbon
 //! sleeps and wakes with its balloon, and keeps its balloon awake while it
 //! still moves.
 
