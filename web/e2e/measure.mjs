@@ -398,8 +398,11 @@ function modeSummary(measured, ribbons, setup) {
   const base = measured.filter((r) => r.ribbons === ribbons && r.threads === 1);
   const runs = measured.filter((r) => r.ribbons === ribbons && r.threads > 1 && setupName(r) === name);
   const counts = [...new Set(runs.map((r) => r.threads))];
+  // No 1-thread run to compare with: no ratio (rather than a 0).
   const ratio = (key, field = "physics_ms") =>
-    Object.fromEntries(counts.map((t) => [String(t), round(mean(base.map((r) => r[field][key])) / mean(runs.filter((r) => r.threads === t).map((r) => r[field][key])), 2)]));
+    base.length === 0
+      ? null
+      : Object.fromEntries(counts.map((t) => [String(t), round(mean(base.map((r) => r[field][key])) / mean(runs.filter((r) => r.threads === t).map((r) => r[field][key])), 2)]));
   const perRound = (key, field = "physics_ms") =>
     Object.fromEntries(
       counts.map((t) => [

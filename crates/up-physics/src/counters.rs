@@ -191,8 +191,8 @@ impl Counters {
 /// stage the milliseconds since the last lap. A clock read a stage, no
 /// allocation once warm; the threads' part (ten kilobytes) is filled and
 /// copied only while the threads are timed, in a box the world keeps
-/// between steps: made or moved every step, it cost a step of one awake
-/// balloon a tenth of its time.
+/// between steps, since made or moved every step it would cost a step of
+/// one awake balloon a tenth of its time.
 pub(crate) struct StageClock {
     last: f64,
     ms: [f64; Stage::COUNT],

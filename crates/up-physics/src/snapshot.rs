@@ -14,8 +14,8 @@ const MAGIC: &[u8; 6] = b"UPSNAP";
 /// 2: `StepStats` counts quarantined bodies. 3: sleeping islands keep their impulses.
 /// 4: `WorldDef` has the position passes' most and target. 5: joints; contact
 /// features as two indices. 6: ribbons. 7: gas. 8: a ribbon's anchor.
-/// 9: the moving air's sources.
-const VERSION: u16 = 9;
+/// 9: the moving air's sources. 10: `WorldDef`'s ribbon contacts and their friction.
+const VERSION: u16 = 10;
 const HEADER: usize = 6 + 2 + 8;
 
 #[derive(Debug, Error, PartialEq)]

@@ -188,7 +188,7 @@ fn an_icosphere_of_ones_own_has_the_volume_of_its_sphere() {
 /// themselves, valve down, in still air: the valve sits on the lower edge
 /// where it hangs the film's weight straight below the centre of buoyancy.
 #[test]
-fn a_foil_heart_and_every_digit_float_upright() {
+fn a_foil_heart_a_star_and_every_digit_float_upright() {
     let mut groups = vec![
         "kind = \"foil\"\nshape = \"heart\"\nsize_in = 18".to_string(),
         "kind = \"foil\"\nshape = \"star\"\nsize_in = 20".to_string(),

@@ -1,8 +1,21 @@
-// The workers of `initThreadPoolHere` (threads.rs): the pool's threads but the
-// one that starts it. Kept close to wasm-bindgen-rayon's no-bundler helper
-// (Copyright 2022 Google Inc., Apache License 2.0), whose builder protocol
-// (numThreads, receiver, mainJS, build) it shares; its workers run rayon's
-// loop through `up_pool_start_worker`.
+/*
+ * Copyright 2022 Google Inc. All Rights Reserved.
+ * Licensed under the Apache License, Version 2.0 (the "License");
+ * you may not use this file except in compliance with the License.
+ * You may obtain a copy of the License at
+ *     http://www.apache.org/licenses/LICENSE-2.0
+ * Unless required by applicable law or agreed to in writing, software
+ * distributed under the License is distributed on an "AS IS" BASIS,
+ * WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ * See the License for the specific language governing permissions and
+ * limitations under the License.
+ */
+
+// Modified from wasm-bindgen-rayon 1.3.0's src/workerHelpers.no-bundler.js:
+// the workers of `initThreadPoolHere` (threads.rs), the pool's threads but
+// the one that starts it. It shares that helper's builder protocol
+// (numThreads, receiver, mainJS, build); its workers run rayon's loop
+// through `up_pool_start_worker`, and the builder is kept for the pool's life.
 //
 // This file is both the starter (imported by the glue) and, fetched as a
 // blob, each worker's script: a worker waits for its init message.
@@ -27,6 +40,9 @@ waitForMsgType(self, "up_pool_worker_init").then(async (data) => {
 // Kept, so that no browser collects a worker sharing the module's memory
 // while nothing else refers to it (Firefox's bug 1702191).
 let workers;
+// Kept: the workers read their threads from its channel, by address, after
+// `build` has queued them (freeing it under them would be a use after free).
+let builderKept;
 
 export async function startWorkers(module, memory, builder) {
   const init = {
@@ -48,5 +64,6 @@ export async function startWorkers(module, memory, builder) {
       return worker;
     }),
   );
+  builderKept = builder;
   builder.build();
 }

@@ -147,6 +147,16 @@ mod tests {
     /// and a read starts the sums afresh.
     #[test]
     fn timed_steps_on_one_thread_are_all_busy() {
+        // The tests' global pool may have several threads (up-physics'
+        // `parallel` is on natively): this one steps on a pool of one.
+        let one = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .expect("a one-thread pool");
+        one.install(timed_steps_on_one_thread);
+    }
+
+    fn timed_steps_on_one_thread() {
         let mut state = crate::State::default();
         state.load_default().expect("the default scene builds");
         set_thread_timing(true);

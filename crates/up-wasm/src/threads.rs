@@ -11,9 +11,11 @@
 //!   `use_current_thread`): it runs the step and takes its share of every
 //!   pass itself, so `n` threads step the world with one worker fewer.
 //!
-//! `initThreadPoolHere`'s workers are started by `pool_workers.js` (kept
-//! close to wasm-bindgen-rayon's no-bundler helper, whose builder protocol
-//! it shares) and run rayon's loop through `up_pool_start_worker`.
+//! `initThreadPoolHere`'s workers are started by `pool_workers.js` (modified
+//! from wasm-bindgen-rayon 1.3.0's no-bundler helper, Copyright 2022 Google
+//! Inc., Apache License 2.0) and run rayon's loop through
+//! `up_pool_start_worker`; `PoolBuilder` and that function follow the same
+//! crate's `wbg_rayon_PoolBuilder` and `wbg_rayon_start_worker`.
 
 use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
 use std::sync::Mutex;
@@ -126,8 +128,8 @@ pub fn init_thread_pool_here(threads: usize) -> Result<Promise, JsError> {
 pub fn up_pool_start_worker(
     receiver: *const Mutex<Receiver<ThreadBuilder>>,
 ) -> Result<(), JsError> {
-    // Safe while the builder lives: the glue keeps it until every worker has
-    // taken its thread (`build` returns after sending them all).
+    // Safe while the builder lives: pool_workers.js keeps it for the pool's
+    // life (`build` may return before every worker has taken its thread).
     let receiver = unsafe { &*receiver };
     let thread = receiver
         .lock()

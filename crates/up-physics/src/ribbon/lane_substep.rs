@@ -59,7 +59,8 @@ impl LaneGroup {
     /// the velocities.
     pub(crate) fn substep_solve(&mut self, near: &NearInput) {
         // The same knots as before the solve's part (the bodies have not
-        // moved), placed again since the contacts between may have moved them.
+        // moved, and a knot is held: no contact moves it), placed again
+        // rather than kept across the ribbons' contacts.
         let knots = self.place_knots(near.states);
         self.solve_and_finish(near, &knots);
     }

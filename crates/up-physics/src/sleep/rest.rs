@@ -24,6 +24,9 @@ pub(crate) const HOVER_REST_SHARE: f32 = 0.2;
 fn mark_hovering<'a>(input: &SleepInput, n: usize, hovering: &'a mut Vec<bool>) -> &'a [bool] {
     hovering.clear();
     hovering.resize(n, false);
+    if input.awake_ribbons.is_empty() {
+        return hovering;
+    }
     for r in input.awake_ribbons {
         hovering[r.state as usize] = true;
     }

@@ -320,8 +320,9 @@ fn give_way(_done: &AtomicUsize, _blocks: usize) {
 /// `yield_now` does nothing in WebAssembly, so a waiting thread would hold
 /// its core from the very thread whose block it waits for (the page's own
 /// threads, drawing, take cores too). It sleeps on the count instead, woken
-/// by the stage's last block (`wake_waiters`), or after a millisecond, so
-/// that a panicked block, which wakes no one, is still noticed.
+/// by the stage's last block (`wake_waiters`); the millisecond's timeout
+/// only bounds a wait should a wake ever be missed (a panic aborts in the
+/// page, so no failed block is left to notice).
 #[cfg(all(target_arch = "wasm32", target_feature = "atomics"))]
 fn give_way(done: &AtomicUsize, blocks: usize) {
     let seen = done.load(Ordering::Acquire);

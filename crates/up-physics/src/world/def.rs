@@ -141,7 +141,7 @@ fn check(ok: bool, key: &'static str, value: f32, expected: &str) -> Result<(), 
 }
 
 /// The parameter `key` inside its shared limit (`limits`).
-fn within(limit: &Limit, key: &'static str, value: f32) -> Result<(), PhysicsError> {
+pub(super) fn within(limit: &Limit, key: &'static str, value: f32) -> Result<(), PhysicsError> {
     if limit.contains(value) {
         return Ok(());
     }

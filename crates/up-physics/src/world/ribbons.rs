@@ -148,13 +148,7 @@ impl World {
 
     /// Sets the friction of a ribbon on a ribbon (`WorldDef::ribbon_friction`).
     pub fn set_ribbon_friction(&mut self, friction: f32) -> Result<(), PhysicsError> {
-        if !(friction >= 0.0 && friction.is_finite()) {
-            return Err(PhysicsError::BadParameter {
-                key: "ribbon_friction",
-                value: friction,
-                expected: "≥ 0".to_string(),
-            });
-        }
+        super::def::within(&super::limits::FRICTION, "ribbon_friction", friction)?;
         self.def.ribbon_friction = friction;
         Ok(())
     }

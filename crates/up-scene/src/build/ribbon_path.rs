@@ -52,7 +52,8 @@ impl WeightedRibbon {
     }
 
     /// Whether the path from `centre` is clear of every balloon placed
-    /// (other ribbons' paths may cross it: ribbons pass through each other).
+    /// (other ribbons' paths may cross it: by default ribbons pass through
+    /// each other, and ribbons laid crossing that touch are eased apart).
     pub fn clear(&self, centre: Vec3, occupied: &Occupancy) -> bool {
         along(&self.path(centre), self.clearance)
             .all(|p| !occupied.overlaps_balloon(p, self.clearance))

@@ -63,7 +63,8 @@ impl Occupancy {
     }
 
     /// A piece of a weighted ribbon's path: balloons keep out of it, other
-    /// ribbons' paths may cross it (ribbons do not collide with each other).
+    /// ribbons' paths may cross it (laid crossing, ribbons that touch are
+    /// eased apart; by default they pass through each other).
     pub(crate) fn insert_path(&mut self, center: Vec3, radius: f32) {
         self.insert_kind(center, radius, true);
     }

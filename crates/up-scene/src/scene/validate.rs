@@ -186,7 +186,11 @@ fn validate(scene: &Scene) -> Result<(), SceneError> {
         )?;
     }
     c.limit("sim.friction", sim.friction, &limits::FRICTION)?;
-    c.limit("sim.ribbon_friction", sim.ribbon_friction, &limits::FRICTION)?;
+    c.limit(
+        "sim.ribbon_friction",
+        sim.ribbon_friction,
+        &limits::FRICTION,
+    )?;
     c.limit("sim.restitution", sim.restitution, &limits::RESTITUTION)?;
     let drag = sim.drag_coefficient;
     c.limit("sim.drag_coefficient", drag, &limits::DRAG_COEFFICIENT)?;

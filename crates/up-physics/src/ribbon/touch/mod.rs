@@ -1,7 +1,9 @@
 //! Ribbons touching ribbons: each segment is a capsule of `RIBBON_RADIUS`
 //! (a weighted end a sphere of its weight's radius), and segments of
 //! different ribbons, and of one ribbon with itself two segments apart or
-//! more, do not pass through each other.
+//! more, are kept from passing through each other (in a packed crowd some
+//! still do, and a ribbon draped over a taut one slips through: see
+//! docs/physics.md).
 //!
 //! Once a step, before the substeps, the segments that may touch are paired
 //! (`broad`): each awake ribbon's box, widened by how far its points can
@@ -120,7 +122,7 @@ pub(crate) struct RibbonTouch {
 impl Default for RibbonTouch {
     fn default() -> Self {
         RibbonTouch {
-            enabled: true,
+            enabled: false,
             friction: RIBBON_ON_RIBBON_FRICTION,
             push_out: 0.0,
             pairs: Vec::new(),
