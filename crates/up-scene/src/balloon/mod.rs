@@ -288,8 +288,10 @@ pub fn build_balloon_with(
     };
     let custom = matches!(surface, BalloonSurface::Custom { .. });
     let flat = match surface {
-        // The pillow is flat too; the latex balloon is round.
-        BalloonSurface::Standard => spec.kind == EnvelopeKind::Foil,
+        // The pillow keeps its axial tree: fitted over its face (tightness
+        // 1.45 against 3.85) it rocks on its many leaves against a flat
+        // ceiling above the sleep speed and never sleeps.
+        BalloonSurface::Standard => false,
         BalloonSurface::FoilOutline(_) => true,
         BalloonSurface::Custom { .. } => is_flat(&mesh.positions, &mesh.indices),
     };
