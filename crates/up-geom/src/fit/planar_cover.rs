@@ -10,11 +10,10 @@
 //! is exact for every point of the surface, not only for samples.
 //!
 //! Where the spheres go: a weighted k-means of the triangles' centres in the
-//! plane, the weight the triangle's area times its height to the fourth, so
-//! the thick middle gets more, smaller cells than the thin rim (a sphere must
-//! be at least as large as the half-thickness where it sits; cells there must
-//! be small to keep it near that). Long triangles are first cut into pieces
-//! no longer than 1/64 of the extent, so no sphere must hold a long sliver. Then a few rounds of: each triangle to the
+//! plane, the weight the triangle's area times its height squared, so the
+//! thick middle gets more, smaller cells than the thin rim (a sphere must be at
+//! least as large as the half-thickness where it sits; cells there must be
+//! small to keep it near that). Then a few rounds of: each triangle to the
 //! sphere that holds it with the least radius, each centre moved to where its
 //! triangles need the least radius (a convex problem: subgradient steps
 //! towards the farthest corner). Fixed starts and sweep orders: the same mesh
@@ -145,38 +144,6 @@ fn least_radius_centre(start: DVec2, tris: &[&[DVec3; 3]]) -> DVec2 {
     }
 }
 
-/// Longest triangle edge the cover works with, in units of the largest
-/// extent in the plane: a sphere must hold a whole triangle, and a long
-/// sliver (the fan at a pillow's centre, 2.7 cm at 18″) would make the one
-/// that holds it stand well past the faces.
-const MAX_EDGE: f64 = 1.0 / 64.0;
-
-/// The triangles, each cut into four at its edges' midpoints until no edge
-/// is longer than `MAX_EDGE` of the extent (at most four times): a cover of
-/// the pieces' corners is a cover of the surface.
-fn split_long(tris: Vec<[DVec3; 3]>) -> Vec<[DVec3; 3]> {
-    let (lo, hi) = tris.iter().flatten().fold(
-        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-        |(lo, hi), p| (lo.min(p.truncate()), hi.max(p.truncate())),
-    );
-    let longest = MAX_EDGE * (hi - lo).max_element();
-    let mut out = Vec::with_capacity(tris.len());
-    let mut stack: Vec<([DVec3; 3], u32)> = tris.into_iter().rev().map(|t| (t, 0)).collect();
-    while let Some((t, depth)) = stack.pop() {
-        let edge = (0..3).fold(0.0f64, |m, i| m.max(t[i].distance(t[(i + 1) % 3])));
-        if edge <= longest || depth == 4 {
-            out.push(t);
-            continue;
-        }
-        let [a, b, c] = t;
-        let (ab, bc, ca) = ((a + b) * 0.5, (b + c) * 0.5, (c + a) * 0.5);
-        for piece in [[ca, bc, c], [ab, b, bc], [a, ab, ca], [ab, bc, ca]] {
-            stack.push((piece, depth + 1));
-        }
-    }
-    out
-}
-
 /// Covers the surface with at most `count` spheres centred on `frame`'s plane.
 pub fn fit_planar_spheres(
     vertices: &[Vec3],
@@ -192,26 +159,19 @@ pub fn fit_planar_spheres(
     if tris.is_empty() {
         return Vec::new();
     }
-    let tris = split_long(tris);
     let z_max = tris
         .iter()
         .flat_map(|t| t.iter().map(|p| p.z.abs()))
         .fold(0.0f64, f64::max)
         .max(f64::MIN_POSITIVE);
-    // Weighted points: each triangle's centre in the plane, weighted by its
-    // area and steeply by how thick the shape is there (h⁴): the k-means
-    // puts centres at a density of the weight's square root, so the thick
-    // middle, where a sphere must be as large as the half-thickness and
-    // stands past the faces by a²/2h for a cell of radius a, gets small
-    // cells (two such shapes face to face rest on those spheres), the thin
-    // rim fewer, larger ones.
+    // Weighted points: each triangle's centre in the plane.
     let points: Vec<(DVec2, f64)> = tris
         .iter()
         .map(|t| {
             let centre = (t[0] + t[1] + t[2]) / 3.0;
             let area = 0.5 * (t[1] - t[0]).cross(t[2] - t[0]).length();
             let h = centre.z.abs() / z_max;
-            (DVec2::new(centre.x, centre.y), area * (0.05 + h.powi(4)))
+            (DVec2::new(centre.x, centre.y), area * (0.05 + h * h))
         })
         .collect();
     let count = count.clamp(1, tris.len());
