@@ -108,8 +108,8 @@ fn every_shape_lifts_what_its_volume_displaces_less_its_weight() {
 
 /// Union of the leaves over the volume, at most: 1.5 for every shape but
 /// the star, whose thin arms the 64 leaves over its face still overcover
-/// (1.70), and the pillow, whose five leaves lie along its axis (3.85):
-/// fitted over its face (1.45) it rocks on its many leaves against a flat
+/// (1.69), and the pillow, whose five leaves lie along its axis (3.85):
+/// fitted over its face (about 1.4) it rocks on its many leaves against a flat
 /// ceiling above the sleep speed and never sleeps.
 fn tightness_bound(name: &str) -> f32 {
     if name.contains("star") {

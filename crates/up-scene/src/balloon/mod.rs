@@ -289,7 +289,7 @@ pub fn build_balloon_with(
     let custom = matches!(surface, BalloonSurface::Custom { .. });
     let flat = match surface {
         // The pillow keeps its axial tree: fitted over its face (tightness
-        // 1.45 against 3.85) it rocks on its many leaves against a flat
+        // about 1.4 against 3.85) it rocks on its many leaves against a flat
         // ceiling above the sleep speed and never sleeps.
         BalloonSurface::Standard => false,
         BalloonSurface::FoilOutline(_) => true,
