@@ -136,8 +136,9 @@ test("make measure's window: the drawing held, the scene restarted and stepped o
 });
 
 test("make measure's window gives each thread's part of each stage on 2 threads, and the same hash", async ({ page }) => {
-  // Enough balloons that the step is shared with the pool (a small one runs on the calling thread alone).
-  await open(page, `&threads=2${sceneHash({ room: { width: 5, depth: 5 }, balloons: [{ count: 300 }], sim: { seed: 3 } })}`);
+  // Enough balloons that the step is shared with the pool: a small one runs on the calling thread
+  // alone, and a substep's staged run of 300 balloons can end before the pool's other thread arrives.
+  await open(page, `&threads=2${sceneHash({ room: { width: 8, depth: 8 }, balloons: [{ count: 1500 }], sim: { seed: 3 } })}`);
   const plain = await page.evaluate(() => window.__up!.measureSteps(30));
   expect(plain.threadStages, "no figures unless asked").toEqual([]);
   const timed = await page.evaluate(() => window.__up!.measureSteps(30, true));
