@@ -58,7 +58,7 @@ pub struct EngineResult {
     /// UP with `--thread-times`: each thread's busy, barrier and idle time
     /// in each stage, ms per step over the run.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub stage_threads_mean: Option<Vec<crate::thread_times::StageThreads>>,
+    pub stage_threads_mean: Option<Vec<up_physics::StageThreadMeans>>,
 }
 
 fn is_zero(n: &usize) -> bool {

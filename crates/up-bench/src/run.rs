@@ -28,8 +28,8 @@ use crate::rss::peak_rss_mb;
 use crate::scene_data::SceneData;
 use crate::stats::{mean, median, quantile, settled};
 use crate::step_times;
-use crate::thread_times::ThreadTotals;
 use crate::up_engine::UpEngine;
+use up_physics::ThreadSums;
 
 /// Most steps a run takes.
 pub const MAX_STEPS: u64 = 1_000_000;
@@ -205,7 +205,7 @@ pub fn run(opts: &RunOptions) -> Result<Vec<EngineResult>> {
     let mut stretch_step: Vec<u64> = vec![0; engines.len()];
     let late_from = (RIBBON_START_S / data.def.dt).round() as u64;
     let mut stages: Vec<Vec<(&'static str, f64)>> = vec![Vec::new(); engines.len()];
-    let mut threads: Vec<ThreadTotals> = vec![ThreadTotals::default(); engines.len()];
+    let mut threads: Vec<ThreadSums> = vec![ThreadSums::default(); engines.len()];
     up_physics::set_thread_timing(opts.thread_times);
     let mut scratch = Vec::new();
     let order: Vec<usize> = (0..engines.len()).collect();
@@ -297,7 +297,7 @@ pub fn run(opts: &RunOptions) -> Result<Vec<EngineResult>> {
                     .map(|&(name, total)| (name.to_string(), total / opts.steps as f64))
                     .collect()
             }),
-            stage_threads_mean: threads[i].means(),
+            stage_threads_mean: Some(threads[i].means()).filter(|rows| !rows.is_empty()),
         });
     }
     Ok(results)

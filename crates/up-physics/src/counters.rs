@@ -166,6 +166,18 @@ impl Counters {
         &self.threads
     }
 
+    /// A step's counters made up of one stage's time and the threads' figures.
+    #[cfg(test)]
+    pub(crate) fn made_up(stage: Stage, ms: f64, threads: ThreadCounters) -> Counters {
+        let mut counters = Counters {
+            threads,
+            ..Counters::default()
+        };
+        counters.ms[stage as usize] = ms;
+        counters.total_ms = ms;
+        counters
+    }
+
     /// Stage names and times, in the order the step runs them, then "total".
     pub fn stages(&self) -> Vec<(&'static str, f64)> {
         let stages = Stage::ALL.iter().map(|&s| (s.name(), self.ms(s)));

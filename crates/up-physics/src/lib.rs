@@ -49,6 +49,7 @@ pub use quarantine::{QuarantinedBody, MAX_QUARANTINE_REPORTS};
 pub use ribbon::{RibbonDef, RibbonId};
 pub use snapshot::SnapshotError;
 pub use threading::keep_awake_switch::set_keep_threads_awake;
+pub use threading::thread_sums::{StageThreadMeans, ThreadSums};
 pub use up_geom;
 pub use world::limits;
 pub use world::{

@@ -2,17 +2,13 @@
 //! (`up_physics::Counters::threads`, timed while `set_thread_timing` is on):
 //! busy, waiting at a staged pass's barriers, and idle (looking for work, or
 //! the step's thread waiting for a pass to join), summed over the steps
-//! between two `stats` calls and averaged when read, as the stage times are.
-//! Fixed arrays: adding a step allocates nothing.
+//! between two `stats` calls (`up_physics::ThreadSums`, which allocates
+//! nothing a step) and averaged when read, as the stage times are.
 
 use serde::Serialize;
 use tsify_next::Tsify;
-use up_physics::{Counters, Stage};
+use up_physics::{Counters, StageThreadMeans};
 use wasm_bindgen::prelude::*;
-
-/// Threads whose figures are kept (the step's thread first); the pool's
-/// others are left out.
-const KEPT_THREADS: usize = 16;
 
 /// Turns the timing of each thread's part of every stage on or off for the
 /// steps from now on (two clock reads per task of a parallel pass while on);
@@ -37,97 +33,39 @@ pub struct StageThreadTimes {
     pub passes: f64,
 }
 
-/// One stage's sums over the steps taken since the last `take`.
-#[derive(Clone, Copy, Default)]
-struct StageSum {
-    wall_ms: f64,
-    busy_ms: [f64; KEPT_THREADS],
-    barrier_ms: [f64; KEPT_THREADS],
-    idle_ms: [f64; KEPT_THREADS],
-    barriers: f64,
-    passes: f64,
-}
-
-/// Each stage's per-thread sums since the last `take`.
-pub struct ThreadSums {
-    stages: [StageSum; Stage::COUNT],
-    /// Most threads any summed step was timed on.
-    threads: usize,
-    steps: u32,
-}
-
-impl Default for ThreadSums {
-    fn default() -> Self {
-        ThreadSums {
-            stages: [StageSum::default(); Stage::COUNT],
-            threads: 0,
-            steps: 0,
+impl From<StageThreadMeans> for StageThreadTimes {
+    fn from(m: StageThreadMeans) -> Self {
+        StageThreadTimes {
+            stage: m.stage,
+            wall_ms: m.wall_ms,
+            busy_ms: m.busy_ms,
+            barrier_ms: m.barrier_ms,
+            idle_ms: m.idle_ms,
+            barriers: m.barriers,
+            passes: m.passes,
         }
     }
 }
+
+/// Each stage's per-thread sums since the last `take`.
+#[derive(Default)]
+pub struct ThreadSums(up_physics::ThreadSums);
 
 impl ThreadSums {
     /// Adds a step's figures; a step without them (timing off) adds nothing.
     pub fn add(&mut self, counters: &Counters) {
-        let timed = counters.threads();
-        let n = timed.threads().min(KEPT_THREADS);
-        if n == 0 {
-            return;
-        }
-        self.threads = self.threads.max(n);
-        for (sum, stage) in self.stages.iter_mut().zip(Stage::ALL) {
-            sum.wall_ms += counters.ms(stage);
-            sum.barriers += f64::from(timed.barriers(stage));
-            sum.passes += f64::from(timed.passes(stage));
-            for (t, time) in timed.times(stage).iter().take(n).enumerate() {
-                sum.busy_ms[t] += time.busy_ms;
-                sum.barrier_ms[t] += time.barrier_ms;
-                sum.idle_ms[t] += time.idle_ms;
-            }
-        }
-        self.steps += 1;
+        self.0.add(counters);
     }
 
     /// Each stage's means a step (the stages that took any time, in step
-    /// order), then "total" (every stage summed); empty when no step was
-    /// timed. The sums start afresh.
+    /// order), then "total"; empty when no step was timed. The sums start
+    /// afresh.
     pub fn take(&mut self) -> Vec<StageThreadTimes> {
-        if self.steps == 0 {
-            return Vec::new();
-        }
-        let per_step = 1.0 / f64::from(self.steps);
-        let threads = self.threads;
-        let mut total = StageSum::default();
-        let mut rows = Vec::new();
-        for (sum, stage) in self.stages.iter().zip(Stage::ALL) {
-            total.wall_ms += sum.wall_ms;
-            total.barriers += sum.barriers;
-            total.passes += sum.passes;
-            for t in 0..threads {
-                total.busy_ms[t] += sum.busy_ms[t];
-                total.barrier_ms[t] += sum.barrier_ms[t];
-                total.idle_ms[t] += sum.idle_ms[t];
-            }
-            if sum.wall_ms > 0.0 {
-                rows.push(mean_row(stage.name(), sum, threads, per_step));
-            }
-        }
-        rows.push(mean_row("total", &total, threads, per_step));
-        *self = ThreadSums::default();
-        rows
-    }
-}
-
-fn mean_row(name: &str, sum: &StageSum, threads: usize, per_step: f64) -> StageThreadTimes {
-    let scale = |v: &[f64; KEPT_THREADS]| v[..threads].iter().map(|x| x * per_step).collect();
-    StageThreadTimes {
-        stage: name.to_string(),
-        wall_ms: sum.wall_ms * per_step,
-        busy_ms: scale(&sum.busy_ms),
-        barrier_ms: scale(&sum.barrier_ms),
-        idle_ms: scale(&sum.idle_ms),
-        barriers: sum.barriers * per_step,
-        passes: sum.passes * per_step,
+        std::mem::take(&mut self.0)
+            .means()
+            .into_iter()
+            .map(StageThreadTimes::from)
+            .collect()
     }
 }
 

@@ -14,4 +14,5 @@ pub(crate) mod spare;
 #[cfg(feature = "parallel")]
 pub(crate) mod staged;
 pub(crate) mod tasks;
+pub mod thread_sums;
 pub(crate) mod thread_times;

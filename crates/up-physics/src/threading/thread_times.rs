@@ -335,6 +335,38 @@ mod tests {
         assert!(counters.times(Stage::Gas).iter().all(|t| t.busy_ms == 0.0));
     }
 
+    /// Two steps' figures summed are read as their means, each stage's row
+    /// (only those that took time) before the total.
+    #[test]
+    fn summed_steps_are_read_as_means_a_step() {
+        use crate::threading::thread_sums::ThreadSums;
+        let mut sums = ThreadSums::default();
+        for (wall, task) in [(10.0, 4.0), (6.0, 2.0)] {
+            let before = Reading::default();
+            let mut after = before;
+            // Slot 0 runs the step, all of it a pass; slot 1 runs tasks.
+            after.pass[0] = (wall * 1e6) as u64;
+            after.task[1] = (task * 1e6) as u64;
+            after.passes = 1;
+            let (mut timed, _) = ThreadCounters::begin(2);
+            timed.record(Stage::Solve, wall, 0, &before, &after);
+            sums.add(&crate::counters::Counters::made_up(
+                Stage::Solve,
+                wall,
+                timed,
+            ));
+        }
+        let means = sums.means();
+        let names: Vec<&str> = means.iter().map(|m| m.stage.as_str()).collect();
+        assert_eq!(names, ["solve", "total"]);
+        for row in &means {
+            assert!((row.wall_ms - 8.0).abs() < 1e-9, "{row:?}");
+            assert_eq!(row.busy_ms, [0.0, 3.0]);
+            assert_eq!(row.idle_ms, [8.0, 5.0]);
+            assert_eq!(row.passes, 1.0);
+        }
+    }
+
     /// A staged pass on two threads, timed: its barriers are counted, the
     /// step's thread's time in it is a pass, and its blocks are tasks.
     #[cfg(feature = "parallel")]
