@@ -149,9 +149,17 @@ test("make measure's window gives each thread's part of each stage on 2 threads,
   expect(total.busy_ms).toHaveLength(2);
   expect(total.passes, "the step's parallel passes are counted").toBeGreaterThan(0);
   expect(total.busy_ms[1], "the pool's other thread ran some of them").toBeGreaterThan(0);
+  // Each thread's parts add up to no more than the step. The pool's other
+  // thread reads its own clock, which the page coarsens (5 µs where isolated):
+  // each stage's part may be off by a reading at either end, and a stage's idle
+  // time is never negative, so the bound allows two readings a stage.
+  const stagesTimed = timed.threadStages.length - 1;
+  const resolutionMs = 0.005;
   for (let t = 0; t < 2; t++) {
-    // Each thread's parts add up to no more than the step (its clock reads apart).
-    expect(total.busy_ms[t] + total.barrier_ms[t] + total.idle_ms[t]).toBeLessThanOrEqual(total.wall_ms * 1.01 + 0.05);
+    const parts = total.busy_ms[t] + total.barrier_ms[t] + total.idle_ms[t];
+    expect(parts, `thread ${t}'s parts of the step: ${JSON.stringify(timed.threadStages)}`).toBeLessThanOrEqual(
+      total.wall_ms * 1.01 + stagesTimed * 2 * resolutionMs,
+    );
   }
 });
 
