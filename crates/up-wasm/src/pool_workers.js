@@ -45,6 +45,11 @@ let workers;
 let builderKept;
 
 export async function startWorkers(module, memory, builder) {
+  // A second pool comes only from a fresh instance of the module after a
+  // trap (every instance's glue imports this one script): the last pool's
+  // workers, asleep in the dead instance, are let go with its memory.
+  for (const worker of workers ?? []) worker.terminate();
+  workers = undefined;
   const init = {
     type: "up_pool_worker_init",
     module,
