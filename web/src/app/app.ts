@@ -75,17 +75,31 @@ export class App {
   lastStats: { stats: EngineStats; stepsPerSecond: number } | null = null;
   /** Frames drawn with balloons, and main-thread ms spent in renderer.render over them (measurements). */
   readonly frames = { drawn: 0, renderMs: 0 };
+  private drawingHeldNow = false;
+  /** The main thread's work and render call per frame (measurements). */
+  readonly frameMeter = new FrameMeter();
+  private firstWorld = true;
+  private lastFrameTime = performance.now();
+
   /**
    * Measurements only: frames do nothing, so that the page sends the GPU
    * nothing to draw or composite. Headless Chromium draws through
    * SwiftShader on the CPU, which would take the cores that a timed physics
    * window is measuring.
    */
-  drawingHeld = false;
-  /** The main thread's work and render call per frame (measurements). */
-  readonly frameMeter = new FrameMeter();
-  private firstWorld = true;
-  private lastFrameTime = performance.now();
+  get drawingHeld(): boolean {
+    return this.drawingHeldNow;
+  }
+
+  set drawingHeld(held: boolean) {
+    this.drawingHeldNow = held;
+    this.tellDrawing();
+  }
+
+  /** The worker's pool spins or sleeps by whether frames are drawn (`?spin=auto`): not while held or while the tab is hidden. */
+  private tellDrawing(): void {
+    this.bridge.setDrawing(!this.drawingHeldNow && !document.hidden);
+  }
 
   constructor(private readonly page: PageElements) {
     this.budget = drawingBudget({
@@ -119,6 +133,8 @@ export class App {
     });
     const { threads, error: threadsError } = requestedThreads(location.search, navigator.hardwareConcurrency);
     this.bridge.init(new URL("wasm/up_wasm.wasm", document.baseURI).href, this.link.takeInitial(), threads, requestedPool(location.search));
+    // A hidden tab draws no frames (the browser stops them).
+    document.addEventListener("visibilitychange", () => this.tellDrawing());
     const stageStart = performance.now();
     this.stage = createStage(page.app, this.budget);
     this.startup.stageMs = performance.now() - stageStart;

@@ -37,7 +37,6 @@ export function createTestHook(app: App) {
     /** Measurements: frames that do nothing (the GPU gets nothing to draw), or their work again (`App.drawingHeld`). */
     holdDrawing: (held: boolean) => {
       app.drawingHeld = held;
-      app.bridge.setDrawing(!held);
     },
     /**
      * Measurements: returns once the GPU has finished every frame sent so far

@@ -32,6 +32,8 @@ export class SimBridge {
   /** How the engine's pool runs (kept for `restart`). */
   private pool: PoolSettings = DEFAULT_POOL;
   private rate = 1;
+  /** Whether the page draws its frames (kept for `restart`: a fresh worker assumes it does). */
+  private drawing = true;
   /** What a restarted engine is given once it is ready (it drops commands before). */
   private restore: { paused: boolean; rate: number } | null = null;
   /** The newest frame, drawn every animation frame until the next one arrives. */
@@ -179,6 +181,7 @@ export class SimBridge {
     this.worker = this.startWorker();
     this.restore = { paused: this.paused, rate: this.rate };
     this.init(this.wasmUrl, sceneJson, threads, this.pool);
+    if (!this.drawing) this.setDrawing(false);
   }
 
   /** The world's state hash (16 hex digits) and the steps taken since it was built. */
@@ -226,6 +229,7 @@ export class SimBridge {
 
   /** Tells the worker whether the page draws its frames (the pool's spinning depends on it). */
   setDrawing(on: boolean): void {
+    this.drawing = on;
     this.send({ type: "drawing", on });
   }
 
