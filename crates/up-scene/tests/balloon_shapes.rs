@@ -222,8 +222,9 @@ fn a_foil_heart_a_star_and_every_digit_float_upright() {
 /// Two air-filled foil balloons laid flat, one on the other on the floor,
 /// rest with their centres at the drawn thickness within 1 cm: two hearts,
 /// two stars (each fitted over its face). Two pillows come within 1.5 cm
-/// (1.46): the leaf over the middle of each holds the pillow mesh's 2.7 cm
-/// centre fan whole (`foil_mesh`).
+/// (1.46): the leaves over the middle of each hold patches about 7 cm across
+/// (`foil_mesh`); finer ones there tip a pillow from leaf to leaf against a
+/// ceiling (`pillow_sleep.rs`).
 #[test]
 fn foil_balloons_face_to_face_rest_at_their_drawn_thickness() {
     for group in [

@@ -236,9 +236,9 @@ fn the_foil_pillow_is_fitted_over_its_face_and_covers_it() {
     assert!(tree.leaves().len() <= surface::FLAT_LEAVES && tree.leaves().len() > 32);
     assert!(tree.leaf_spheres().all(|s| s.center.z.abs() < 1e-4));
     assert!(m.fit.tightness <= 1.5, "tightness {}", m.fit.tightness);
-    // No leaf stands more than 8 mm past the pillow's faces (the one over
-    // its middle holds the 2.7 cm triangles of the mesh's centre fan whole):
-    // two face to face rest within 1.5 cm of their drawn thickness.
+    // No leaf stands more than 8 mm past the pillow's faces (those over its
+    // middle each hold a patch about 7 cm across): two face to face rest within
+    // 1.5 cm of their drawn thickness.
     let half = up_geom::Aabb::from_points(&m.mesh.positions).extents().z * 0.5;
     let widest = tree.leaf_spheres().map(|s| s.radius).fold(0.0, f32::max);
     assert!(widest <= half + 0.008, "{widest} against {half}");
