@@ -92,9 +92,8 @@ fn every_shape_lifts_what_its_volume_displaces_less_its_weight() {
             m.fit.coverage
         );
         assert_eq!(m.fit.coverage, 1.0, "{name}");
-        // Every foil shape's tree lies over its face (the pillow's along
-        // its axis: `tightness_bound`).
-        if name.starts_with("foil") && !name.contains("pillow") {
+        // Every foil shape's tree lies over its face.
+        if name.starts_with("foil") {
             assert!(m.fit.axis.dot(Vec3::Z).abs() > 0.999, "{name}");
         }
         assert!(
@@ -107,15 +106,14 @@ fn every_shape_lifts_what_its_volume_displaces_less_its_weight() {
 }
 
 /// Union of the leaves over the volume, at most: 1.5 for every shape but
-/// the star, whose thin arms the 64 leaves over its face still overcover
-/// (1.69), and the pillow, whose five leaves lie along its axis (3.85):
-/// fitted over its face (about 1.4) it rocks on its many leaves against a flat
-/// ceiling above the sleep speed and never sleeps.
+/// the star (1.69): its arms are drawn thicker than wide (6.8 cm off the
+/// mid-plane where they are 2.6 cm from the middle to either side, 15 cm
+/// out), so a leaf centred on the mid-plane, as thick as the arm, stands
+/// past its sides; each of its leaves is within 6 mm of the thickness where
+/// it sits.
 fn tightness_bound(name: &str) -> f32 {
     if name.contains("star") {
         1.75
-    } else if name.contains("pillow") {
-        3.9
     } else {
         1.5
     }
@@ -223,8 +221,10 @@ fn a_foil_heart_a_star_and_every_digit_float_upright() {
 
 /// Two air-filled foil balloons laid flat, one on the other on the floor,
 /// rest with their centres at the drawn thickness within 1 cm: two hearts,
-/// two stars (each fitted over its face). The pillow, on its axial tree,
-/// does not (`tightness_bound`).
+/// two stars (each fitted over its face). Two pillows come within 1.5 cm
+/// (1.46): the leaves over the middle of each hold patches about 7 cm across
+/// (`foil_mesh`); finer ones there tip a pillow from leaf to leaf against a
+/// ceiling (`pillow_sleep.rs`).
 #[test]
 fn foil_balloons_face_to_face_rest_at_their_drawn_thickness() {
     for group in [
@@ -233,6 +233,7 @@ fn foil_balloons_face_to_face_rest_at_their_drawn_thickness() {
     ] {
         face_to_face(group, 0.01);
     }
+    face_to_face("kind = \"foil\"\nsize_in = 18\ngas = \"air\"", 0.015);
 }
 
 fn face_to_face(group: &str, within: f32) {

@@ -18,8 +18,9 @@
 //! `BalloonDimensions` describe it as a latex balloon's: the valve is its
 //! "knot", a small ball at the tip (its mass, not its shape). The sphere
 //! tree is the planar fitter's (`up_geom::fit::planar_cover`), 64 leaves
-//! over its face: no leaf stands more than 5 mm past the faces, so two
-//! pillows face to face rest within a centimetre of their drawn thickness.
+//! over its face: those over the middle each hold a patch about 7 cm across
+//! and stand up to 8 mm past the face, so two pillows face to face rest
+//! 1.5 cm off their drawn thickness.
 //! Everything scales with the diameter. Closed and watertight (one vertex per face
 //! centre, rings share their seam vertex), wound counter-clockwise seen from
 //! outside, smooth per-vertex normals: 2,400 triangles.

@@ -288,10 +288,9 @@ pub fn build_balloon_with(
     };
     let custom = matches!(surface, BalloonSurface::Custom { .. });
     let flat = match surface {
-        // The pillow keeps its axial tree: fitted over its face (tightness
-        // about 1.4 against 3.85) it rocks on its many leaves against a flat
-        // ceiling above the sleep speed and never sleeps.
-        BalloonSurface::Standard => false,
+        // The pillow is flat too (over its face: tightness 1.41, where
+        // along its axis it is 3.85); the latex balloon is round.
+        BalloonSurface::Standard => spec.kind == EnvelopeKind::Foil,
         BalloonSurface::FoilOutline(_) => true,
         BalloonSurface::Custom { .. } => is_flat(&mesh.positions, &mesh.indices),
     };
