@@ -9,7 +9,8 @@
 //!    substep);
 //! 2. points are pushed out of the balloons near the ribbon and out of the
 //!    room; where segments of ribbons may touch this step, the pairs are
-//!    projected apart (`touch`), on one thread, between this and 3;
+//!    projected apart (`touch`), on one thread, between this and 3, and
+//!    again between 3 and 4;
 //! 3. the chain, knot included, is brought back to its lengths by direct
 //!    solves (`chain`; follow-the-leader if a jerk outruns them), and the
 //!    room's push repeated for what that moved;
@@ -287,7 +288,7 @@ fn substep(
         });
     } else {
         // The ribbons' contacts with each other between the pushes and the
-        // chains' solve, on one thread in the pairs' order.
+        // chains' solve and again after it, on one thread in the pairs' order.
         fill_chunks(groups, GROUP_CHUNK, |_, groups| {
             for g in groups {
                 g.substep_before_solve(&near);
@@ -297,6 +298,12 @@ fn substep(
         fill_chunks(groups, GROUP_CHUNK, |_, groups| {
             for g in groups {
                 g.substep_solve(&near);
+            }
+        });
+        touch.project(groups);
+        fill_chunks(groups, GROUP_CHUNK, |_, groups| {
+            for g in groups {
+                g.substep_finish(&near);
             }
         });
     }

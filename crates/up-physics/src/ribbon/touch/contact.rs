@@ -1,4 +1,4 @@
-//! One substep's projection of the ribbons' contacts (`RibbonTouch::project`):
+//! A projection of the ribbons' contacts, twice a substep (`RibbonTouch::project`):
 //! each pair's closest points pushed apart to the sum of their radii, on the
 //! side the pair keeps, with Coulomb friction on their slide over the
 //! substep, in the pairs' order.

@@ -2,8 +2,7 @@
 //! (a weighted end a sphere of its weight's radius), and segments of
 //! different ribbons, and of one ribbon with itself two segments apart or
 //! more, are kept from passing through each other (in a packed crowd some
-//! still do, and a ribbon draped over a taut one slips through: see
-//! docs/physics.md).
+//! still do: see docs/physics.md).
 //!
 //! Once a step, before the substeps, the segments that may touch are paired
 //! (`broad`): each awake ribbon's box, widened by how far its points can
@@ -14,20 +13,24 @@
 //! segment swept fast across another is caught in the substep it would
 //! cross.
 //!
-//! In each substep, between the points' fall and pushes and the chains'
-//! direct solve (`LaneGroup::substep_before_solve`, `substep_solve`), every
-//! pair is projected in the pairs' fixed order (`contact`): the closest
-//! points of the two segments as they now are, pushed apart to the sum of
-//! their radii along the line between them, each segment's two points by
-//! their share and inverse mass (so each ribbon pushes the other), with
-//! position-level Coulomb friction on what the closest points slid past each
-//! other over the substep (Müller et al., "Detailed rigid body simulation
-//! with extended position based dynamics", 2020). A pair keeps the side it
-//! was found on: when the line between the closest points turns more than a
-//! right angle in one substep, the segments passed through each other, and
-//! they are pushed back to the side they came from. The chain's solve then
-//! restores the lengths; the next substep's projection takes up what it
-//! moved back.
+//! In each substep every pair is projected twice, in the pairs' fixed order
+//! (`contact`): between the points' fall and pushes and the chains' direct
+//! solve (`LaneGroup::substep_before_solve`, `substep_solve`), so that the
+//! solve starts from ribbons apart, and again after it, before the
+//! velocities (`substep_finish`), so that the substep ends with them apart
+//! (a solve that follows the last push pulls a ribbon folded over another
+//! back into it substep after substep, until the fold's point slips
+//! through). A projection pushes the closest points of the two segments as
+//! they now are apart to the sum of their radii along the line between
+//! them, each segment's two points by their share and inverse mass (so each
+//! ribbon pushes the other), with position-level Coulomb friction on what
+//! the closest points slid past each other over the substep (Müller et al.,
+//! "Detailed rigid body simulation with extended position based dynamics",
+//! 2020). A pair keeps the side it was found on: when the line between the
+//! closest points turns more than a right angle since it was last
+//! projected, the segments passed through each other, and they are pushed
+//! back to the side they came from. The lengths the last push changed are
+//! the next substep's solve's to restore.
 //!
 //! The pass runs on one thread in a fixed order, so the result is the same
 //! on any number of threads; with no pair in a step the substeps run as
