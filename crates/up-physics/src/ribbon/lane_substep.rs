@@ -56,13 +56,27 @@ impl LaneGroup {
     }
 
     /// The chains' solve, after the ribbons' contacts (`touch`) took their
-    /// first turn; `substep_finish` follows their second.
+    /// first turn; `substep_finish` follows their last.
     pub(crate) fn substep_solve(&mut self, near: &NearInput) {
         // The same knots as before the solve's part (the bodies have not
         // moved, and a knot is held: no contact moves it), placed again
         // rather than kept across the ribbons' contacts.
         let knots = self.place_knots(near.states);
+        self.impulse = V4::ZERO;
         self.solve_lengths(&knots);
+        self.knots = knots;
+        self.pushed = false;
+    }
+
+    /// The chains solved again, if a contact moved the group's points since
+    /// the last solve: from where that solve left them, knots included, its
+    /// impulses on the balloons added to the substep's.
+    pub(crate) fn substep_solve_again(&mut self) {
+        if self.pushed {
+            let knots = self.knots;
+            self.solve_lengths(&knots);
+            self.pushed = false;
+        }
     }
 
     /// The rest of the substep, after the contacts' second turn: the room's
@@ -74,6 +88,7 @@ impl LaneGroup {
     /// `substep_solve` and `substep_finish` with the knots as
     /// `substep_before_solve` placed them.
     fn solve_and_finish(&mut self, near: &NearInput, knots: &Knots) {
+        self.impulse = V4::ZERO;
         self.solve_lengths(knots);
         self.finish(near);
     }
@@ -250,9 +265,9 @@ impl LaneGroup {
 
     /// The chains, knots included, brought back to their lengths: direct
     /// solves, each lane until its solve started within the tolerance, at
-    /// most `CHAIN_ITERATIONS`. Returns the lanes that never did.
+    /// most `CHAIN_ITERATIONS`, their impulses on the knots added to
+    /// `impulse`. Returns the lanes that never did.
     fn solve_chains(&mut self, knots: &Knots) -> F4 {
-        self.impulse = V4::ZERO;
         let tolerance = F4::splat(CHAIN_TOLERANCE) * self.segment_length;
         let mut moving = self.live_mask;
         ROWS.with_borrow_mut(|rows| {

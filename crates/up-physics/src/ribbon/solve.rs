@@ -288,7 +288,9 @@ fn substep(
         });
     } else {
         // The ribbons' contacts with each other between the pushes and the
-        // chains' solve and again after it, on one thread in the pairs' order.
+        // chains' solve, taking turns with the solve, and again after the
+        // last, on one thread in the pairs' order; a repeated solve only
+        // for the groups the contacts moved.
         fill_chunks(groups, GROUP_CHUNK, |_, groups| {
             for g in groups {
                 g.substep_before_solve(&near);
@@ -300,6 +302,14 @@ fn substep(
                 g.substep_solve(&near);
             }
         });
+        for _ in 1..super::touch::SOLVES {
+            touch.project(groups);
+            fill_chunks(groups, GROUP_CHUNK, |_, groups| {
+                for g in groups {
+                    g.substep_solve_again();
+                }
+            });
+        }
         touch.project(groups);
         fill_chunks(groups, GROUP_CHUNK, |_, groups| {
             for g in groups {

@@ -37,6 +37,7 @@ fn ends(groups: &[LaneGroup], s: Segment) -> Ends {
 /// Moves segment `s`'s points by `d0` and `d1`.
 fn shift(groups: &mut [LaneGroup], s: Segment, d0: Vec3, d1: Vec3) {
     let g = &mut groups[s.group as usize];
+    g.pushed = true;
     let (l, i) = (s.lane as usize, s.index as usize);
     let p0: Vec3 = g.points[i].lane(l);
     let p1: Vec3 = g.points[i + 1].lane(l);
@@ -98,15 +99,36 @@ impl RibbonTouch {
     }
 }
 
-/// `pair` pushed apart, if its capsules overlap or have passed through each
-/// other, with friction.
-fn project_pair(pair: &mut Touching, groups: &mut [LaneGroup], friction: f32) {
-    let (a, b) = (ends(groups, pair.a), ends(groups, pair.b));
-    let (s, t) = parameters(pair, &a, &b);
+/// Below this sine of the angle between two segments they are taken as
+/// parallel: their common perpendicular gives no side.
+const PARALLEL_SINE: f32 = 0.25;
+
+/// The side `b` is on from `a` (a unit vector) and how far along it their
+/// closest points `s`, `t` lie, m, negative where they have passed through
+/// each other since `pair.normal` was last set. Where the closest points
+/// lie inside both segments (and these cross at an angle) the side is their
+/// common perpendicular `(a1 − a0) × (b1 − b0)`, turned toward the kept
+/// side: it turns only as the segments turn, not as they move, so a segment
+/// swept through another shows as a distance turned negative whatever its
+/// speed. Elsewhere (a segment's end nearest the other, or the two side by
+/// side) the line between the closest points, which turns about an end as a
+/// segment slides round it: passed through where it turned more than a
+/// right angle.
+fn side(pair: &Touching, a: &Ends, b: &Ends, s: f32, t: f32) -> (Vec3, f32) {
     let d = at(b.p, t) - at(a.p, s);
+    let inside = |x: f32| x > 0.0 && x < 1.0;
+    if !pair.end_a && !pair.end_b && inside(s) && inside(t) {
+        let (da, db) = (a.p[1] - a.p[0], b.p[1] - b.p[0]);
+        let across = da.cross(db);
+        let sine2 = PARALLEL_SINE * PARALLEL_SINE;
+        if across.length_squared() > sine2 * da.length_squared() * db.length_squared() {
+            let n = across.normalize();
+            let n = if n.dot(pair.normal) < 0.0 { -n } else { n };
+            return (n, d.dot(n));
+        }
+    }
     let distance = d.length();
-    // Turned more than a right angle since last seen: passed through.
-    let (normal, distance) = if distance > NO_DIRECTION {
+    if distance > NO_DIRECTION {
         let n = d / distance;
         if n.dot(pair.normal) < 0.0 {
             (-n, -distance)
@@ -115,7 +137,15 @@ fn project_pair(pair: &mut Touching, groups: &mut [LaneGroup], friction: f32) {
         }
     } else {
         (pair.normal, 0.0)
-    };
+    }
+}
+
+/// `pair` pushed apart, if its capsules overlap or have passed through each
+/// other, with friction.
+fn project_pair(pair: &mut Touching, groups: &mut [LaneGroup], friction: f32) {
+    let (a, b) = (ends(groups, pair.a), ends(groups, pair.b));
+    let (s, t) = parameters(pair, &a, &b);
+    let (normal, distance) = side(pair, &a, &b, s, t);
     pair.normal = normal;
     let depth = radius(&a, s, pair.end_a) + radius(&b, t, pair.end_b) - pair.allowed - distance;
     if depth <= 0.0 {

@@ -40,6 +40,8 @@
 mod broad;
 mod closest;
 mod contact;
+pub mod crossings;
+pub mod linking;
 
 use glam::Vec3;
 use up_geom::Aabb;
@@ -54,6 +56,14 @@ pub const RIBBON_ON_RIBBON_FRICTION: f32 = 0.4;
 /// fly apart; those that overlap only within the step (a crossing caught)
 /// are pushed out whole.
 pub const OVERLAP_PUSH_OUT_SPEED: f32 = 0.1;
+
+/// The chains' solves a substep where ribbons touch, each after a
+/// projection of the contacts (and one more projection after the last): a
+/// ribbon pulled taut over another is pulled back into it by a solve that
+/// does not see the contact, and one more turn halves the crossings of 500
+/// ribbons released together (57 to 27 in 5 s); the second solve runs only
+/// for the groups whose points a contact moved.
+pub(crate) const SOLVES: usize = 2;
 
 /// A segment: points `index` and `index + 1` of the ribbon in lane `lane`
 /// of lane group `group`.
