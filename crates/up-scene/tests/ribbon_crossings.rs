@@ -106,11 +106,12 @@ fn five_hundred_released_ribbons_do_not_cross() {
     let on = release_crossings(true, 5);
     println!("500 released: {off} crossings without contacts, {on} with");
     assert!(off > 0, "the ribbons never met");
-    // Not yet none: in the crowd under the ceiling a ribbon squeezed between
-    // balloons and other ribbons is still pushed through now and then (the
-    // chains' solve after the contacts, a jerk beyond the pairs' margin).
+    // Not yet none (27 of 1,071): nearly all of the rest are ribbons laid
+    // across each other on the floor at the start, pushed apart over their
+    // first steps (the overlap a pair begins a step with is let out at
+    // `OVERLAP_PUSH_OUT_SPEED`), a few in the crowd under the ceiling.
     assert!(
-        5 * on <= off,
-        "{on} crossings with contacts, {off} without: fewer than a fifth expected"
+        25 * on <= off,
+        "{on} crossings with contacts, {off} without: fewer than a 25th expected"
     );
 }

@@ -12,12 +12,9 @@ use super::{closest, RibbonTouch, Segment, Touching};
 /// Closer than this, the closest points give no direction, m.
 const NO_DIRECTION: f32 = 1e-7;
 
-/// A segment as it stands: its two points, where they began the substep,
-/// their inverse masses and the radius at its end point.
+/// A segment as it stands: its two points and the radius at its end point.
 struct Ends {
     p: [Vec3; 2],
-    start: [Vec3; 2],
-    inv_mass: [f32; 2],
     end_radius: f32,
     last: bool,
 }
@@ -27,11 +24,21 @@ fn ends(groups: &[LaneGroup], s: Segment) -> Ends {
     let (l, i) = (s.lane as usize, s.index as usize);
     Ends {
         p: [g.points[i].lane(l), g.points[i + 1].lane(l)],
-        start: [g.start[i].lane(l), g.start[i + 1].lane(l)],
-        inv_mass: [g.inv_mass[i].as_array()[l], g.inv_mass[i + 1].as_array()[l]],
         end_radius: g.end_radius.as_array()[l],
         last: i + 2 == g.points.len(),
     }
+}
+
+/// Where segment `s`'s points began the substep and their inverse masses:
+/// read only for a pair that touches (most pairs, found before they touch,
+/// do not).
+fn starts(groups: &[LaneGroup], s: Segment) -> ([Vec3; 2], [f32; 2]) {
+    let g = &groups[s.group as usize];
+    let (l, i) = (s.lane as usize, s.index as usize);
+    (
+        [g.start[i].lane(l), g.start[i + 1].lane(l)],
+        [g.inv_mass[i].as_array()[l], g.inv_mass[i + 1].as_array()[l]],
+    )
 }
 
 /// Moves segment `s`'s points by `d0` and `d1`.
@@ -145,14 +152,17 @@ fn side(pair: &Touching, a: &Ends, b: &Ends, s: f32, t: f32) -> (Vec3, f32) {
 fn project_pair(pair: &mut Touching, groups: &mut [LaneGroup], friction: f32) {
     let (a, b) = (ends(groups, pair.a), ends(groups, pair.b));
     let (s, t) = parameters(pair, &a, &b);
+    let reach = radius(&a, s, pair.end_a) + radius(&b, t, pair.end_b);
     let (normal, distance) = side(pair, &a, &b, s, t);
     pair.normal = normal;
-    let depth = radius(&a, s, pair.end_a) + radius(&b, t, pair.end_b) - pair.allowed - distance;
+    let depth = reach - pair.allowed - distance;
     if depth <= 0.0 {
         return;
     }
-    let wa = [(1.0 - s) * a.inv_mass[0], s * a.inv_mass[1]];
-    let wb = [(1.0 - t) * b.inv_mass[0], t * b.inv_mass[1]];
+    let ((a_start, a_inv_mass), (b_start, b_inv_mass)) =
+        (starts(groups, pair.a), starts(groups, pair.b));
+    let wa = [(1.0 - s) * a_inv_mass[0], s * a_inv_mass[1]];
+    let wb = [(1.0 - t) * b_inv_mass[0], t * b_inv_mass[1]];
     let w = (1.0 - s) * wa[0] + s * wa[1] + (1.0 - t) * wb[0] + t * wb[1];
     if w <= 0.0 {
         return;
@@ -162,7 +172,7 @@ fn project_pair(pair: &mut Touching, groups: &mut [LaneGroup], friction: f32) {
     // Friction on what the closest points slid past each other this
     // substep, taken out whole while the push could hold it, else by
     // the push times the coefficient.
-    let slid = (at(b.p, t) - at(b.start, t)) - (at(a.p, s) - at(a.start, s));
+    let slid = (at(b.p, t) - at(b_start, t)) - (at(a.p, s) - at(a_start, s));
     let slid = slid - slid.dot(normal) * normal;
     let slide = slid.length();
     let limit = friction * depth;
