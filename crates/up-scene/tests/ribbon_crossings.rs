@@ -106,12 +106,12 @@ fn five_hundred_released_ribbons_do_not_cross() {
     let on = release_crossings(true, 5);
     println!("500 released: {off} crossings without contacts, {on} with");
     assert!(off > 0, "the ribbons never met");
-    // Not yet none (27 of 1,071): nearly all of the rest are ribbons laid
+    // Not yet none (20 of 1,071): nearly all of the rest are ribbons laid
     // across each other on the floor at the start, pushed apart over their
     // first steps (the overlap a pair begins a step with is let out at
     // `OVERLAP_PUSH_OUT_SPEED`), a few in the crowd under the ceiling.
     assert!(
-        25 * on <= off,
-        "{on} crossings with contacts, {off} without: fewer than a 25th expected"
+        40 * on <= off,
+        "{on} crossings with contacts, {off} without: fewer than a 40th expected"
     );
 }

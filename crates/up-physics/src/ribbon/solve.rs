@@ -296,21 +296,21 @@ fn substep(
                 g.substep_before_solve(&near);
             }
         });
-        touch.project(groups);
+        touch.project(groups, f32::MAX);
         fill_chunks(groups, GROUP_CHUNK, |_, groups| {
             for g in groups {
                 g.substep_solve(&near);
             }
         });
         for _ in 1..super::touch::SOLVES {
-            touch.project(groups);
+            touch.project(groups, f32::MAX);
             fill_chunks(groups, GROUP_CHUNK, |_, groups| {
                 for g in groups {
                     g.substep_solve_again();
                 }
             });
         }
-        touch.project(groups);
+        touch.project(groups, super::touch::LAST_PASS_MOST);
         fill_chunks(groups, GROUP_CHUNK, |_, groups| {
             for g in groups {
                 g.substep_finish(&near);

@@ -98,10 +98,10 @@ pub(super) fn begin(pair: &mut Touching, groups: &[LaneGroup], push_out: f32) {
 
 impl RibbonTouch {
     /// Projects every pair once, in order, on the groups' points as the
-    /// substep's fall and pushes left them.
-    pub(crate) fn project(&mut self, groups: &mut [LaneGroup]) {
+    /// substep's fall and pushes left them, each by at most `most` m.
+    pub(crate) fn project(&mut self, groups: &mut [LaneGroup], most: f32) {
         for pair in &mut self.pairs {
-            project_pair(pair, groups, self.friction);
+            project_pair(pair, groups, self.friction, most);
         }
     }
 }
@@ -149,13 +149,13 @@ fn side(pair: &Touching, a: &Ends, b: &Ends, s: f32, t: f32) -> (Vec3, f32) {
 
 /// `pair` pushed apart, if its capsules overlap or have passed through each
 /// other, with friction.
-fn project_pair(pair: &mut Touching, groups: &mut [LaneGroup], friction: f32) {
+fn project_pair(pair: &mut Touching, groups: &mut [LaneGroup], friction: f32, most: f32) {
     let (a, b) = (ends(groups, pair.a), ends(groups, pair.b));
     let (s, t) = parameters(pair, &a, &b);
     let reach = radius(&a, s, pair.end_a) + radius(&b, t, pair.end_b);
     let (normal, distance) = side(pair, &a, &b, s, t);
     pair.normal = normal;
-    let depth = reach - pair.allowed - distance;
+    let depth = (reach - pair.allowed - distance).min(most);
     if depth <= 0.0 {
         return;
     }

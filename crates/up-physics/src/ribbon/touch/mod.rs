@@ -13,24 +13,29 @@
 //! segment swept fast across another is caught in the substep it would
 //! cross.
 //!
-//! In each substep every pair is projected twice, in the pairs' fixed order
-//! (`contact`): between the points' fall and pushes and the chains' direct
-//! solve (`LaneGroup::substep_before_solve`, `substep_solve`), so that the
-//! solve starts from ribbons apart, and again after it, before the
-//! velocities (`substep_finish`), so that the substep ends with them apart
-//! (a solve that follows the last push pulls a ribbon folded over another
-//! back into it substep after substep, until the fold's point slips
-//! through). A projection pushes the closest points of the two segments as
-//! they now are apart to the sum of their radii along the line between
-//! them, each segment's two points by their share and inverse mass (so each
+//! In each substep the pairs are projected in their fixed order
+//! (`contact`), taking turns with the chains' direct solve: between the
+//! points' fall and pushes and the solve (`LaneGroup::substep_before_solve`,
+//! `substep_solve`), so that the solve starts from ribbons apart; after it,
+//! followed by a second solve of the groups a contact moved
+//! (`substep_solve_again`, `SOLVES`); and once more before the velocities
+//! (`substep_finish`), each pair by at most `LAST_PASS_MOST`, so that the
+//! substep ends with a fold held (a solve that follows the last push pulls
+//! a ribbon folded over another back into it substep after substep, until
+//! the fold's point slips through). A projection pushes the closest points
+//! of the two segments as they now are apart to the sum of their radii,
+//! each segment's two points by their share and inverse mass (so each
 //! ribbon pushes the other), with position-level Coulomb friction on what
 //! the closest points slid past each other over the substep (Müller et al.,
 //! "Detailed rigid body simulation with extended position based dynamics",
-//! 2020). A pair keeps the side it was found on: when the line between the
-//! closest points turns more than a right angle since it was last
-//! projected, the segments passed through each other, and they are pushed
-//! back to the side they came from. The lengths the last push changed are
-//! the next substep's solve's to restore.
+//! 2020). A pair keeps the side it was found on (`contact::side`): where
+//! its closest points lie inside both segments and these cross at an
+//! angle, along their common perpendicular, which turns only as the
+//! segments turn, so that a segment swept through another shows as a
+//! separation turned negative; elsewhere along the line between the closest
+//! points, passed through where that turned more than a right angle. A pair
+//! that passed through is pushed back to the side it came from. The lengths
+//! the last push changed are the next substep's solve's to restore.
 //!
 //! The pass runs on one thread in a fixed order, so the result is the same
 //! on any number of threads; with no pair in a step the substeps run as
@@ -61,9 +66,18 @@ pub const OVERLAP_PUSH_OUT_SPEED: f32 = 0.1;
 /// projection of the contacts (and one more projection after the last): a
 /// ribbon pulled taut over another is pulled back into it by a solve that
 /// does not see the contact, and one more turn halves the crossings of 500
-/// ribbons released together (57 to 27 in 5 s); the second solve runs only
-/// for the groups whose points a contact moved.
+/// ribbons released together; the second solve runs only for the groups
+/// whose points a contact moved.
 pub(crate) const SOLVES: usize = 2;
+
+/// The most a pair is pushed in a substep's last pass, after the last
+/// solve, m: a fold that the solve pulls on by a fraction of a millimetre
+/// a substep is held, while a larger correction (a pair caught passing
+/// through, a tangle pulled taut), which would leave the ribbons stretched
+/// at the step's end by as much, waits for the next substep's first pass,
+/// the pair keeping its side (the bouquet's ribbons, pulled up through each
+/// other's weights, ended steps stretched 2.4 % with the whole correction).
+pub(crate) const LAST_PASS_MOST: f32 = 1e-3;
 
 /// A segment: points `index` and `index + 1` of the ribbon in lane `lane`
 /// of lane group `group`.
