@@ -3,92 +3,24 @@
 //! 500 balloons on ribbons released together, counted every step with the
 //! ribbons' contacts on and, to show that the count can fail, off.
 //!
-//! A crossing: between two consecutive steps, two segments of different
-//! ribbons whose lines' signed volume `((a1 − a0) × (b1 − b0))·(b0 − a0)`
-//! changes sign and the line between the lines' closest points turns over
-//! (their centre lines passed through each other; two segments side by side
-//! that turn through parallel flip the volume's sign but keep their sides)
-//! while the closest points of the two lines lie inside both segments, at both steps,
-//! and were closer than the ribbon's thickness plus how far those closest
-//! points moved against each other in the step (so that a segment swept
-//! past another within one step counts).
+//! A crossing (`up_physics::ribbon::crossings`): between two consecutive
+//! steps, two segments of different ribbons whose lines' signed volume
+//! `((a1 − a0) × (b1 − b0))·(b0 − a0)` changes sign and the line between
+//! the lines' closest points turns over (their centre lines passed through
+//! each other) while the closest points of the two lines lie inside both
+//! segments, at both steps, and were closer than the ribbon's thickness
+//! plus how far those closest points moved against each other in the step
+//! (so that a segment swept past another within one step counts).
 
 mod common;
 
 use common::asset;
 use glam::Vec3;
+use up_physics::ribbon::crossings::crossings;
 use up_physics::ribbon::RIBBON_RADIUS;
 use up_physics::{RibbonId, World};
 use up_scene::build::build_world;
 use up_scene::scene::Scene;
-
-/// The closest points' parameters of two lines, `None` if parallel.
-fn line_parameters(a0: Vec3, a1: Vec3, b0: Vec3, b1: Vec3) -> Option<(f32, f32)> {
-    let (d1, d2, r) = (a1 - a0, b1 - b0, a0 - b0);
-    let (a, b, c, e, f) = (d1.dot(d1), d1.dot(d2), d1.dot(r), d2.dot(d2), d2.dot(r));
-    let denom = a * e - b * b;
-    if denom <= 1e-9 * a * e {
-        return None;
-    }
-    Some(((b * f - c * e) / denom, (a * f - b * c) / denom))
-}
-
-/// Where the segments' lines are closest and how far apart, if both
-/// closest points lie inside the segments; and the signed volume.
-fn closest_inside(a: [Vec3; 2], b: [Vec3; 2]) -> Option<(Vec3, f32)> {
-    let (s, t) = line_parameters(a[0], a[1], b[0], b[1])?;
-    if !((0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t)) {
-        return None;
-    }
-    let pa = a[0] + (a[1] - a[0]) * s;
-    let pb = b[0] + (b[1] - b[0]) * t;
-    let volume = (a[1] - a[0]).cross(b[1] - b[0]).dot(b[0] - a[0]);
-    Some((pb - pa, volume))
-}
-
-/// The crossings between two states of the ribbons' points (per ribbon).
-fn crossings(before: &[Vec<Vec3>], after: &[Vec<Vec3>]) -> usize {
-    let boxes: Vec<(Vec3, Vec3)> = after
-        .iter()
-        .zip(before)
-        .map(|(p, q)| {
-            let all = p.iter().chain(q);
-            let lo = all.clone().fold(Vec3::splat(f32::MAX), |m, v| m.min(*v));
-            let hi = all.fold(Vec3::splat(f32::MIN), |m, v| m.max(*v));
-            (lo, hi)
-        })
-        .collect();
-    let mut count = 0;
-    for i in 0..after.len() {
-        for j in i + 1..after.len() {
-            let (lo, hi) = (boxes[i].0.max(boxes[j].0), boxes[i].1.min(boxes[j].1));
-            if lo.cmpgt(hi + Vec3::splat(0.01)).any() {
-                continue;
-            }
-            for si in 0..after[i].len() - 1 {
-                for sj in 0..after[j].len() - 1 {
-                    let seg = |r: &[Vec<Vec3>], k: usize, s: usize| [r[k][s], r[k][s + 1]];
-                    let was = closest_inside(seg(before, i, si), seg(before, j, sj));
-                    let now = closest_inside(seg(after, i, si), seg(after, j, sj));
-                    let (Some((d0, v0)), Some((d1, v1))) = (was, now) else {
-                        continue;
-                    };
-                    // The lines' cross product turns over as two
-                    // segments side by side pass through parallel: only a
-                    // line between them that turned over too is a crossing.
-                    if v0.signum() == v1.signum() || v0 == 0.0 || d0.dot(d1) >= 0.0 {
-                        continue;
-                    }
-                    let near = 2.0 * RIBBON_RADIUS + (d1 - d0).length();
-                    if d0.length() < near && d1.length() < near {
-                        count += 1;
-                    }
-                }
-            }
-        }
-    }
-    count
-}
 
 fn points(world: &World, ids: &[RibbonId]) -> Vec<Vec<Vec3>> {
     ids.iter()
@@ -110,7 +42,7 @@ fn count_crossings(
         before_step(world, k);
         world.step();
         let now = points(world, &ids);
-        total += crossings(&last, &now);
+        total += crossings(&last, &now, 2.0 * RIBBON_RADIUS);
         last = now;
     }
     total
@@ -174,11 +106,12 @@ fn five_hundred_released_ribbons_do_not_cross() {
     let on = release_crossings(true, 5);
     println!("500 released: {off} crossings without contacts, {on} with");
     assert!(off > 0, "the ribbons never met");
-    // Not yet none: in the crowd under the ceiling a ribbon squeezed between
-    // balloons and other ribbons is still pushed through now and then (the
-    // chains' solve after the contacts, a jerk beyond the pairs' margin).
+    // Not yet none (20 of 1,071): nearly all of the rest are ribbons laid
+    // across each other on the floor at the start, pushed apart over their
+    // first steps (the overlap a pair begins a step with is let out at
+    // `OVERLAP_PUSH_OUT_SPEED`), a few in the crowd under the ceiling.
     assert!(
-        5 * on <= off,
-        "{on} crossings with contacts, {off} without: fewer than a fifth expected"
+        40 * on <= off,
+        "{on} crossings with contacts, {off} without: fewer than a 40th expected"
     );
 }

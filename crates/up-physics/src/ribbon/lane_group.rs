@@ -15,6 +15,7 @@
 use std::ops::Range;
 
 use super::body_spheres::BodySpheres;
+use super::chain::Knots;
 use super::collide::{Grip, NearBalloon};
 use super::lane_pushes::NearSlot;
 use super::lane_room::RoomSlot;
@@ -98,6 +99,12 @@ pub(crate) struct LaneGroup {
     pub h: f32,
     /// The near balloons' bounds lined up across the lanes.
     pub near_slots: Vec<NearSlot>,
+    /// The knots as this substep's chains' solve took them, for the solves
+    /// that follow the ribbons' contacts (`touch`) within the substep.
+    pub knots: Knots,
+    /// A contact between ribbons moved one of its points since its chains
+    /// were last solved.
+    pub pushed: bool,
 }
 
 impl LaneGroup {

@@ -55,24 +55,57 @@ impl LaneGroup {
         knots
     }
 
-    /// The rest of the substep: the chains' solve, the room's push again and
-    /// the velocities.
+    /// The chains' solve, after the ribbons' contacts (`touch`) took their
+    /// first turn; `substep_finish` follows their last.
     pub(crate) fn substep_solve(&mut self, near: &NearInput) {
         // The same knots as before the solve's part (the bodies have not
         // moved, and a knot is held: no contact moves it), placed again
         // rather than kept across the ribbons' contacts.
         let knots = self.place_knots(near.states);
-        self.solve_and_finish(near, &knots);
+        self.impulse = V4::ZERO;
+        self.solve_lengths(&knots);
+        self.knots = knots;
+        self.pushed = false;
     }
 
-    /// `substep_solve` with the knots as `substep_before_solve` placed them.
+    /// The chains solved again, if a contact moved the group's points since
+    /// the last solve: from where that solve left them, knots included, its
+    /// impulses on the balloons added to the substep's.
+    pub(crate) fn substep_solve_again(&mut self) {
+        if self.pushed {
+            let knots = self.knots;
+            self.solve_lengths(&knots);
+            self.pushed = false;
+        }
+    }
+
+    /// The rest of the substep, after the contacts' second turn: the room's
+    /// push again and the velocities.
+    pub(crate) fn substep_finish(&mut self, near: &NearInput) {
+        self.finish(near);
+    }
+
+    /// `substep_solve` and `substep_finish` with the knots as
+    /// `substep_before_solve` placed them.
     fn solve_and_finish(&mut self, near: &NearInput, knots: &Knots) {
-        let (input, states) = (near.input, near.states);
-        let h = input.h;
+        self.impulse = V4::ZERO;
+        self.solve_lengths(knots);
+        self.finish(near);
+    }
+
+    /// The chains brought back to their lengths.
+    fn solve_lengths(&mut self, knots: &Knots) {
         let unconverged = self.solve_chains(knots);
         if unconverged.any() {
             self.follow_the_leader(unconverged);
         }
+    }
+
+    /// The room's push after the solve, the step's impulse and the
+    /// velocities.
+    fn finish(&mut self, near: &NearInput) {
+        let (input, states) = (near.input, near.states);
+        let h = input.h;
         self.push_out_of_room(input.triangles, false);
         self.step_impulse = self.step_impulse + self.impulse;
         self.substeps += 1;
@@ -232,9 +265,9 @@ impl LaneGroup {
 
     /// The chains, knots included, brought back to their lengths: direct
     /// solves, each lane until its solve started within the tolerance, at
-    /// most `CHAIN_ITERATIONS`. Returns the lanes that never did.
+    /// most `CHAIN_ITERATIONS`, their impulses on the knots added to
+    /// `impulse`. Returns the lanes that never did.
     fn solve_chains(&mut self, knots: &Knots) -> F4 {
-        self.impulse = V4::ZERO;
         let tolerance = F4::splat(CHAIN_TOLERANCE) * self.segment_length;
         let mut moving = self.live_mask;
         ROWS.with_borrow_mut(|rows| {

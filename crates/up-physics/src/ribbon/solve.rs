@@ -9,7 +9,8 @@
 //!    substep);
 //! 2. points are pushed out of the balloons near the ribbon and out of the
 //!    room; where segments of ribbons may touch this step, the pairs are
-//!    projected apart (`touch`), on one thread, between this and 3;
+//!    projected apart (`touch`), on one thread, between this and 3, and
+//!    again between 3 and 4;
 //! 3. the chain, knot included, is brought back to its lengths by direct
 //!    solves (`chain`; follow-the-leader if a jerk outruns them), and the
 //!    room's push repeated for what that moved;
@@ -287,16 +288,32 @@ fn substep(
         });
     } else {
         // The ribbons' contacts with each other between the pushes and the
-        // chains' solve, on one thread in the pairs' order.
+        // chains' solve, taking turns with the solve, and again after the
+        // last, on one thread in the pairs' order; a repeated solve only
+        // for the groups the contacts moved.
         fill_chunks(groups, GROUP_CHUNK, |_, groups| {
             for g in groups {
                 g.substep_before_solve(&near);
             }
         });
-        touch.project(groups);
+        touch.project(groups, f32::MAX);
         fill_chunks(groups, GROUP_CHUNK, |_, groups| {
             for g in groups {
                 g.substep_solve(&near);
+            }
+        });
+        for _ in 1..super::touch::SOLVES {
+            touch.project(groups, f32::MAX);
+            fill_chunks(groups, GROUP_CHUNK, |_, groups| {
+                for g in groups {
+                    g.substep_solve_again();
+                }
+            });
+        }
+        touch.project(groups, super::touch::LAST_PASS_MOST);
+        fill_chunks(groups, GROUP_CHUNK, |_, groups| {
+            for g in groups {
+                g.substep_finish(&near);
             }
         });
     }

@@ -264,6 +264,55 @@ impl World {
     pub fn grabbed_ribbon(&self) -> Option<(RibbonId, usize)> {
         self.ribbon_grab.map(|g| (g.ribbon, g.point as usize))
     }
+
+    /// Lays a ribbon's points (the knot first) where given, at rest: a
+    /// ribbon wound round another, or two twisted together, for a test or a
+    /// tool. Refused, naming why: not one point a segment end, a point not
+    /// finite, the first farther than 1 mm from the knot, a segment more
+    /// than 1 % off the ribbon's segment length, an anchored end away from
+    /// its anchor. Wakes its balloon.
+    pub fn set_ribbon_points(&mut self, id: RibbonId, points: &[Vec3]) -> Result<(), PhysicsError> {
+        let ribbon = self.ribbons.get(id).ok_or(PhysicsError::StaleRibbon(id))?;
+        let bad = |why: String| Err(PhysicsError::BadRibbon(why));
+        if points.len() != ribbon.points.len() {
+            return bad(format!(
+                "{} points: expected {}",
+                points.len(),
+                ribbon.points.len()
+            ));
+        }
+        if !points.iter().all(|p| p.is_finite()) {
+            return Err(PhysicsError::NonFinite {
+                what: "ribbon point",
+            });
+        }
+        if points[0].distance(ribbon.points[0]) > 1e-3 {
+            return bad(format!(
+                "first point {} m from the knot",
+                points[0].distance(ribbon.points[0])
+            ));
+        }
+        let length = ribbon.segment_length;
+        if let Some(k) = (1..points.len())
+            .find(|&k| (points[k].distance(points[k - 1]) - length).abs() > 0.01 * length)
+        {
+            return bad(format!(
+                "segment {k} {} m long: expected {length} m",
+                points[k].distance(points[k - 1])
+            ));
+        }
+        if let Some(anchor) = ribbon.anchor {
+            if points.last().unwrap().distance(anchor) > 1e-3 {
+                return bad("the free end away from its anchor".to_string());
+            }
+        }
+        let body = ribbon.body;
+        let ribbon = self.ribbons.slot_mut(id.index).expect("a live ribbon");
+        ribbon.points[1..].copy_from_slice(&points[1..]);
+        ribbon.velocities.iter_mut().for_each(|v| *v = Vec3::ZERO);
+        self.stages.ribbons.point_boxes.forget(id.index);
+        self.wake(body)
+    }
 }
 
 /// `n` points from `knot` to `anchor`, `segment` apart, sagging along

@@ -1,4 +1,4 @@
-//! One substep's projection of the ribbons' contacts (`RibbonTouch::project`):
+//! A projection of the ribbons' contacts, twice a substep (`RibbonTouch::project`):
 //! each pair's closest points pushed apart to the sum of their radii, on the
 //! side the pair keeps, with Coulomb friction on their slide over the
 //! substep, in the pairs' order.
@@ -12,12 +12,9 @@ use super::{closest, RibbonTouch, Segment, Touching};
 /// Closer than this, the closest points give no direction, m.
 const NO_DIRECTION: f32 = 1e-7;
 
-/// A segment as it stands: its two points, where they began the substep,
-/// their inverse masses and the radius at its end point.
+/// A segment as it stands: its two points and the radius at its end point.
 struct Ends {
     p: [Vec3; 2],
-    start: [Vec3; 2],
-    inv_mass: [f32; 2],
     end_radius: f32,
     last: bool,
 }
@@ -27,16 +24,27 @@ fn ends(groups: &[LaneGroup], s: Segment) -> Ends {
     let (l, i) = (s.lane as usize, s.index as usize);
     Ends {
         p: [g.points[i].lane(l), g.points[i + 1].lane(l)],
-        start: [g.start[i].lane(l), g.start[i + 1].lane(l)],
-        inv_mass: [g.inv_mass[i].as_array()[l], g.inv_mass[i + 1].as_array()[l]],
         end_radius: g.end_radius.as_array()[l],
         last: i + 2 == g.points.len(),
     }
 }
 
+/// Where segment `s`'s points began the substep and their inverse masses:
+/// read only for a pair that touches (most pairs, found before they touch,
+/// do not).
+fn starts(groups: &[LaneGroup], s: Segment) -> ([Vec3; 2], [f32; 2]) {
+    let g = &groups[s.group as usize];
+    let (l, i) = (s.lane as usize, s.index as usize);
+    (
+        [g.start[i].lane(l), g.start[i + 1].lane(l)],
+        [g.inv_mass[i].as_array()[l], g.inv_mass[i + 1].as_array()[l]],
+    )
+}
+
 /// Moves segment `s`'s points by `d0` and `d1`.
 fn shift(groups: &mut [LaneGroup], s: Segment, d0: Vec3, d1: Vec3) {
     let g = &mut groups[s.group as usize];
+    g.pushed = true;
     let (l, i) = (s.lane as usize, s.index as usize);
     let p0: Vec3 = g.points[i].lane(l);
     let p1: Vec3 = g.points[i + 1].lane(l);
@@ -90,23 +98,44 @@ pub(super) fn begin(pair: &mut Touching, groups: &[LaneGroup], push_out: f32) {
 
 impl RibbonTouch {
     /// Projects every pair once, in order, on the groups' points as the
-    /// substep's fall and pushes left them.
-    pub(crate) fn project(&mut self, groups: &mut [LaneGroup]) {
+    /// substep's fall and pushes left them, each by at most `most` m.
+    pub(crate) fn project(&mut self, groups: &mut [LaneGroup], most: f32) {
         for pair in &mut self.pairs {
-            project_pair(pair, groups, self.friction);
+            project_pair(pair, groups, self.friction, most);
         }
     }
 }
 
-/// `pair` pushed apart, if its capsules overlap or have passed through each
-/// other, with friction.
-fn project_pair(pair: &mut Touching, groups: &mut [LaneGroup], friction: f32) {
-    let (a, b) = (ends(groups, pair.a), ends(groups, pair.b));
-    let (s, t) = parameters(pair, &a, &b);
+/// Below this sine of the angle between two segments they are taken as
+/// parallel: their common perpendicular gives no side.
+const PARALLEL_SINE: f32 = 0.25;
+
+/// The side `b` is on from `a` (a unit vector) and how far along it their
+/// closest points `s`, `t` lie, m, negative where they have passed through
+/// each other since `pair.normal` was last set. Where the closest points
+/// lie inside both segments (and these cross at an angle) the side is their
+/// common perpendicular `(a1 − a0) × (b1 − b0)`, turned toward the kept
+/// side: it turns only as the segments turn, not as they move, so a segment
+/// swept through another shows as a distance turned negative whatever its
+/// speed. Elsewhere (a segment's end nearest the other, or the two side by
+/// side) the line between the closest points, which turns about an end as a
+/// segment slides round it: passed through where it turned more than a
+/// right angle.
+fn side(pair: &Touching, a: &Ends, b: &Ends, s: f32, t: f32) -> (Vec3, f32) {
     let d = at(b.p, t) - at(a.p, s);
+    let inside = |x: f32| x > 0.0 && x < 1.0;
+    if !pair.end_a && !pair.end_b && inside(s) && inside(t) {
+        let (da, db) = (a.p[1] - a.p[0], b.p[1] - b.p[0]);
+        let across = da.cross(db);
+        let sine2 = PARALLEL_SINE * PARALLEL_SINE;
+        if across.length_squared() > sine2 * da.length_squared() * db.length_squared() {
+            let n = across.normalize();
+            let n = if n.dot(pair.normal) < 0.0 { -n } else { n };
+            return (n, d.dot(n));
+        }
+    }
     let distance = d.length();
-    // Turned more than a right angle since last seen: passed through.
-    let (normal, distance) = if distance > NO_DIRECTION {
+    if distance > NO_DIRECTION {
         let n = d / distance;
         if n.dot(pair.normal) < 0.0 {
             (-n, -distance)
@@ -115,14 +144,25 @@ fn project_pair(pair: &mut Touching, groups: &mut [LaneGroup], friction: f32) {
         }
     } else {
         (pair.normal, 0.0)
-    };
+    }
+}
+
+/// `pair` pushed apart, if its capsules overlap or have passed through each
+/// other, with friction.
+fn project_pair(pair: &mut Touching, groups: &mut [LaneGroup], friction: f32, most: f32) {
+    let (a, b) = (ends(groups, pair.a), ends(groups, pair.b));
+    let (s, t) = parameters(pair, &a, &b);
+    let reach = radius(&a, s, pair.end_a) + radius(&b, t, pair.end_b);
+    let (normal, distance) = side(pair, &a, &b, s, t);
     pair.normal = normal;
-    let depth = radius(&a, s, pair.end_a) + radius(&b, t, pair.end_b) - pair.allowed - distance;
+    let depth = (reach - pair.allowed - distance).min(most);
     if depth <= 0.0 {
         return;
     }
-    let wa = [(1.0 - s) * a.inv_mass[0], s * a.inv_mass[1]];
-    let wb = [(1.0 - t) * b.inv_mass[0], t * b.inv_mass[1]];
+    let ((a_start, a_inv_mass), (b_start, b_inv_mass)) =
+        (starts(groups, pair.a), starts(groups, pair.b));
+    let wa = [(1.0 - s) * a_inv_mass[0], s * a_inv_mass[1]];
+    let wb = [(1.0 - t) * b_inv_mass[0], t * b_inv_mass[1]];
     let w = (1.0 - s) * wa[0] + s * wa[1] + (1.0 - t) * wb[0] + t * wb[1];
     if w <= 0.0 {
         return;
@@ -132,7 +172,7 @@ fn project_pair(pair: &mut Touching, groups: &mut [LaneGroup], friction: f32) {
     // Friction on what the closest points slid past each other this
     // substep, taken out whole while the push could hold it, else by
     // the push times the coefficient.
-    let slid = (at(b.p, t) - at(b.start, t)) - (at(a.p, s) - at(a.start, s));
+    let slid = (at(b.p, t) - at(b_start, t)) - (at(a.p, s) - at(a_start, s));
     let slid = slid - slid.dot(normal) * normal;
     let slide = slid.length();
     let limit = friction * depth;

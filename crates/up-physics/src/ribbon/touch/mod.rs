@@ -2,8 +2,7 @@
 //! (a weighted end a sphere of its weight's radius), and segments of
 //! different ribbons, and of one ribbon with itself two segments apart or
 //! more, are kept from passing through each other (in a packed crowd some
-//! still do, and a ribbon draped over a taut one slips through: see
-//! docs/physics.md).
+//! still do: see docs/physics.md).
 //!
 //! Once a step, before the substeps, the segments that may touch are paired
 //! (`broad`): each awake ribbon's box, widened by how far its points can
@@ -14,20 +13,29 @@
 //! segment swept fast across another is caught in the substep it would
 //! cross.
 //!
-//! In each substep, between the points' fall and pushes and the chains'
-//! direct solve (`LaneGroup::substep_before_solve`, `substep_solve`), every
-//! pair is projected in the pairs' fixed order (`contact`): the closest
-//! points of the two segments as they now are, pushed apart to the sum of
-//! their radii along the line between them, each segment's two points by
-//! their share and inverse mass (so each ribbon pushes the other), with
-//! position-level Coulomb friction on what the closest points slid past each
-//! other over the substep (Müller et al., "Detailed rigid body simulation
-//! with extended position based dynamics", 2020). A pair keeps the side it
-//! was found on: when the line between the closest points turns more than a
-//! right angle in one substep, the segments passed through each other, and
-//! they are pushed back to the side they came from. The chain's solve then
-//! restores the lengths; the next substep's projection takes up what it
-//! moved back.
+//! In each substep the pairs are projected in their fixed order
+//! (`contact`), taking turns with the chains' direct solve: between the
+//! points' fall and pushes and the solve (`LaneGroup::substep_before_solve`,
+//! `substep_solve`), so that the solve starts from ribbons apart; after it,
+//! followed by a second solve of the groups a contact moved
+//! (`substep_solve_again`, `SOLVES`); and once more before the velocities
+//! (`substep_finish`), each pair by at most `LAST_PASS_MOST`, so that the
+//! substep ends with a fold held (a solve that follows the last push pulls
+//! a ribbon folded over another back into it substep after substep, until
+//! the fold's point slips through). A projection pushes the closest points
+//! of the two segments as they now are apart to the sum of their radii,
+//! each segment's two points by their share and inverse mass (so each
+//! ribbon pushes the other), with position-level Coulomb friction on what
+//! the closest points slid past each other over the substep (Müller et al.,
+//! "Detailed rigid body simulation with extended position based dynamics",
+//! 2020). A pair keeps the side it was found on (`contact::side`): where
+//! its closest points lie inside both segments and these cross at an
+//! angle, along their common perpendicular, which turns only as the
+//! segments turn, so that a segment swept through another shows as a
+//! separation turned negative; elsewhere along the line between the closest
+//! points, passed through where that turned more than a right angle. A pair
+//! that passed through is pushed back to the side it came from. The lengths
+//! the last push changed are the next substep's solve's to restore.
 //!
 //! The pass runs on one thread in a fixed order, so the result is the same
 //! on any number of threads; with no pair in a step the substeps run as
@@ -37,6 +45,8 @@
 mod broad;
 mod closest;
 mod contact;
+pub mod crossings;
+pub mod linking;
 
 use glam::Vec3;
 use up_geom::Aabb;
@@ -51,6 +61,23 @@ pub const RIBBON_ON_RIBBON_FRICTION: f32 = 0.4;
 /// fly apart; those that overlap only within the step (a crossing caught)
 /// are pushed out whole.
 pub const OVERLAP_PUSH_OUT_SPEED: f32 = 0.1;
+
+/// The chains' solves a substep where ribbons touch, each after a
+/// projection of the contacts (and one more projection after the last): a
+/// ribbon pulled taut over another is pulled back into it by a solve that
+/// does not see the contact, and one more turn halves the crossings of 500
+/// ribbons released together; the second solve runs only for the groups
+/// whose points a contact moved.
+pub(crate) const SOLVES: usize = 2;
+
+/// The most a pair is pushed in a substep's last pass, after the last
+/// solve, m: a fold that the solve pulls on by a fraction of a millimetre
+/// a substep is held, while a larger correction (a pair caught passing
+/// through, a tangle pulled taut), which would leave the ribbons stretched
+/// at the step's end by as much, waits for the next substep's first pass,
+/// the pair keeping its side (the bouquet's ribbons, pulled up through each
+/// other's weights, ended steps stretched 2.4 % with the whole correction).
+pub(crate) const LAST_PASS_MOST: f32 = 1e-3;
 
 /// A segment: points `index` and `index + 1` of the ribbon in lane `lane`
 /// of lane group `group`.
