@@ -6,7 +6,7 @@ mod common;
 
 use common::*;
 use glam::{Quat, Vec3};
-use up_physics::ribbon::RibbonDef;
+use up_physics::ribbon::{RibbonContact, RibbonDef};
 use up_physics::{DistanceJointDef, DistanceLimit, JointAnchor, RibbonId, World, WorldDef};
 
 /// The reference balloon's knot, in its mesh frame.
@@ -49,9 +49,9 @@ const TAUT_HEIGHT: f32 = 1.418;
 /// (0, 1.45, 0.49), 1 m long; the other, 0.95 m, held below it at
 /// (−0.35, 1.35, 0), its end carried straight up above its knot and over
 /// the taut one to (0.3, 2.0, 0) (nearly straight, clear above it), then
-/// let go; the dropped ribbon's points after
-/// `seconds` more.
-fn drape(contacts: bool, seconds: f32) -> (Vec<Vec3>, f32) {
+/// let go; the dropped ribbon's points after `seconds` more, their
+/// root-mean-square speed, and the world's ribbon contacts then.
+fn drape(contacts: bool, seconds: f32) -> (Vec<Vec3>, f32, Vec<RibbonContact>) {
     let def = WorldDef {
         room: Some(room(4.0, 4.0, 3.0, None)),
         ribbon_contacts: contacts,
@@ -90,7 +90,7 @@ fn drape(contacts: bool, seconds: f32) -> (Vec<Vec3>, f32) {
         .map(|v| v.length_squared())
         .sum::<f32>()
         / points.len() as f32;
-    (points, speed.sqrt())
+    (points, speed.sqrt(), world.ribbon_contacts().to_vec())
 }
 
 /// The highest point of `points` within 3 cm of the taut ribbon's line
@@ -115,7 +115,7 @@ fn crest(points: &[Vec3]) -> Option<(usize, f32)> {
 /// or still swings.
 #[test]
 fn a_ribbon_dropped_across_a_taut_one_hangs_over_it() {
-    let (points, rms) = drape(true, 10.0);
+    let (points, rms, contacts) = drape(true, 10.0);
     let end = *points.last().unwrap();
     let (top, height) = crest(&points).expect("no point near the taut ribbon");
     let below = |side: &[Vec3]| side.iter().filter(|p| p.y < TAUT_HEIGHT - 0.05).count();
@@ -138,11 +138,26 @@ fn a_ribbon_dropped_across_a_taut_one_hangs_over_it() {
         points[top]
     );
     assert!(rms < 0.01, "still moving at {rms} m/s after 10 s");
+    // What the page marks: the crest rests on the taut ribbon, touching it
+    // from above (the taut one's segment listed first: it was added first).
+    let on_crest = contacts
+        .iter()
+        .find(|c| c.point.distance(points[top]) < 0.03)
+        .unwrap_or_else(|| {
+            panic!(
+                "no contact listed at the crest {}: {contacts:?}",
+                points[top]
+            )
+        });
+    // Within half the two ribbons' thickness of touching.
+    assert!(on_crest.separation.abs() < 2.5e-3, "{on_crest:?}");
+    assert!(on_crest.normal.y.abs() > 0.7, "not on top: {on_crest:?}");
 }
 
 #[test]
 fn without_contacts_the_dropped_ribbon_falls_through() {
-    let (points, _) = drape(false, 10.0);
+    let (points, _, contacts) = drape(false, 10.0);
+    assert!(contacts.is_empty(), "contacts listed with contacts off");
     let height = crest(&points).map_or(f32::MIN, |c| c.1);
     println!("contacts off: highest near the taut ribbon {height}");
     assert!(

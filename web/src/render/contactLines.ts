@@ -8,6 +8,14 @@ import { CONTACT_STRIDE } from "../sim/frameLayout";
 export const BALLOON_CONTACT_COLOR: readonly [number, number, number] = [1, 0.08, 0.02];
 /** Linear RGB of a contact with the room. */
 export const ROOM_CONTACT_COLOR: readonly [number, number, number] = [0.1, 0.2, 1];
+/** Linear RGB of a ribbon touching a ribbon. */
+export const RIBBON_CONTACT_COLOR: readonly [number, number, number] = [1, 0.8, 0];
+
+/** A contact's colour by its kind, as up-wasm writes it (0 the room, 1 a balloon, 2 ribbons). */
+function kindColor(kind: number): readonly [number, number, number] {
+  if (kind > 1.5) return RIBBON_CONTACT_COLOR;
+  return kind > 0.5 ? BALLOON_CONTACT_COLOR : ROOM_CONTACT_COLOR;
+}
 
 export interface ContactArrays {
   /** x, y, z per contact point. */
@@ -42,7 +50,7 @@ export function writeContactGeometry(src: Float32Array, count: number, out: Cont
     const x = src[s];
     const y = src[s + 1];
     const z = src[s + 2];
-    const color = src[s + 7] > 0.5 ? BALLOON_CONTACT_COLOR : ROOM_CONTACT_COLOR;
+    const color = kindColor(src[s + 7]);
     const p = i * 3;
     out.points[p] = x;
     out.points[p + 1] = y;

@@ -13,7 +13,8 @@ import type { Constants } from "./engine";
 /**
  * Floats per contact, as up-wasm writes them (its `constants().contact_stride`):
  * x, y, z (m), nx, ny, nz (unit, from the balloon toward what it touches),
- * separation (m, negative when overlapping), kind (1 balloon, 0 room).
+ * separation (m, negative when overlapping), kind (1 balloon, 0 room, 2 a
+ * ribbon touching a ribbon, its normal from one toward the other).
  * The renderer's loops need the stride as a constant: its type is the module's
  * (`ContactStride`), and `checkLayout` holds it to the module's when the engine starts.
  */

@@ -41,7 +41,9 @@ pub(crate) mod solve;
 pub(crate) mod touch;
 
 pub use hang_path::hang_path;
-pub use touch::{crossings, linking, OVERLAP_PUSH_OUT_SPEED, RIBBON_ON_RIBBON_FRICTION};
+pub use touch::{
+    crossings, linking, RibbonContact, OVERLAP_PUSH_OUT_SPEED, RIBBON_ON_RIBBON_FRICTION,
+};
 
 use std::collections::BTreeMap;
 

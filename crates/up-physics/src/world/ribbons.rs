@@ -159,6 +159,12 @@ impl World {
         self.stages.ribbons.touch.pairs.len()
     }
 
+    /// Where ribbons touched each other at the last step's end (pairs
+    /// within a millimetre of touching): for drawing; empty with contacts off.
+    pub fn ribbon_contacts(&self) -> &[crate::ribbon::RibbonContact] {
+        &self.stages.ribbons.touch.touching
+    }
+
     pub fn ribbon_count(&self) -> usize {
         self.ribbons.len()
     }

@@ -14,6 +14,9 @@ use crate::ribbon::GRAB_MAX_SPEED;
 /// ribbon without hashing them.
 const FEW_RESTLESS: usize = 16;
 
+/// Ribbon pairs this close at a step's end are listed as touching (for drawing), m.
+const TOUCHING_WITHIN: f32 = 1e-3;
+
 impl World {
     /// Wakes the balloons whose sleeping ribbons a moving balloon reaches
     /// (its bounding sphere, widened by its motion this step, meets a point),
@@ -205,9 +208,15 @@ impl World {
         let n = self.bodies.len();
         stage.moving.clear();
         stage.moving.resize(n, false);
+        stage.touch.touching.clear();
         if self.ribbons.is_empty() {
             stage.lanes.clear();
             return;
+        }
+        if !stage.touch.is_empty() {
+            stage
+                .touch
+                .keep_touching(&stage.lanes.groups, TOUCHING_WITHIN);
         }
         let slow = self.def.sleep_linear_speed;
         let mut max_stretch = self.ribbons.max_stretch;

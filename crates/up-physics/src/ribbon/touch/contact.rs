@@ -186,3 +186,36 @@ fn project_pair(pair: &mut Touching, groups: &mut [LaneGroup], friction: f32, mo
     shift(groups, pair.a, -wa[0] * impulse, -wa[1] * impulse);
     shift(groups, pair.b, wb[0] * impulse, wb[1] * impulse);
 }
+
+/// Where two ribbons touch at a step's end, for drawing (`World::ribbon_contacts`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RibbonContact {
+    /// Midway between the two segments' closest points, m.
+    pub point: Vec3,
+    /// Unit, from the first segment toward the second (the side it keeps).
+    pub normal: Vec3,
+    /// Between the two capsules' surfaces along `normal`, m: negative where
+    /// they overlap (or have passed through each other).
+    pub separation: f32,
+}
+
+impl RibbonTouch {
+    /// Keeps the step's pairs within `within` m of touching as their
+    /// segments end it in `groups` (read before the lanes are handed back).
+    pub(crate) fn keep_touching(&mut self, groups: &[LaneGroup], within: f32) {
+        self.touching.clear();
+        for pair in &self.pairs {
+            let (a, b) = (ends(groups, pair.a), ends(groups, pair.b));
+            let (s, t) = parameters(pair, &a, &b);
+            let reach = radius(&a, s, pair.end_a) + radius(&b, t, pair.end_b);
+            let (normal, distance) = side(pair, &a, &b, s, t);
+            if distance - reach <= within {
+                self.touching.push(RibbonContact {
+                    point: 0.5 * (at(a.p, s) + at(b.p, t)),
+                    normal,
+                    separation: distance - reach,
+                });
+            }
+        }
+    }
+}

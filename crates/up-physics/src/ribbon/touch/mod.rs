@@ -45,6 +45,8 @@
 mod broad;
 mod closest;
 mod contact;
+pub use contact::RibbonContact;
+
 pub mod crossings;
 pub mod linking;
 
@@ -139,6 +141,8 @@ pub(crate) struct RibbonTouch {
     pub push_out: f32,
     /// The step's pairs, in the order they are projected.
     pub pairs: Vec<Touching>,
+    /// The pairs touching at the step's end (`keep_touching`), for drawing.
+    pub touching: Vec<RibbonContact>,
     ribbons: Vec<RibbonBox>,
     sorted: Vec<u32>,
     segment_boxes: Vec<Aabb>,
@@ -153,6 +157,7 @@ impl Default for RibbonTouch {
             friction: RIBBON_ON_RIBBON_FRICTION,
             push_out: 0.0,
             pairs: Vec::new(),
+            touching: Vec::new(),
             ribbons: Vec::new(),
             sorted: Vec::new(),
             segment_boxes: Vec::new(),
