@@ -16,6 +16,12 @@
 //! the grid: the cells are sized for a brisk ascent, a settling pile's bodies
 //! reach about half of the 27.
 //!
+//! Most steps move few bodies (a pile asleep, one balloon awake among them),
+//! so the table is kept between steps: a body that stays in its cell is
+//! updated in place (the sleepers, unchanged, are passed over), and only a
+//! body changing cells, the count or the cell size changing, or a large body
+//! rebuilds the table, to the same content a rebuild would give.
+//!
 //! A fast body (thrown by the user) has a bounding sphere swollen by its
 //! motion this step. It would blow up the cell size for everyone, so such
 //! "large" bodies stay out of the grid: each one queries the cells its sphere
@@ -44,6 +50,10 @@ pub(crate) struct BroadPhase {
     large: Vec<u32>,
     /// The cells' size and how far their bodies reach, as `update` left them.
     scale: GridScale,
+    /// Each ordinary body's place in `items` (`u32::MAX` for a large one).
+    slot_of: Vec<u32>,
+    /// The cell radius the table was built for (`f32::NAN`: none built).
+    built_for: f32,
     /// Output: dense index pairs (a < b), at least one of them awake.
     pub pairs: Vec<(u32, u32)>,
     /// Each task's pairs (kept between steps for their buffers).
@@ -65,62 +75,22 @@ impl BroadPhase {
     pub fn update(&mut self, center: &[Vec3], radius: &[f32], awake: &[bool], cell_radius: f32) {
         let n = center.len();
         self.pairs.clear();
-        self.large.clear();
         if n == 0 {
+            self.large.clear();
+            self.built_for = f32::NAN;
             return;
         }
-        let inv_cell = 0.5 / cell_radius;
-        let mask = (2 * n).next_power_of_two() - 1;
-        let mut item_radius = 0.0f32;
-
-        // Counting sort of ordinary bodies into hashed buckets, in body order.
-        self.cell_of.resize(n, [0; 3]);
-        fill_chunks(&mut self.cell_of, BODY_CHUNK, |first, cells| {
-            for (k, cell) in cells.iter_mut().enumerate() {
-                *cell = cell_coords(center[first + k], inv_cell);
-            }
-        });
-        self.start.clear();
-        self.start.resize(mask + 2, 0);
-        for i in 0..n {
-            if radius[i] > cell_radius {
-                self.large.push(i as u32);
-            } else {
-                self.start[bucket(self.cell_of[i], mask) + 1] += 1;
-                item_radius = item_radius.max(radius[i]);
-            }
+        if !self.refresh(center, radius, awake, cell_radius) {
+            self.rebuild(center, radius, awake, cell_radius);
         }
-        for b in 1..self.start.len() {
-            self.start[b] += self.start[b - 1];
-        }
-        self.cursor.clear();
-        self.cursor.extend_from_slice(&self.start);
-        self.items.clear();
-        self.items
-            .resize(self.start[mask + 1] as usize, GridItem::default());
-        for i in 0..n {
-            if radius[i] <= cell_radius {
-                let b = bucket(self.cell_of[i], mask);
-                self.items[self.cursor[b] as usize] = GridItem {
-                    center: center[i],
-                    radius: radius[i],
-                    cell: cell_key(self.cell_of[i]),
-                    body: i as u32,
-                    awake: awake[i],
-                };
-                self.cursor[b] += 1;
-            }
-        }
+        let inv_cell = self.scale.inv_cell;
+        let mask = self.start.len() - 2;
 
         // Awake ordinary bodies: the 27 cells around each. A pair of awake
         // bodies is found from the lower index, an awake-asleep pair from
         // the awake one; two sleepers make no pair, so a sleeping pile costs
         // only its place in the grid.
         // In tasks of consecutive bodies, joined in body order.
-        self.scale = GridScale {
-            inv_cell,
-            item_radius,
-        };
         let grid = Grid::of(&self.cell_of, &self.start, &self.items, self.scale);
         collect_in_order(
             n,
@@ -179,6 +149,108 @@ impl BroadPhase {
                 consider(&mut self.pairs, a, b, center, radius, awake);
             }
         }
+    }
+}
+
+impl BroadPhase {
+    /// Brings the table kept from the last step up to `center`, `radius` and
+    /// `awake` in place, where no body changed cells, none is or was large,
+    /// and the count and cell size are the same; returns false otherwise
+    /// (the table then needs `rebuild`). Only the bodies whose entries
+    /// changed are written: a sleeper's are as it fell asleep.
+    fn refresh(
+        &mut self,
+        center: &[Vec3],
+        radius: &[f32],
+        awake: &[bool],
+        cell_radius: f32,
+    ) -> bool {
+        let n = center.len();
+        if self.built_for.to_bits() != cell_radius.to_bits()
+            || self.slot_of.len() != n
+            || !self.large.is_empty()
+        {
+            return false;
+        }
+        let inv_cell = self.scale.inv_cell;
+        // A bound on the ordinary radii: lookups skip only the cells
+        // farther than it reaches, so the pairs are those of the exact
+        // largest (which the next rebuild takes again).
+        let mut item_radius = self.scale.item_radius;
+        for i in 0..n {
+            let item = &mut self.items[self.slot_of[i] as usize];
+            let same_center =
+                item.center.to_array().map(f32::to_bits) == center[i].to_array().map(f32::to_bits);
+            if same_center && item.radius.to_bits() == radius[i].to_bits() && item.awake == awake[i]
+            {
+                continue;
+            }
+            if radius[i] > cell_radius || cell_coords(center[i], inv_cell) != self.cell_of[i] {
+                return false;
+            }
+            item.center = center[i];
+            item.radius = radius[i];
+            item.awake = awake[i];
+            item_radius = item_radius.max(radius[i]);
+        }
+        self.scale.item_radius = item_radius;
+        true
+    }
+
+    /// Every ordinary body into its hashed bucket by a counting sort, in
+    /// body order; the large ones listed apart.
+    fn rebuild(&mut self, center: &[Vec3], radius: &[f32], awake: &[bool], cell_radius: f32) {
+        let n = center.len();
+        self.large.clear();
+        let inv_cell = 0.5 / cell_radius;
+        let mask = (2 * n).next_power_of_two() - 1;
+        let mut item_radius = 0.0f32;
+        self.cell_of.resize(n, [0; 3]);
+        fill_chunks(&mut self.cell_of, BODY_CHUNK, |first, cells| {
+            for (k, cell) in cells.iter_mut().enumerate() {
+                *cell = cell_coords(center[first + k], inv_cell);
+            }
+        });
+        self.start.clear();
+        self.start.resize(mask + 2, 0);
+        for i in 0..n {
+            if radius[i] > cell_radius {
+                self.large.push(i as u32);
+            } else {
+                self.start[bucket(self.cell_of[i], mask) + 1] += 1;
+                item_radius = item_radius.max(radius[i]);
+            }
+        }
+        for b in 1..self.start.len() {
+            self.start[b] += self.start[b - 1];
+        }
+        self.cursor.clear();
+        self.cursor.extend_from_slice(&self.start);
+        self.items.clear();
+        self.items
+            .resize(self.start[mask + 1] as usize, GridItem::default());
+        self.slot_of.clear();
+        self.slot_of.resize(n, u32::MAX);
+        for i in 0..n {
+            if radius[i] <= cell_radius {
+                let b = bucket(self.cell_of[i], mask);
+                let slot = self.cursor[b];
+                self.items[slot as usize] = GridItem {
+                    center: center[i],
+                    radius: radius[i],
+                    cell: cell_key(self.cell_of[i]),
+                    body: i as u32,
+                    awake: awake[i],
+                };
+                self.slot_of[i] = slot;
+                self.cursor[b] += 1;
+            }
+        }
+        self.scale = GridScale {
+            inv_cell,
+            item_radius,
+        };
+        self.built_for = cell_radius;
     }
 }
 
@@ -489,6 +561,50 @@ mod tests {
             }
             assert_eq!(bp.pairs, want, "round {round}");
         }
+    }
+
+    /// A table kept over many steps (a few bodies moving, some across
+    /// cells, some falling asleep or waking, now and then one large) gives
+    /// the pairs, in the same order, that a table built afresh gives.
+    #[test]
+    fn a_kept_table_gives_what_a_fresh_one_gives() {
+        let mut rnd = random(2024);
+        let n = 300;
+        let mut center: Vec<Vec3> = (0..n)
+            .map(|_| Vec3::new(rnd() * 3.0, rnd() * 3.0, rnd() * 3.0))
+            .collect();
+        let mut radius: Vec<f32> = (0..n).map(|_| 0.05 + 0.15 * rnd()).collect();
+        let mut awake: Vec<bool> = (0..n).map(|_| rnd() < 0.1).collect();
+        let mut kept = BroadPhase::default();
+        let mut refreshed = 0;
+        for step in 0..400 {
+            for i in 0..n {
+                if awake[i] {
+                    // Mostly a creep; now and then a jump across cells.
+                    let size = if rnd() < 0.02 { 0.3 } else { 0.002 };
+                    center[i] += (Vec3::new(rnd(), rnd(), rnd()) - 0.5) * size;
+                    radius[i] = (radius[i] + 0.001 * (rnd() - 0.5)).clamp(0.05, 0.2);
+                }
+                if rnd() < 0.002 {
+                    awake[i] = !awake[i];
+                }
+            }
+            let large = (step % 97 == 5).then(|| (step * 7) % n);
+            if let Some(l) = large {
+                radius[l] = 0.6;
+            }
+            if kept.clone().refresh(&center, &radius, &awake, 0.2) {
+                refreshed += 1;
+            }
+            kept.update(&center, &radius, &awake, 0.2);
+            let mut fresh = BroadPhase::default();
+            fresh.update(&center, &radius, &awake, 0.2);
+            assert_eq!(kept.pairs, fresh.pairs, "step {step}");
+            if let Some(l) = large {
+                radius[l] = 0.1;
+            }
+        }
+        assert!(refreshed > 100, "the table was rebuilt nearly every step");
     }
 
     #[test]

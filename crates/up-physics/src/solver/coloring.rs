@@ -157,6 +157,12 @@ pub(crate) struct Coloring {
     /// Constraints of each zone of each run (colour, sides, zone), then
     /// where the next one of that zone goes in its run.
     zone_counts: Vec<u32>,
+    /// Per colour (to `SERIAL`), its constraints for each `Moving`, and
+    /// the first group of each run: kept zeroed between calls but for
+    /// what the last one used, which it clears (a step of a few contacts
+    /// would spend more on clearing every colour than on colouring).
+    counts: Vec<[u32; 3]>,
+    first_group: Vec<[u32; 3]>,
     /// A colour's runs cut by zone, in zone order (`pieces_by_zone`).
     #[cfg(feature = "parallel")]
     pieces: Vec<ColourRun>,
@@ -317,11 +323,20 @@ impl Coloring {
         // so that its length is this step's use (`spare`).
         #[cfg(feature = "parallel")]
         self.constraint_at.clear();
-        let mut counts = [[0u32; 3]; SERIAL + 1];
+        // Zero but where the last call used them, which it cleared.
+        let zone_size = (SERIAL + 1) * 3 * zone_count;
+        if self.zone_counts.len() != zone_size {
+            self.zone_counts.clear();
+            self.zone_counts.resize(zone_size, 0);
+        }
+        if self.counts.len() != SERIAL + 1 {
+            self.counts = vec![[0; 3]; SERIAL + 1];
+            self.first_group = vec![[0; 3]; SERIAL + 1];
+        }
+        let mut counts = std::mem::take(&mut self.counts);
+        let mut first_group = std::mem::take(&mut self.first_group);
         // The colours below it hold every constraint but the serial rest's.
         let mut colours_used = 0;
-        self.zone_counts.clear();
-        self.zone_counts.resize((SERIAL + 1) * 3 * zone_count, 0);
         self.kind.clear();
         self.kind
             .extend(states.iter().map(|s| (s.inv_mass > 0.0, s.is_fixed())));
@@ -373,7 +388,6 @@ impl Coloring {
         self.ranges.clear();
         #[cfg(feature = "parallel")]
         self.blocks.clear(crate::threading::tasks::threads_here());
-        let mut first_group = [[0u32; 3]; SERIAL + 1];
         let mut start = 0u32;
         // An empty colour adds no run and no stage: only those in use are
         // walked (a step of a few contacts would spend more on the empty ones).
@@ -432,6 +446,15 @@ impl Coloring {
             };
             self.slot.push(slot);
         }
+        // What this call used, cleared for the next.
+        for color in (0..colours_used).chain([SERIAL]) {
+            counts[color] = [0; 3];
+        }
+        let per_colour = 3 * zone_count;
+        self.zone_counts[..colours_used * per_colour].fill(0);
+        self.zone_counts[SERIAL * per_colour..].fill(0);
+        self.counts = counts;
+        self.first_group = first_group;
     }
 
     /// The colour of an overflowing constraint between `sides` (each a body
