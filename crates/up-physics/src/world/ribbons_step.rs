@@ -123,6 +123,10 @@ impl World {
         let awake = |body| self.handles.dense(body).is_some_and(|i| b.awake[i]);
         if !self.ribbons.iter().any(|(_, r)| awake(r.body)) {
             stage.touch.pairs.clear();
+            // An awake body may move and fall asleep elsewhere before the
+            // spheres are next found: its kept one is no longer a sleeper's.
+            let found_asleep = stage.nearby.asleep.iter_mut();
+            found_asleep.zip(&b.awake).for_each(|(f, &a)| *f &= !a);
             return; // every ribbon sleeps, or there are none
         }
         let n = self.bodies.len();
