@@ -179,10 +179,9 @@ impl BroadPhase {
         let mut item_radius = self.scale.item_radius;
         for i in 0..n {
             let item = &mut self.items[self.slot_of[i] as usize];
-            let same_center =
-                item.center.to_array().map(f32::to_bits) == center[i].to_array().map(f32::to_bits);
-            if same_center && item.radius.to_bits() == radius[i].to_bits() && item.awake == awake[i]
-            {
+            // Equal as numbers: a zero that changed sign moves nothing (the
+            // same cell, the same distances); a NaN is written again.
+            if item.center == center[i] && item.radius == radius[i] && item.awake == awake[i] {
                 continue;
             }
             if radius[i] > cell_radius || cell_coords(center[i], inv_cell) != self.cell_of[i] {

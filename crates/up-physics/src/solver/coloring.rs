@@ -149,7 +149,9 @@ pub(crate) struct Coloring {
     /// Colours already used by each body's constraints.
     used: Vec<u64>,
     /// Whether each body moves (takes impulses) and whether it is fixed
-    /// (`BodyState::is_fixed`), read once a step rather than per constraint.
+    /// (`BodyState::is_fixed`), read once a step rather than per constraint
+    /// (empty in a step of fewer constraints than half the bodies: each
+    /// constraint's bodies are read instead).
     kind: Vec<(bool, bool)>,
     /// The level after the last one each body's overflow constraints took
     /// (sized only in a step that overflows).
@@ -337,12 +339,19 @@ impl Coloring {
         let mut first_group = std::mem::take(&mut self.first_group);
         // The colours below it hold every constraint but the serial rest's.
         let mut colours_used = 0;
+        let kind_of = |s: &BodyState| (s.inv_mass > 0.0, s.is_fixed());
+        // A few contacts among many sleepers read only their own bodies.
+        let per_constraint = 2 * pairs.size_hint().0 < states.len();
         self.kind.clear();
-        self.kind
-            .extend(states.iter().map(|s| (s.inv_mass > 0.0, s.is_fixed())));
+        if !per_constraint {
+            self.kind.extend(states.iter().map(kind_of));
+        }
         for (a, b) in pairs {
-            let ((a_moves, a_fixed), (b_moves, b_fixed)) =
-                (self.kind[a as usize], self.kind[b as usize]);
+            let kind = |i: u32| match per_constraint {
+                true => kind_of(&states[i as usize]),
+                false => self.kind[i as usize],
+            };
+            let ((a_moves, a_fixed), (b_moves, b_fixed)) = (kind(a), kind(b));
             let taken = if a_moves { self.used[a as usize] } else { 0 }
                 | if b_moves { self.used[b as usize] } else { 0 };
             let mut color = (!taken).trailing_zeros() as usize; // COLORS when all are taken
