@@ -16,6 +16,12 @@
 //! the grid: the cells are sized for a brisk ascent, a settling pile's bodies
 //! reach about half of the 27.
 //!
+//! Most steps move few bodies (a pile asleep, one balloon awake among them),
+//! so the table is kept between steps: a body that stays in its cell is
+//! updated in place (the sleepers, unchanged, are passed over), and only a
+//! body changing cells, the count or the cell size changing, or a large body
+//! rebuilds the table, to the same content a rebuild would give.
+//!
 //! A fast body (thrown by the user) has a bounding sphere swollen by its
 //! motion this step. It would blow up the cell size for everyone, so such
 //! "large" bodies stay out of the grid: each one queries the cells its sphere
@@ -44,6 +50,10 @@ pub(crate) struct BroadPhase {
     large: Vec<u32>,
     /// The cells' size and how far their bodies reach, as `update` left them.
     scale: GridScale,
+    /// Each ordinary body's place in `items` (`u32::MAX` for a large one).
+    slot_of: Vec<u32>,
+    /// The cell radius the table was built for (`f32::NAN`: none built).
+    built_for: f32,
     /// Output: dense index pairs (a < b), at least one of them awake.
     pub pairs: Vec<(u32, u32)>,
     /// Each task's pairs (kept between steps for their buffers).
@@ -65,62 +75,22 @@ impl BroadPhase {
     pub fn update(&mut self, center: &[Vec3], radius: &[f32], awake: &[bool], cell_radius: f32) {
         let n = center.len();
         self.pairs.clear();
-        self.large.clear();
         if n == 0 {
+            self.large.clear();
+            self.built_for = f32::NAN;
             return;
         }
-        let inv_cell = 0.5 / cell_radius;
-        let mask = (2 * n).next_power_of_two() - 1;
-        let mut item_radius = 0.0f32;
-
-        // Counting sort of ordinary bodies into hashed buckets, in body order.
-        self.cell_of.resize(n, [0; 3]);
-        fill_chunks(&mut self.cell_of, BODY_CHUNK, |first, cells| {
-            for (k, cell) in cells.iter_mut().enumerate() {
-                *cell = cell_coords(center[first + k], inv_cell);
-            }
-        });
-        self.start.clear();
-        self.start.resize(mask + 2, 0);
-        for i in 0..n {
-            if radius[i] > cell_radius {
-                self.large.push(i as u32);
-            } else {
-                self.start[bucket(self.cell_of[i], mask) + 1] += 1;
-                item_radius = item_radius.max(radius[i]);
-            }
+        if !self.refresh(center, radius, awake, cell_radius) {
+            self.rebuild(center, radius, awake, cell_radius);
         }
-        for b in 1..self.start.len() {
-            self.start[b] += self.start[b - 1];
-        }
-        self.cursor.clear();
-        self.cursor.extend_from_slice(&self.start);
-        self.items.clear();
-        self.items
-            .resize(self.start[mask + 1] as usize, GridItem::default());
-        for i in 0..n {
-            if radius[i] <= cell_radius {
-                let b = bucket(self.cell_of[i], mask);
-                self.items[self.cursor[b] as usize] = GridItem {
-                    center: center[i],
-                    radius: radius[i],
-                    cell: cell_key(self.cell_of[i]),
-                    body: i as u32,
-                    awake: awake[i],
-                };
-                self.cursor[b] += 1;
-            }
-        }
+        let inv_cell = self.scale.inv_cell;
+        let mask = self.start.len() - 2;
 
         // Awake ordinary bodies: the 27 cells around each. A pair of awake
         // bodies is found from the lower index, an awake-asleep pair from
         // the awake one; two sleepers make no pair, so a sleeping pile costs
         // only its place in the grid.
         // In tasks of consecutive bodies, joined in body order.
-        self.scale = GridScale {
-            inv_cell,
-            item_radius,
-        };
         let grid = Grid::of(&self.cell_of, &self.start, &self.items, self.scale);
         collect_in_order(
             n,
@@ -179,6 +149,107 @@ impl BroadPhase {
                 consider(&mut self.pairs, a, b, center, radius, awake);
             }
         }
+    }
+}
+
+impl BroadPhase {
+    /// Brings the table kept from the last step up to `center`, `radius` and
+    /// `awake` in place, where no body changed cells, none is or was large,
+    /// and the count and cell size are the same; returns false otherwise
+    /// (the table then needs `rebuild`). Only the bodies whose entries
+    /// changed are written: a sleeper's are as it fell asleep.
+    fn refresh(
+        &mut self,
+        center: &[Vec3],
+        radius: &[f32],
+        awake: &[bool],
+        cell_radius: f32,
+    ) -> bool {
+        let n = center.len();
+        if self.built_for.to_bits() != cell_radius.to_bits()
+            || self.slot_of.len() != n
+            || !self.large.is_empty()
+        {
+            return false;
+        }
+        let inv_cell = self.scale.inv_cell;
+        // A bound on the ordinary radii: lookups skip only the cells
+        // farther than it reaches, so the pairs are those of the exact
+        // largest (which the next rebuild takes again).
+        let mut item_radius = self.scale.item_radius;
+        for i in 0..n {
+            let item = &mut self.items[self.slot_of[i] as usize];
+            // Equal as numbers: a zero that changed sign moves nothing (the
+            // same cell, the same distances); a NaN is written again.
+            if item.center == center[i] && item.radius == radius[i] && item.awake == awake[i] {
+                continue;
+            }
+            if radius[i] > cell_radius || cell_coords(center[i], inv_cell) != self.cell_of[i] {
+                return false;
+            }
+            item.center = center[i];
+            item.radius = radius[i];
+            item.awake = awake[i];
+            item_radius = item_radius.max(radius[i]);
+        }
+        self.scale.item_radius = item_radius;
+        true
+    }
+
+    /// Every ordinary body into its hashed bucket by a counting sort, in
+    /// body order; the large ones listed apart.
+    fn rebuild(&mut self, center: &[Vec3], radius: &[f32], awake: &[bool], cell_radius: f32) {
+        let n = center.len();
+        self.large.clear();
+        let inv_cell = 0.5 / cell_radius;
+        let mask = (2 * n).next_power_of_two() - 1;
+        let mut item_radius = 0.0f32;
+        self.cell_of.resize(n, [0; 3]);
+        fill_chunks(&mut self.cell_of, BODY_CHUNK, |first, cells| {
+            for (k, cell) in cells.iter_mut().enumerate() {
+                *cell = cell_coords(center[first + k], inv_cell);
+            }
+        });
+        self.start.clear();
+        self.start.resize(mask + 2, 0);
+        for i in 0..n {
+            if radius[i] > cell_radius {
+                self.large.push(i as u32);
+            } else {
+                self.start[bucket(self.cell_of[i], mask) + 1] += 1;
+                item_radius = item_radius.max(radius[i]);
+            }
+        }
+        for b in 1..self.start.len() {
+            self.start[b] += self.start[b - 1];
+        }
+        self.cursor.clear();
+        self.cursor.extend_from_slice(&self.start);
+        self.items.clear();
+        self.items
+            .resize(self.start[mask + 1] as usize, GridItem::default());
+        self.slot_of.clear();
+        self.slot_of.resize(n, u32::MAX);
+        for i in 0..n {
+            if radius[i] <= cell_radius {
+                let b = bucket(self.cell_of[i], mask);
+                let slot = self.cursor[b];
+                self.items[slot as usize] = GridItem {
+                    center: center[i],
+                    radius: radius[i],
+                    cell: cell_key(self.cell_of[i]),
+                    body: i as u32,
+                    awake: awake[i],
+                };
+                self.slot_of[i] = slot;
+                self.cursor[b] += 1;
+            }
+        }
+        self.scale = GridScale {
+            inv_cell,
+            item_radius,
+        };
+        self.built_for = cell_radius;
     }
 }
 
@@ -399,131 +470,5 @@ fn bucket([x, y, z]: [i32; 3], mask: usize) -> usize {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    use crate::hash::uniform as random;
-
-    /// Brute-force reference on random clouds: the grid finds exactly the overlapping pairs.
-    #[test]
-    fn grid_pairs_equal_all_pairs_reference() {
-        let mut rnd = random(12345);
-        for round in 0..20 {
-            let n = 50 + round * 20;
-            // Around the origin (cells on both sides of zero), a few bodies
-            // far out where the cell coordinates are clamped.
-            let center: Vec<Vec3> = (0..n)
-                .map(|i| {
-                    let c = Vec3::new(rnd(), rnd(), rnd()) * 3.0 - 1.5;
-                    if i % 23 == 0 {
-                        c * 1.0e6
-                    } else {
-                        c
-                    }
-                })
-                .collect();
-            // A few large (fast) bodies among ordinary ones.
-            let radius: Vec<f32> = (0..n)
-                .map(|i| {
-                    if i % 17 == 0 {
-                        0.2 + rnd()
-                    } else {
-                        0.05 + 0.15 * rnd()
-                    }
-                })
-                .collect();
-            let awake: Vec<bool> = (0..n).map(|i| i % 5 != 0).collect();
-            let mut bp = BroadPhase::default();
-            bp.update(&center, &radius, &awake, 0.2);
-            let mut got = bp.pairs.clone();
-            got.sort_unstable();
-            let mut want = Vec::new();
-            for a in 0..n {
-                for b in a + 1..n {
-                    consider(&mut want, a as u32, b as u32, &center, &radius, &awake);
-                }
-            }
-            want.sort_unstable();
-            assert_eq!(got, want, "round {round}");
-        }
-    }
-
-    /// The order the step's determinism rests on, whatever cells the lookups
-    /// skip: by awake body, then by the cell of the other one (x, then y,
-    /// then z, among the 27 around it), then by the other body. Spheres as
-    /// wide as the cells allow, and just touching ones, so that the pairs
-    /// reach into the skipped cells' edges.
-    #[test]
-    fn grid_pairs_come_by_body_then_cell_then_body() {
-        let mut rnd = random(4242);
-        let cell_radius = 0.2;
-        for round in 0..10 {
-            let n = 200 + round * 40;
-            let center: Vec<Vec3> = (0..n)
-                .map(|_| Vec3::new(rnd(), rnd(), rnd()) * 2.0 - 0.3)
-                .collect();
-            let mut radius: Vec<f32> = (0..n).map(|_| 0.1 + 0.1 * rnd()).collect();
-            // A few pairs exactly at touching distance.
-            for k in (0..n - 1).step_by(7) {
-                radius[k + 1] = (center[k].distance(center[k + 1]) - radius[k]).clamp(0.0, 0.2);
-            }
-            let awake: Vec<bool> = (0..n).map(|i| i % 4 != 0).collect();
-            let mut bp = BroadPhase::default();
-            bp.update(&center, &radius, &awake, cell_radius);
-
-            let cell = |i: usize| cell_coords(center[i], 0.5 / cell_radius);
-            let mut want = Vec::new();
-            for i in (0..n).filter(|&i| awake[i]) {
-                let mut others: Vec<([i32; 3], usize)> = (0..n)
-                    .filter(|&j| j != i && (j > i || !awake[j]))
-                    .map(|j| {
-                        let offset: [i32; 3] = std::array::from_fn(|k| cell(j)[k] - cell(i)[k]);
-                        (offset, j)
-                    })
-                    .filter(|(offset, _)| offset.iter().all(|d| d.abs() <= 1))
-                    .collect();
-                others.sort_unstable();
-                for (_, j) in others {
-                    consider(&mut want, i as u32, j as u32, &center, &radius, &awake);
-                }
-            }
-            assert_eq!(bp.pairs, want, "round {round}");
-        }
-    }
-
-    #[test]
-    fn woken_pairs_complete_the_update_as_a_new_update_would() {
-        let mut rnd = random(777);
-        for round in 0..20 {
-            let n = 60 + round * 25;
-            let center: Vec<Vec3> = (0..n)
-                .map(|_| Vec3::new(rnd() * 3.0, rnd() * 3.0, rnd() * 3.0))
-                .collect();
-            let radius: Vec<f32> = (0..n).map(|_| 0.05 + 0.15 * rnd()).collect();
-            let was_awake: Vec<bool> = (0..n).map(|_| rnd() < 0.3).collect();
-            // Some sleepers wake, neighbours of each other among them.
-            let awake: Vec<bool> = was_awake.iter().map(|&w| w || rnd() < 0.4).collect();
-            let mut bp = BroadPhase::default();
-            bp.update(&center, &radius, &was_awake, 0.2);
-            assert!(bp.add_woken_pairs(&center, &radius, &was_awake, &awake));
-            let mut got = bp.pairs.clone();
-            let count = got.len();
-            got.sort_unstable();
-            got.dedup();
-            assert_eq!(got.len(), count, "a pair found twice, round {round}");
-            bp.update(&center, &radius, &awake, 0.2);
-            let mut want = bp.pairs.clone();
-            want.sort_unstable();
-            assert_eq!(got, want, "round {round}");
-        }
-    }
-
-    #[test]
-    fn woken_pairs_defer_to_a_full_update_when_large_bodies_are_about() {
-        let center = vec![Vec3::ZERO, Vec3::X * 0.3];
-        let radius = vec![1.0, 0.1];
-        let mut bp = BroadPhase::default();
-        bp.update(&center, &radius, &[false, false], 0.2);
-        assert!(!bp.add_woken_pairs(&center, &radius, &[false, false], &[true, false]));
-    }
-}
+#[path = "broad_phase_tests.rs"]
+mod tests;

@@ -46,9 +46,17 @@ const CHECK_CHUNK: usize = 512;
 /// or orientation, or a runaway velocity, then sorts `out` highest first
 /// without repeats (so that swap-removal keeps the other indices valid).
 /// `lists` are the tasks' own (kept for their buffers).
-pub(crate) fn find_faulty(bodies: &Bodies, lists: &mut Vec<Vec<usize>>, out: &mut Vec<usize>) {
-    collect_in_order(bodies.len(), CHECK_CHUNK, lists, out, |range, out| {
-        for i in range {
+/// `among`: the dense indices to check (every body if None).
+pub(crate) fn find_faulty(
+    bodies: &Bodies,
+    among: Option<&[u32]>,
+    lists: &mut Vec<Vec<usize>>,
+    out: &mut Vec<usize>,
+) {
+    let count = among.map_or(bodies.len(), <[u32]>::len);
+    collect_in_order(count, CHECK_CHUNK, lists, out, |range, out| {
+        for k in range {
+            let i = among.map_or(k, |among| among[k] as usize);
             let sane = bodies.center[i].is_finite()
                 && bodies.rotation[i].is_finite()
                 && is_sane_motion(bodies.linear_velocity[i], bodies.angular_velocity[i]);

@@ -19,4 +19,13 @@ pub(crate) struct NearbyBodies {
     pub restless: SphereGrid,
     /// Each ribbon's candidate balloons and triangles.
     pub lists: NearLists,
+    /// Every body's sphere widened by its reach this step and the ribbons'
+    /// margin, as the lists test them (`World::prepare_ribbons`); a
+    /// sleeper's is kept from the step it was found asleep in.
+    pub centers: Vec<glam::Vec3>,
+    pub radii: Vec<f32>,
+    /// Per body: asleep when its sphere was found.
+    pub asleep: Vec<bool>,
+    /// The margin the spheres were widened by.
+    pub margin: f32,
 }

@@ -149,7 +149,9 @@ pub(crate) struct Coloring {
     /// Colours already used by each body's constraints.
     used: Vec<u64>,
     /// Whether each body moves (takes impulses) and whether it is fixed
-    /// (`BodyState::is_fixed`), read once a step rather than per constraint.
+    /// (`BodyState::is_fixed`), read once a step rather than per constraint
+    /// (empty in a step of fewer constraints than half the bodies: each
+    /// constraint's bodies are read instead).
     kind: Vec<(bool, bool)>,
     /// The level after the last one each body's overflow constraints took
     /// (sized only in a step that overflows).
@@ -157,6 +159,12 @@ pub(crate) struct Coloring {
     /// Constraints of each zone of each run (colour, sides, zone), then
     /// where the next one of that zone goes in its run.
     zone_counts: Vec<u32>,
+    /// Per colour (to `SERIAL`), its constraints for each `Moving`, and
+    /// the first group of each run: kept zeroed between calls but for
+    /// what the last one used, which it clears (a step of a few contacts
+    /// would spend more on clearing every colour than on colouring).
+    counts: Vec<[u32; 3]>,
+    first_group: Vec<[u32; 3]>,
     /// A colour's runs cut by zone, in zone order (`pieces_by_zone`).
     #[cfg(feature = "parallel")]
     pieces: Vec<ColourRun>,
@@ -317,17 +325,33 @@ impl Coloring {
         // so that its length is this step's use (`spare`).
         #[cfg(feature = "parallel")]
         self.constraint_at.clear();
-        let mut counts = [[0u32; 3]; SERIAL + 1];
+        // Zero but where the last call used them, which it cleared.
+        let zone_size = (SERIAL + 1) * 3 * zone_count;
+        if self.zone_counts.len() != zone_size {
+            self.zone_counts.clear();
+            self.zone_counts.resize(zone_size, 0);
+        }
+        if self.counts.len() != SERIAL + 1 {
+            self.counts = vec![[0; 3]; SERIAL + 1];
+            self.first_group = vec![[0; 3]; SERIAL + 1];
+        }
+        let mut counts = std::mem::take(&mut self.counts);
+        let mut first_group = std::mem::take(&mut self.first_group);
         // The colours below it hold every constraint but the serial rest's.
         let mut colours_used = 0;
-        self.zone_counts.clear();
-        self.zone_counts.resize((SERIAL + 1) * 3 * zone_count, 0);
+        let kind_of = |s: &BodyState| (s.inv_mass > 0.0, s.is_fixed());
+        // A few contacts among many sleepers read only their own bodies.
+        let per_constraint = 2 * pairs.size_hint().0 < states.len();
         self.kind.clear();
-        self.kind
-            .extend(states.iter().map(|s| (s.inv_mass > 0.0, s.is_fixed())));
+        if !per_constraint {
+            self.kind.extend(states.iter().map(kind_of));
+        }
         for (a, b) in pairs {
-            let ((a_moves, a_fixed), (b_moves, b_fixed)) =
-                (self.kind[a as usize], self.kind[b as usize]);
+            let kind = |i: u32| match per_constraint {
+                true => kind_of(&states[i as usize]),
+                false => self.kind[i as usize],
+            };
+            let ((a_moves, a_fixed), (b_moves, b_fixed)) = (kind(a), kind(b));
             let taken = if a_moves { self.used[a as usize] } else { 0 }
                 | if b_moves { self.used[b as usize] } else { 0 };
             let mut color = (!taken).trailing_zeros() as usize; // COLORS when all are taken
@@ -373,7 +397,6 @@ impl Coloring {
         self.ranges.clear();
         #[cfg(feature = "parallel")]
         self.blocks.clear(crate::threading::tasks::threads_here());
-        let mut first_group = [[0u32; 3]; SERIAL + 1];
         let mut start = 0u32;
         // An empty colour adds no run and no stage: only those in use are
         // walked (a step of a few contacts would spend more on the empty ones).
@@ -432,6 +455,15 @@ impl Coloring {
             };
             self.slot.push(slot);
         }
+        // What this call used, cleared for the next.
+        for color in (0..colours_used).chain([SERIAL]) {
+            counts[color] = [0; 3];
+        }
+        let per_colour = 3 * zone_count;
+        self.zone_counts[..colours_used * per_colour].fill(0);
+        self.zone_counts[SERIAL * per_colour..].fill(0);
+        self.counts = counts;
+        self.first_group = first_group;
     }
 
     /// The colour of an overflowing constraint between `sides` (each a body

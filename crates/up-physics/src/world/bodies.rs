@@ -117,6 +117,7 @@ impl World {
         // world, nor do the placed nodes of the sleepers.
         self.stages.narrow.found.clear();
         self.stages.place.placed_asleep.clear();
+        self.stages.ribbons.nearby.centers.clear();
         // Its handle index may be given to a new body: forget its pairs' impulses.
         self.warm.forget(id.index);
         self.sleeping.impulses.forget(id.index);
@@ -136,7 +137,15 @@ impl World {
         // Runaways found by the solve are already listed.
         let faults = &mut self.stages.faults;
         let mut bad = std::mem::take(&mut faults.non_finite);
-        quarantine::find_faulty(&self.bodies, &mut faults.task_faulty, &mut bad);
+        // Only the bodies the step moved (awake when it prepared them) can
+        // have gone wrong in it: a sleeper is written by nothing. Every body
+        // on a world's first step (made or restored).
+        let among = self
+            .stages
+            .checked_all
+            .then_some(&self.stages.solve.solver.awake[..]);
+        quarantine::find_faulty(&self.bodies, among, &mut faults.task_faulty, &mut bad);
+        self.stages.checked_all = true;
         for &i in &bad {
             let (id, user_data) = (self.bodies.id[i], self.bodies.user_data[i]);
             // The body is still registered: removal cannot fail.

@@ -94,6 +94,9 @@ struct Stages {
     air_now: crate::air::AirNow,
     /// Islands the moving air woke (`air_step`).
     air_woken: Vec<u32>,
+    /// Every body has been checked for non-finite state once (`bodies`):
+    /// later steps check the bodies they moved.
+    checked_all: bool,
     /// The step's clock's box for each thread's times, between timed steps
     /// (`counters::StageClock`).
     thread_times: Option<Box<crate::counters::ThreadCounters>>,

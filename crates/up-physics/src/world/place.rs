@@ -62,18 +62,22 @@ impl World {
     pub(super) fn place_bodies(&mut self, at_rest: bool) {
         let n = self.bodies.len();
         let s = &mut self.stages.place;
-        s.node_start.clear();
-        let mut total = 0u32;
-        for i in 0..n {
-            s.node_start.push(total);
-            total += self.shapes[self.bodies.shape[i] as usize]
-                .tree
-                .nodes()
-                .len() as u32;
+        // The bodies' node counts change only where bodies come or go (a
+        // removal clears `placed_asleep`; bodies are added at the end).
+        if s.placed_asleep.len() != n || s.node_start.len() != n {
+            s.node_start.clear();
+            let mut total = 0u32;
+            for i in 0..n {
+                s.node_start.push(total);
+                total += self.shapes[self.bodies.shape[i] as usize]
+                    .tree
+                    .nodes()
+                    .len() as u32;
+            }
+            // Every body's entries are written below (a sleeper's nodes stay
+            // where they were placed): only the lengths matter here.
+            s.node_centers.resize(total as usize, Vec3::ZERO);
         }
-        // Every body's entries are written below (a sleeper's nodes stay
-        // where they were placed): only the lengths matter here.
-        s.node_centers.resize(total as usize, Vec3::ZERO);
         s.placed_asleep.resize(n, false);
         s.motion.resize(n, StepMotion::default());
         s.bound_center.resize(n, Vec3::ZERO);
@@ -93,15 +97,19 @@ impl World {
             let (mut nodes, placed_asleep, motions, bound_center, bound_radius, handle) = run;
             for k in 0..placed_asleep.len() {
                 let i = first + k;
+                // A sleeper does not move: placed once, its nodes and bounds
+                // stay as they are (its size too, while it sleeps); only the
+                // knock the last step's pairs gave it is cleared.
+                let asleep = !bodies.awake[i];
+                if asleep && placed_asleep[k] {
+                    motions[k] = StepMotion::default();
+                    continue;
+                }
                 let shape = &shapes[bodies.shape[i] as usize];
                 let scale = bodies.size[i].scale;
                 let nodes = nodes.item(k);
-                // A sleeper does not move: placed once, its nodes stay where they are.
-                let asleep = !bodies.awake[i];
-                if !(asleep && placed_asleep[k]) {
-                    let pose = Pose::new(bodies.center[i], bodies.rotation[i]);
-                    shape.tree.place_scaled(&pose, scale, nodes);
-                }
+                let pose = Pose::new(bodies.center[i], bodies.rotation[i]);
+                shape.tree.place_scaled(&pose, scale, nodes);
                 placed_asleep[k] = asleep;
                 let motion = if at_rest || asleep {
                     StepMotion::default()

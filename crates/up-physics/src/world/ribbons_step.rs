@@ -2,11 +2,12 @@
 //! the broadphase, `prepare_ribbons` before the substeps (which solve them,
 //! `ribbon::solve`), `finish_ribbons` after the continuous sweep.
 
+use glam::Vec3;
 use up_geom::norm::Norm;
 use up_geom::Aabb;
 
 use super::World;
-use crate::ribbon::nearby::{sphere_meets_box, Spheres};
+use crate::ribbon::nearby::{sphere_meets_box, NearbyBodies, Spheres};
 use crate::ribbon::solve::ActiveRibbon;
 use crate::ribbon::GRAB_MAX_SPEED;
 
@@ -56,6 +57,13 @@ impl World {
             let restless = &mut stage.nearby.restless;
             restless.build(&stage.bound_center, &stage.bound_radius);
         }
+        // The box around every restless sphere: a ribbon apart from it is
+        // reached by none (most sleeping ribbons, while few bodies move).
+        let (centers, radii) = (&stage.bound_center, &stage.bound_radius);
+        let spheres = centers.iter().zip(radii);
+        let restless_box = spheres.fold(Aabb::EMPTY, |b, (&c, &r)| {
+            b.union(Aabb::new(c - Vec3::splat(r), c + Vec3::splat(r)))
+        });
         let mut touched = std::mem::take(&mut stage.touched);
         touched.clear();
         for (id, ribbon) in self.ribbons.iter() {
@@ -70,6 +78,9 @@ impl World {
                 .point_boxes
                 .of(id.index, ribbon)
                 .expanded(ribbon.radius(ribbon.segments()));
+            if !aabb.overlaps(&restless_box) {
+                continue;
+            }
             let (restless, found) = (&mut stage.nearby.restless, &mut stage.found);
             found.clear();
             let (centers, radii) = (&stage.bound_center, &stage.bound_radius);
@@ -115,32 +126,52 @@ impl World {
         let awake = |body| self.handles.dense(body).is_some_and(|i| b.awake[i]);
         if !self.ribbons.iter().any(|(_, r)| awake(r.body)) {
             stage.touch.pairs.clear();
+            // An awake body may move and fall asleep elsewhere before the
+            // spheres are next found: its kept one is no longer a sleeper's.
+            let found_asleep = stage.nearby.asleep.iter_mut();
+            found_asleep.zip(&b.awake).for_each(|(f, &a)| *f &= !a);
             return; // every ribbon sleeps, or there are none
         }
         let n = self.bodies.len();
         let dt = self.def.dt;
         let fall = 0.5 * self.def.gravity.norm() * dt * dt;
         let margin = self.def.speculative_distance + fall;
-        stage.bound_center.clear();
-        stage.bound_radius.clear();
+        let NearbyBodies {
+            centers,
+            radii,
+            asleep: found_asleep,
+            margin: found_margin,
+            lists,
+            ..
+        } = &mut stage.nearby;
+        // A sleeper's sphere stays as it was found (it neither moves nor
+        // changes size while it sleeps); bodies coming or going (dense
+        // indices shift) or another margin find every sphere again.
+        if centers.len() != n || *found_margin != margin {
+            found_asleep.clear();
+            found_asleep.resize(n, false);
+            centers.resize(n, Vec3::ZERO);
+            radii.resize(n, 0.0);
+            *found_margin = margin;
+        }
         for i in 0..n {
+            let asleep = !b.awake[i];
+            if asleep && found_asleep[i] {
+                continue;
+            }
             let shape = &self.shapes[b.shape[i] as usize];
-            stage.bound_center.push(b.center[i]);
-            let reach = if b.awake[i] {
-                b.linear_velocity[i].norm() * dt
-            } else {
+            let reach = if asleep {
                 0.0
+            } else {
+                b.linear_velocity[i].norm() * dt
             };
-            stage
-                .bound_radius
-                .push(shape.bound_radius * b.size[i].scale + reach + margin);
+            centers[i] = b.center[i];
+            radii[i] = shape.bound_radius * b.size[i].scale + reach + margin;
+            found_asleep[i] = asleep;
         }
         let room = self.def.room.as_ref();
-        let spheres = Spheres {
-            centers: &stage.bound_center,
-            radii: &stage.bound_radius,
-        };
-        stage.nearby.lists.begin_step(spheres, room);
+        let spheres = Spheres { centers, radii };
+        lists.begin_step(spheres, room);
         let air_density = self.air.air_density();
         let grab = self.ribbon_grab;
         let mut count = 0;
@@ -184,7 +215,6 @@ impl World {
             r.take(ribbon, air_density);
             let (first_body, first_triangle) = (stage.bodies.len(), stage.triangles.len());
             let (bodies, triangles) = (&mut stage.bodies, &mut stage.triangles);
-            let lists = &mut stage.nearby.lists;
             lists.near(slot, &aabb, spheres, room, bodies, triangles);
             r.bodies = first_body as u32..stage.bodies.len() as u32;
             r.triangles = first_triangle as u32..stage.triangles.len() as u32;

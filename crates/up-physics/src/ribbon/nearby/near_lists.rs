@@ -16,7 +16,11 @@
 //! ribbon whose box left its reach finds its list again among the anchors.
 //! Bodies out of their anchors (`loose`) are tested against every ribbon
 //! directly (those in its span along x, found by bisection); once more than
-//! a sixteenth of them are, every body is anchored afresh. The room does not
+//! a sixteenth of them are, every body is anchored afresh. A body whose
+//! sphere is as it was at the last step (a sleeper) keeps its verdict while
+//! the drift holds, and the drift is taken again only once at least half
+//! of the bodies moved: so in a room where one balloon moves among
+//! sleepers a step checks one distance, not every body's. The room does not
 //! drift: a ribbon's triangles are those whose boxes meet its box widened by
 //! `ROOM_MARGIN`, found again when the box leaves that.
 //!
@@ -102,6 +106,11 @@ pub(crate) struct NearLists {
     grid: SphereGrid,
     /// The bodies' median move since they were anchored, this step.
     drift: Vec3,
+    /// Each body's sphere at the last `begin_step`, and whether it was
+    /// within its anchor then (for the same anchoring and drift).
+    last_center: Vec<Vec3>,
+    last_radius: Vec<f32>,
+    last_anchored: Vec<bool>,
     /// The moves sampled for it, a buffer.
     moves: [Vec<f32>; 3],
     /// The anchoring; lists of an earlier one are found again.
@@ -131,14 +140,36 @@ impl NearLists {
             self.anchor(spheres, room_triangles);
             return;
         }
-        self.drift = self.median_move(spheres.centers);
+        // Bodies whose spheres moved since the last step; the rest keep
+        // their verdicts while the drift holds.
+        // Equal as numbers: a NaN counts as moved (and is tested again),
+        // and a zero that changed sign moved nothing.
+        let same = |i: usize, last_center: &[Vec3], last_radius: &[f32]| {
+            spheres.centers[i] == last_center[i] && spheres.radii[i] == last_radius[i]
+        };
+        let (last_center, last_radius) = (&self.last_center, &self.last_radius);
+        let moved = (0..n)
+            .filter(|&i| !same(i, last_center, last_radius))
+            .count();
+        // The median moves only once half of the bodies do.
+        let drift_holds = 2 * moved < n;
+        if !drift_holds {
+            self.drift = self.median_move(spheres.centers);
+        }
         let most = most_loose(n);
         self.loose_radius = 0.0;
         for i in 0..n {
             let (center, radius) = (spheres.centers[i], spheres.radii[i]);
-            let out = (center - self.drift).distance(self.anchor_center[i]) + radius;
-            // False for a non-finite body: it counts as loose.
-            let anchored = out <= self.anchor_radius[i] - SLACK;
+            let anchored = if drift_holds && same(i, &self.last_center, &self.last_radius) {
+                self.last_anchored[i]
+            } else {
+                let out = (center - self.drift).distance(self.anchor_center[i]) + radius;
+                // False for a non-finite body: it counts as loose.
+                out <= self.anchor_radius[i] - SLACK
+            };
+            self.last_center[i] = center;
+            self.last_radius[i] = radius;
+            self.last_anchored[i] = anchored;
             if !anchored {
                 if !center.is_finite() || radius.is_nan() {
                     continue; // no box meets it
@@ -183,6 +214,12 @@ impl NearLists {
             .extend(spheres.radii.iter().map(|r| r + MARGIN));
         self.grid.build(&self.anchor_center, &self.anchor_radius);
         self.drift = Vec3::ZERO;
+        // Every body within its anchor, where it is now.
+        self.last_center.clone_from(&self.anchor_center);
+        self.last_radius.clear();
+        self.last_radius.extend_from_slice(spheres.radii);
+        self.last_anchored.clear();
+        self.last_anchored.resize(spheres.centers.len(), true);
         self.epoch = self.epoch.wrapping_add(1).max(1);
         self.room_triangles = room_triangles;
         self.loose.clear();
@@ -312,13 +349,22 @@ mod tests {
         for step in 0..240 {
             let rise = Vec3::Y * if step < 120 { 0.03 } else { 0.0 };
             for (i, c) in centers.iter_mut().enumerate() {
+                // Late on, most of the crowd stands still (sleepers): the
+                // drift holds and their verdicts are kept.
+                if step >= 180 && i % 10 != 0 {
+                    continue;
+                }
                 let wander = (random(2.0) - 1.0) * if i % 3 == 0 { 0.02 } else { 0.004 };
                 *c += rise + wander;
                 if i % 97 == step % 97 {
                     *c += (random(2.0) - 1.0) * 0.5; // a jump: loose
                 }
             }
-            for r in radii.iter_mut().step_by(7) {
+            for r in radii
+                .iter_mut()
+                .step_by(7)
+                .take(if step >= 180 { 3 } else { n })
+            {
                 *r = (*r + 0.01 * (random(2.0).x - 1.0)).clamp(0.05, 0.3);
             }
             let spheres = Spheres {
