@@ -20,7 +20,7 @@
 //! so the table is kept between steps: a body that stays in its cell is
 //! updated in place (the sleepers, unchanged, are passed over), and only a
 //! body changing cells, the count or the cell size changing, or a large body
-//! rebuilds the table, to the same content a rebuild would give.
+//! rebuilds the table. Kept or rebuilt, it gives the same pairs.
 //!
 //! A fast body (thrown by the user) has a bounding sphere swollen by its
 //! motion this step. It would blow up the cell size for everyone, so such

@@ -133,8 +133,9 @@ export class App {
     });
     const { threads, error: threadsError } = requestedThreads(location.search, navigator.hardwareConcurrency);
     this.bridge.init(new URL("wasm/up_wasm.wasm", document.baseURI).href, this.link.takeInitial(), threads, requestedPool(location.search));
-    // A hidden tab draws no frames (the browser stops them).
+    // A hidden tab draws no frames (the browser stops them), a page opened in one among them.
     document.addEventListener("visibilitychange", () => this.tellDrawing());
+    if (document.hidden) this.tellDrawing();
     const stageStart = performance.now();
     this.stage = createStage(page.app, this.budget);
     this.startup.stageMs = performance.now() - stageStart;

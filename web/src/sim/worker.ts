@@ -232,7 +232,7 @@ function restartAfterTrap(error: unknown): boolean {
   const scene = state.currentSceneJson;
   const bytes = state.wasmBytes;
   // A glue module holds one instance: a fresh import gives a fresh one (and a
-  // threaded one a fresh pool; the old pool's workers stay asleep).
+  // threaded one a fresh pool, whose start lets the old pool's workers go).
   state.started = Engine.importGlue(state.glueHref, state.restarts)
     .then((glue) => startEngine(glue, bytes, state.threads, state.isolated, state.pool))
     .then((started) => {

@@ -144,6 +144,9 @@ impl World {
     /// step (`WorldDef::ribbon_contacts`).
     pub fn set_ribbon_contacts(&mut self, on: bool) {
         self.def.ribbon_contacts = on;
+        if !on {
+            self.stages.ribbons.touch.touching.clear();
+        }
     }
 
     /// Sets the friction of a ribbon on a ribbon (`WorldDef::ribbon_friction`).
@@ -160,7 +163,8 @@ impl World {
     }
 
     /// Where ribbons touched each other at the last step's end (pairs
-    /// within a millimetre of touching): for drawing; empty with contacts off.
+    /// within a millimetre of touching): for drawing; empty once contacts
+    /// are turned off.
     pub fn ribbon_contacts(&self) -> &[crate::ribbon::RibbonContact] {
         &self.stages.ribbons.touch.touching
     }

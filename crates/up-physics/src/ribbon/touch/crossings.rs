@@ -79,8 +79,13 @@ pub fn segments_crossed_along(
 /// The crossings between two states of the ribbons' points, `before` and
 /// `after` (per ribbon, each ribbon's points in both), of ribbons
 /// `thickness` m thick: every pair of segments of different ribbons whose
-/// boxes over the two states come within 1 cm.
+/// boxes over the two states come within 1 cm. The two states must hold
+/// the same ribbons with the same points (it panics, saying which, if not).
 pub fn crossings<P: AsRef<[Vec3]>>(before: &[P], after: &[P], thickness: f32) -> usize {
+    assert_eq!(before.len(), after.len(), "ribbons before and after");
+    for (k, (p, q)) in before.iter().zip(after).enumerate() {
+        assert_eq!(p.as_ref().len(), q.as_ref().len(), "points of ribbon {k}");
+    }
     let boxes: Vec<(Vec3, Vec3)> = after
         .iter()
         .zip(before)
@@ -100,8 +105,8 @@ pub fn crossings<P: AsRef<[Vec3]>>(before: &[P], after: &[P], thickness: f32) ->
             }
             let (bi, bj) = (before[i].as_ref(), before[j].as_ref());
             let (ai, aj) = (after[i].as_ref(), after[j].as_ref());
-            for si in 0..ai.len() - 1 {
-                for sj in 0..aj.len() - 1 {
+            for si in 0..ai.len().saturating_sub(1) {
+                for sj in 0..aj.len().saturating_sub(1) {
                     let was = ([bi[si], bi[si + 1]], [bj[sj], bj[sj + 1]]);
                     let now = ([ai[si], ai[si + 1]], [aj[sj], aj[sj + 1]]);
                     count += usize::from(segments_crossed(was, now, thickness));

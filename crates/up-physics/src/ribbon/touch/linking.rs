@@ -84,8 +84,9 @@ fn solid_angle(p1: Vec3, p2: Vec3, p3: Vec3, p4: Vec3) -> f64 {
 /// `b`'s, `b` away), down past its tied end and back to it from below on
 /// that side. Untwisted ribbons, each on its own side all the way up, give
 /// 0; each full turn of one round the other adds one, its sign the turn's
-/// sense about `up`.
+/// sense about `up`. Each ribbon needs a point at least (it panics if not).
 pub fn closed_pair(a: &[Vec3], b: &[Vec3], up: Vec3) -> (Vec<Vec3>, Vec<Vec3>) {
+    assert!(!a.is_empty() && !b.is_empty(), "a ribbon without points");
     let up = up.normalize();
     let (ka, kb) = (*a.last().unwrap(), *b.last().unwrap());
     let apart = (ka - kb) - (ka - kb).dot(up) * up;
