@@ -139,9 +139,9 @@ test("make measure's window gives each thread's part of each stage on 2 threads,
   // Enough balloons that the step is shared with the pool: a small one runs on the calling thread
   // alone, and a substep's staged run of 300 balloons can end before the pool's other thread arrives.
   await open(page, `&threads=2${sceneHash({ room: { width: 8, depth: 8 }, balloons: [{ count: 1500 }], sim: { seed: 3 } })}`);
-  const plain = await page.evaluate(() => window.__up!.measureSteps(30));
+  const plain = await page.evaluate(() => window.__up!.measureSteps(90));
   expect(plain.threadStages, "no figures unless asked").toEqual([]);
-  const timed = await page.evaluate(() => window.__up!.measureSteps(30, true));
+  const timed = await page.evaluate(() => window.__up!.measureSteps(90, true));
   expect(timed.stateHash, "timing the threads changes no result").toBe(plain.stateHash);
   const total = timed.threadStages.at(-1)!;
   expect(total.stage).toBe("total");
