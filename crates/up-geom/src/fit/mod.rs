@@ -22,6 +22,7 @@ pub mod coverage;
 pub mod mesh_check;
 pub mod mesh_integrals;
 pub mod planar_cover;
+mod planar_excess;
 pub mod principal_axis;
 pub mod union_volume;
 

@@ -13,11 +13,16 @@
 //! plane, the weight the triangle's area times its height squared, so the
 //! thick middle gets more, smaller cells than the thin rim (a sphere must be at
 //! least as large as the half-thickness where it sits; cells there must be
-//! small to keep it near that). Then a few rounds of: each triangle to the
-//! sphere that holds it with the least radius, each centre moved to where its
+//! small to keep it near that). Then rounds of: each triangle to the sphere
+//! that holds it with the least radius, each centre moved to where its
 //! triangles need the least radius (a convex problem: subgradient steps
-//! towards the farthest corner). Fixed starts and sweep orders: the same mesh
-//! and count give the same spheres.
+//! towards the farthest corner), the round with the smallest union kept.
+//! The placement is made again `PLACEMENTS` times, each triangle's weight
+//! scaled by how far its sphere's part of the union stands outside the
+//! mesh (`planar_excess`), so thin parts (a star's arms) get the cells the
+//! broad middle can spare. Last the largest sphere is lowered (`balance`).
+//! Fixed starts and sweep orders: the same mesh and count give the same
+//! spheres.
 //!
 //! The union's volume is exact per column across the plane: every centre lies
 //! on it, so along a line through the plane the spheres' chords share their
@@ -25,7 +30,21 @@
 
 use glam::{DVec2, DVec3, Vec3};
 
+use super::planar_excess::excess_by_leaf;
 use super::principal_axis::{covariance, symmetric_eigen};
+
+/// Placements of the cells, each weighted by where the last one's union
+/// stood out most.
+const PLACEMENTS: usize = 4;
+/// Rounds of giving triangles to spheres and moving the spheres, per placement.
+const ENCLOSING_ROUNDS: usize = 12;
+/// Columns across the plane when a placement's union is weighed.
+const EXCESS_COLUMNS: usize = 128;
+/// Rounds of the even cover.
+const EVEN_ROUNDS: usize = 4;
+/// How much higher (relatively) the tight cover's largest sphere may stand
+/// than the even cover's.
+const TOP_SLACK: f64 = 1e-4;
 
 /// The mid-plane: a point on it and an orthonormal frame, `normal` across it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -165,7 +184,7 @@ pub fn fit_planar_spheres(
         .fold(0.0f64, f64::max)
         .max(f64::MIN_POSITIVE);
     // Weighted points: each triangle's centre in the plane.
-    let points: Vec<(DVec2, f64)> = tris
+    let mut points: Vec<(DVec2, f64)> = tris
         .iter()
         .map(|t| {
             let centre = (t[0] + t[1] + t[2]) / 3.0;
@@ -175,11 +194,61 @@ pub fn fit_planar_spheres(
         })
         .collect();
     let count = count.clamp(1, tris.len());
-    let mut centres = farthest_point_start(&points, count);
+    let start = farthest_point_start(&points, count);
+    // Even: the spheres share the triangles up to the largest's radius,
+    // which is lowered as far as it goes.
+    let mut even = start.clone();
+    k_means(&points, &mut even);
+    let even_owner = enclose_evenly(&tris, &mut even);
+    // Tight: the smallest union, placed again where it stands out most.
+    let mut centres = start;
+    let mut owner = Vec::new();
+    for round in 0..PLACEMENTS {
+        k_means(&points, &mut centres);
+        owner = enclose_tightly(&tris, &mut centres);
+        if round + 1 == PLACEMENTS {
+            break;
+        }
+        // Where the union stands out most, more (smaller) cells next time.
+        let r2 = radii_of(&tris, &owner, &centres);
+        let excess = excess_by_leaf(&tris, &centres, &r2, EXCESS_COLUMNS);
+        let mean = excess.iter().sum::<f64>() / excess.len() as f64;
+        if mean <= 0.0 {
+            break;
+        }
+        for (p, &o) in points.iter_mut().zip(&owner) {
+            p.1 *= (excess[o] / mean).sqrt().clamp(0.25, 4.0);
+        }
+    }
+    // Two flat shapes face to face rest as far apart as their largest
+    // spheres stand: the tight cover only where that costs (almost) nothing.
+    let largest = |owner: &[usize], centres: &[DVec2]| {
+        radii_of(&tris, owner, centres)
+            .into_iter()
+            .fold(0.0f64, f64::max)
+            .sqrt()
+    };
+    if largest(&owner, &centres) > largest(&even_owner, &even) * (1.0 + TOP_SLACK) {
+        (owner, centres) = (even_owner, even);
+    }
+    let radii = radii_of(&tris, &owner, &centres);
+    centres
+        .iter()
+        .zip(&radii)
+        .filter(|(_, &r2)| r2 > 0.0)
+        .map(|(&center, &r2)| PlanarSphere {
+            center,
+            radius: r2.sqrt(),
+        })
+        .collect()
+}
+
+/// Moves `centres` to the weighted means of the points nearest each.
+fn k_means(points: &[(DVec2, f64)], centres: &mut [DVec2]) {
     for _ in 0..40 {
         let mut sums = vec![(DVec2::ZERO, 0.0f64); centres.len()];
-        for &(p, w) in &points {
-            let k = nearest(&centres, p);
+        for &(p, w) in points {
+            let k = nearest(centres, p);
             sums[k].0 += p * w;
             sums[k].1 += w;
         }
@@ -189,12 +258,60 @@ pub fn fit_planar_spheres(
             }
         }
     }
-    // Each triangle to the sphere it needs least of; then rounds of
-    // least-radius moves, each triangle going to the sphere that already holds
-    // it with the smallest radius (else the one it grows least).
+}
+
+/// Gives each triangle to a sphere and moves each sphere to hold its own
+/// with the least radius, then lowers the largest (`balance`); returns each
+/// triangle's sphere.
+fn enclose_tightly(tris: &[[DVec3; 3]], centres: &mut [DVec2]) -> Vec<usize> {
+    // Rounds of: each triangle to the sphere that holds it with the least
+    // radius, each sphere moved to hold its own with the least radius; the
+    // round whose union is smallest is kept (the rounds drift towards the
+    // highest point and need not improve).
+    let mut owner = vec![0usize; tris.len()];
+    let mut best = (f64::INFINITY, Vec::new(), Vec::new());
+    for round in 0..ENCLOSING_ROUNDS {
+        for (t, o) in tris.iter().zip(owner.iter_mut()) {
+            let mut pick = (f64::INFINITY, 0usize);
+            for (k, &c) in centres.iter().enumerate() {
+                let n = need(c, t);
+                if n < pick.0 {
+                    pick = (n, k);
+                }
+            }
+            *o = pick.1;
+        }
+        let spheres: Vec<PlanarSphere> = centres
+            .iter()
+            .zip(radii_of(tris, &owner, centres))
+            .map(|(&center, r2)| PlanarSphere {
+                center,
+                radius: r2.sqrt(),
+            })
+            .collect();
+        let volume = union_volume_on_plane(&spheres, EXCESS_COLUMNS);
+        if volume < best.0 {
+            best = (volume, owner.clone(), centres.to_vec());
+        }
+        if round + 1 == ENCLOSING_ROUNDS {
+            break;
+        }
+        move_to_least_radius(tris, &owner, centres);
+    }
+    let (_, mut owner, kept) = best;
+    centres.copy_from_slice(&kept);
+    balance(tris, &mut owner, centres);
+    owner
+}
+
+/// As `enclose_tightly`, but after the first round each triangle goes to the
+/// sphere that already holds it with the smallest radius (else the one it
+/// grows least): the spheres come out about as large as the largest, which
+/// `balance` then lowers.
+fn enclose_evenly(tris: &[[DVec3; 3]], centres: &mut [DVec2]) -> Vec<usize> {
     let mut owner = vec![0usize; tris.len()];
     let mut radii = vec![f64::INFINITY; centres.len()];
-    for round in 0..4 {
+    for round in 0..EVEN_ROUNDS {
         for (t, o) in tris.iter().zip(owner.iter_mut()) {
             let mut pick = ((f64::INFINITY, f64::INFINITY), 0usize);
             for (k, &c) in centres.iter().enumerate() {
@@ -206,33 +323,29 @@ pub fn fit_planar_spheres(
             }
             *o = pick.1;
         }
-        if round == 3 {
+        if round + 1 == EVEN_ROUNDS {
             break;
         }
-        for (k, c) in centres.iter_mut().enumerate() {
-            let mine: Vec<&[DVec3; 3]> = tris
-                .iter()
-                .zip(&owner)
-                .filter(|(_, &o)| o == k)
-                .map(|(t, _)| t)
-                .collect();
-            if !mine.is_empty() {
-                *c = least_radius_centre(*c, &mine);
-            }
-        }
-        radii = radii_of(&tris, &owner, &centres);
+        move_to_least_radius(tris, &owner, centres);
+        radii = radii_of(tris, &owner, centres);
     }
-    balance(&tris, &mut owner, &mut centres);
-    let radii = radii_of(&tris, &owner, &centres);
-    centres
-        .iter()
-        .zip(&radii)
-        .filter(|(_, &r2)| r2 > 0.0)
-        .map(|(&center, &r2)| PlanarSphere {
-            center,
-            radius: r2.sqrt(),
-        })
-        .collect()
+    balance(tris, &mut owner, centres);
+    owner
+}
+
+/// Moves each sphere to where it holds its own triangles with the least radius.
+fn move_to_least_radius(tris: &[[DVec3; 3]], owner: &[usize], centres: &mut [DVec2]) {
+    for (k, c) in centres.iter_mut().enumerate() {
+        let mine: Vec<&[DVec3; 3]> = tris
+            .iter()
+            .zip(owner)
+            .filter(|(_, &o)| o == k)
+            .map(|(t, _)| t)
+            .collect();
+        if !mine.is_empty() {
+            *c = least_radius_centre(*c, &mine);
+        }
+    }
 }
 
 /// Lowers the largest sphere while it can: its triangles that need its full

@@ -12,9 +12,11 @@
 //!   `z = w·P(1 − d/w)` with `P(x) = ∫ₓ¹ s²/√(1 − s⁴) ds`, d the point's
 //!   distance inside the inflated outline and w the radius of the disc of
 //!   the same area (the disc's r), but never more than a round tube as wide
-//!   as the outline's widest part allows, `√(d (2ρ − d))`, ρ the largest
-//!   distance inside: a stroke of a digit fills to a tube, a heart to
-//!   about a disc of its area, and narrow arms stay thinner than the body.
+//!   as the outline is where the point lies allows, `√(d (2ρ − d))`, ρ the
+//!   radius of the largest disc inside the outline holding the point
+//!   (`LocalWidth`): a stroke of a digit fills to a tube, a heart to about
+//!   a disc of its area, and a star's narrow arms stay thinner than its
+//!   middle, no thicker than they are wide.
 //!
 //! Mesh: the plane is cut into a grid of `GRID_CELLS` squares across the
 //! larger extent, each split into two triangles; each triangle is clipped to
@@ -34,6 +36,7 @@ use glam::{Vec2, Vec3};
 
 use up_geom::fit::mesh_integrals::{shell_integrals, solid_integrals};
 
+use crate::balloon::local_width::LocalWidth;
 use crate::balloon::mesh::{vertex_normals, BalloonDimensions, BalloonMesh, BalloonMeshError};
 use crate::balloon::outline::{Outline, OutlineKind};
 
@@ -92,15 +95,16 @@ impl Inflated {
         self.shrink * self.flat.distance(self.flat_centroid + p / self.shrink)
     }
 
-    /// Paulsen's profile of the disc of the same area, no thicker than a
-    /// tube as wide as the outline's widest part (a circle of radius
-    /// `reach`): a disc is Paulsen's balloon, a stroke of a digit a tube.
-    fn half_thickness(&self, d: f32) -> f32 {
+    /// Paulsen's profile of the disc of the same area at distance `d`
+    /// inside, no thicker than a tube as wide as the outline is there (the
+    /// largest disc inside holding the point has radius `local`): a disc is
+    /// Paulsen's balloon, a stroke of a digit a tube.
+    fn half_thickness(&self, d: f32, local: f32) -> f32 {
         if d <= 0.0 {
             return 0.0;
         }
         let (d, w) = (f64::from(d), f64::from(self.area_radius));
-        let tube = (d * (2.0 * f64::from(self.reach) - d)).max(0.0).sqrt();
+        let tube = (d * (2.0 * f64::from(local) - d)).max(0.0).sqrt();
         (w * paulsen_profile(1.0 - d / w)).min(tube) as f32
     }
 }
@@ -156,6 +160,7 @@ pub fn foil_shape_balanced(
     }
     inflated.reach = deepest(&inflated, &d, nx, &node, g);
     inflated.area_radius = inflated.area_radius.max(inflated.reach);
+    let width = LocalWidth::from_distances(&d, nx, node(0, 0), g, inflated.reach);
     let eps = 1e-6 * g;
     let inside = |k: usize| d[k] > eps;
 
@@ -203,7 +208,7 @@ pub fn foil_shape_balanced(
                                 let map = if side > 0.0 { &mut top } else { &mut bottom };
                                 *map.entry(n).or_insert_with(|| {
                                     let p = at(n);
-                                    let z = inflated.half_thickness(d[n]);
+                                    let z = inflated.half_thickness(d[n], width.at_node(n));
                                     positions.push(Vec3::new(p.x, p.y, side * z));
                                     positions.len() as u32 - 1
                                 })
@@ -252,7 +257,7 @@ pub fn foil_shape_balanced(
         knot_radius: valve_radius,
         bottom_y: mlo.y,
     };
-    let frontal_area_m2 = frontal_area(&inflated, lo.x, hi.x);
+    let frontal_area_m2 = frontal_area(&inflated, &width, lo.x, hi.x);
     Ok(FoilShape {
         mesh: BalloonMesh {
             positions,
@@ -381,7 +386,7 @@ fn valve_point(shape: &Inflated, lo: Vec2, hi: Vec2, target: f32, centre_y: f32)
 }
 
 /// m²: the largest section by a horizontal plane, `∫ 2 z dx` along rows.
-fn frontal_area(shape: &Inflated, x0: f32, x1: f32) -> f32 {
+fn frontal_area(shape: &Inflated, width: &LocalWidth, x0: f32, x1: f32) -> f32 {
     let n = 4 * GRID_CELLS;
     let dx = (x1 - x0) / n as f32;
     (-8..=8)
@@ -390,7 +395,7 @@ fn frontal_area(shape: &Inflated, x0: f32, x1: f32) -> f32 {
             (0..n)
                 .map(|i| {
                     let p = Vec2::new(x0 + (i as f32 + 0.5) * dx, y);
-                    2.0 * shape.half_thickness(shape.distance(p)) * dx
+                    2.0 * shape.half_thickness(shape.distance(p), width.at(p)) * dx
                 })
                 .sum::<f32>()
         })

@@ -22,6 +22,7 @@
 pub mod foil_mesh;
 pub mod foil_shape;
 pub mod gas_fill;
+mod local_width;
 pub mod mass;
 pub mod mesh;
 pub mod outline;
