@@ -38,6 +38,8 @@ use super::principal_axis::{covariance, symmetric_eigen};
 const PLACEMENTS: usize = 4;
 /// Rounds of giving triangles to spheres and moving the spheres, per placement.
 const ENCLOSING_ROUNDS: usize = 12;
+/// Rounds of k-means from the farthest-point start.
+const K_MEANS_ITERATIONS: usize = 40;
 /// Columns across the plane when a placement's union is weighed.
 const EXCESS_COLUMNS: usize = 128;
 /// Rounds of the even cover.
@@ -137,26 +139,36 @@ fn need(c: DVec2, corners: &[DVec3; 3]) -> f64 {
 
 /// The plane point that holds `tris` with the least radius, from `start`.
 fn least_radius_centre(start: DVec2, tris: &[&[DVec3; 3]]) -> DVec2 {
-    let mut c = start;
-    let mut best = (tris.iter().fold(0.0f64, |m, t| m.max(need(c, t))), c);
-    for k in 0..96 {
-        // The farthest corner: a subgradient of the radius points at it.
+    // Each corner once (neighbouring triangles share theirs), in the order
+    // first met: the farthest is the same point, found several times faster.
+    let mut seen = std::collections::HashSet::with_capacity(3 * tris.len());
+    let corners: Vec<DVec3> = tris
+        .iter()
+        .flat_map(|t| t.iter())
+        .filter(|p| seen.insert([p.x.to_bits(), p.y.to_bits(), p.z.to_bits()]))
+        .copied()
+        .collect();
+    let farthest = |c: DVec2| {
         let mut far = (0.0f64, c);
-        for t in tris {
-            for p in t.iter() {
-                let d = (p.x - c.x).powi(2) + (p.y - c.y).powi(2) + p.z * p.z;
-                if d > far.0 {
-                    far = (d, DVec2::new(p.x, p.y));
-                }
+        for p in &corners {
+            let d = (p.x - c.x).powi(2) + (p.y - c.y).powi(2) + p.z * p.z;
+            if d > far.0 {
+                far = (d, DVec2::new(p.x, p.y));
             }
         }
+        far
+    };
+    let mut c = start;
+    let mut best = (farthest(c).0, c);
+    for k in 0..96 {
+        // The farthest corner: a subgradient of the radius points at it.
+        let far = farthest(c);
         if far.0 < best.0 {
             best = (far.0, c);
         }
         c += (far.1 - c) / (k as f64 + 2.0);
     }
-    let last = tris.iter().fold(0.0f64, |m, t| m.max(need(c, t)));
-    if last < best.0 {
+    if farthest(c).0 < best.0 {
         c
     } else {
         best.1
@@ -198,13 +210,13 @@ pub fn fit_planar_spheres(
     // Even: the spheres share the triangles up to the largest's radius,
     // which is lowered as far as it goes.
     let mut even = start.clone();
-    k_means(&points, &mut even);
+    k_means(&points, &mut even, K_MEANS_ITERATIONS);
     let even_owner = enclose_evenly(&tris, &mut even);
     // Tight: the smallest union, placed again where it stands out most.
     let mut centres = start;
     let mut owner = Vec::new();
     for round in 0..PLACEMENTS {
-        k_means(&points, &mut centres);
+        k_means(&points, &mut centres, K_MEANS_ITERATIONS);
         owner = enclose_tightly(&tris, &mut centres);
         if round + 1 == PLACEMENTS {
             break;
@@ -244,8 +256,8 @@ pub fn fit_planar_spheres(
 }
 
 /// Moves `centres` to the weighted means of the points nearest each.
-fn k_means(points: &[(DVec2, f64)], centres: &mut [DVec2]) {
-    for _ in 0..40 {
+fn k_means(points: &[(DVec2, f64)], centres: &mut [DVec2], iterations: usize) {
+    for _ in 0..iterations {
         let mut sums = vec![(DVec2::ZERO, 0.0f64); centres.len()];
         for &(p, w) in points {
             let k = nearest(centres, p);
