@@ -32,7 +32,7 @@
 
 use glam::{Quat, Vec3};
 use up_geom::norm::Norm;
-use up_geom::{closest_point_triangle, Sphere, SphereTree};
+use up_geom::{closest_point_triangle, Sphere, SphereTree, TriangleReach};
 
 /// How much wider than a leaf the test in the balloon's frame is, m: far
 /// more than the rounding between a point turned into that frame and a leaf
@@ -40,11 +40,28 @@ use up_geom::{closest_point_triangle, Sphere, SphereTree};
 /// tens of metres), so no leaf the placed test would push from is skipped.
 const FRAME_SLACK: f32 = 1e-4;
 
-/// A room triangle near a ribbon this step, with its unit inward normal.
+/// A room triangle near a ribbon this step, with its unit inward normal,
+/// its box and its edge lines (what each push reads of it, found once).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct NearTriangle {
     pub corners: [Vec3; 3],
     pub normal: Vec3,
+    lo: Vec3,
+    hi: Vec3,
+    edges: TriangleReach,
+}
+
+impl NearTriangle {
+    pub fn new(corners: [Vec3; 3], normal: Vec3) -> NearTriangle {
+        let [a, b, c] = corners;
+        NearTriangle {
+            corners,
+            normal,
+            lo: a.min(b).min(c),
+            hi: a.max(b).max(c),
+            edges: TriangleReach::new(corners, normal),
+        }
+    }
 }
 
 /// A point's friction against the room over one step's substeps: μ times
@@ -89,17 +106,24 @@ pub(crate) fn push_out_of_room(
         // is flat across the seams of its triangles (an edge pushes along the
         // face normal, never sideways, as a ribbon lying over a seam needs).
         let on_plane = *point - height * t.normal;
-        // Outside the triangle's box widened past the radius (and rounding),
-        // it is farther than the radius: skip the closest point's cost.
-        let reach = Vec3::splat(radius * 1.001 + 1e-6);
-        if on_plane.cmplt(a.min(b).min(c) - reach).any()
-            || on_plane.cmpgt(a.max(b).max(c) + reach).any()
-        {
-            continue;
-        }
-        let (closest, _) = closest_point_triangle(on_plane, a, b, c);
-        if closest.distance_squared(on_plane) > radius * radius {
-            continue;
+        // Well inside or outside the edge lines the answer is sure (what the
+        // closest point would say); near an edge the closest point decides.
+        match t.edges.within(on_plane, radius) {
+            Some(true) => {}
+            Some(false) => continue,
+            None => {
+                // Outside the triangle's box widened past the radius (and
+                // rounding), it is farther than the radius: skip the
+                // closest point's cost.
+                let reach = Vec3::splat(radius * 1.001 + 1e-6);
+                if on_plane.cmplt(t.lo - reach).any() || on_plane.cmpgt(t.hi + reach).any() {
+                    continue;
+                }
+                let (closest, _) = closest_point_triangle(on_plane, a, b, c);
+                if closest.distance_squared(on_plane) > radius * radius {
+                    continue;
+                }
+            }
         }
         // In front of the face at the substep's start: it may not cross.
         if (start - a).dot(t.normal) <= -radius {
@@ -235,10 +259,7 @@ mod tests {
             Vec3::new(-1.0, 0.0, 1.0),
             Vec3::new(1.0, 0.0, -1.0),
         ];
-        vec![NearTriangle {
-            corners,
-            normal: Vec3::Y,
-        }]
+        vec![NearTriangle::new(corners, Vec3::Y)]
     }
 
     #[test]

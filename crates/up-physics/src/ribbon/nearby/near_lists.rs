@@ -282,10 +282,7 @@ impl NearLists {
         if let Some(room) = room {
             for &t in &list.triangles {
                 if !room.is_degenerate(t) && room.triangle_aabb(t).overlaps(aabb) {
-                    triangles.push(NearTriangle {
-                        corners: room.triangle(t),
-                        normal: room.normal(t),
-                    });
+                    triangles.push(NearTriangle::new(room.triangle(t), room.normal(t)));
                 }
             }
         }
