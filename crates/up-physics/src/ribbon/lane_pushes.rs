@@ -187,9 +187,9 @@ impl LaneGroup {
                 lanes &= lanes - 1;
                 let near = near_of[l];
                 let (start, radius) = (self.start[i].lane(l), self.radius(i).as_array()[l]);
-                let mut point: Vec3 = self.points[i].lane(l);
+                let point: Vec3 = self.points[i].lane(l);
                 let grip = &mut self.grips[i * LANES + l];
-                push_out_of_room(&mut point, start, radius, ROOM_FRICTION, near, grip);
+                let point = push_out_of_room(point, start, radius, ROOM_FRICTION, near, grip);
                 self.points[i].set_lane(l, point);
                 self.note_grip(l, i);
             }
