@@ -89,14 +89,13 @@ impl Grip {
 /// taken back up to what `grip` has left with this call's pushes added; a
 /// point that slides further than that keeps sliding from where it is.
 pub(crate) fn push_out_of_room(
-    point: Vec3,
+    mut point: Vec3,
     start: Vec3,
     radius: f32,
     mu: f32,
     near: &[NearTriangle],
     grip: &mut Grip,
 ) -> Vec3 {
-    let mut point = point;
     for t in near {
         let [a, b, c] = t.corners;
         let height = (point - a).dot(t.normal);
