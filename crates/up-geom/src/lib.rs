@@ -32,6 +32,7 @@ pub use query::toi_bisect::{
 pub use query::toi_sphere_sphere::toi_sphere_sphere;
 pub use query::toi_sphere_triangle::toi_sphere_triangle;
 pub use query::toi_sphere_trimesh::{toi_sphere_trimesh, toi_sphere_trimesh_new_contact};
+pub use query::triangle_reach::TriangleReach;
 pub use shape::aabb::Aabb;
 pub use shape::bvh::{Bvh, BvhNode};
 pub use shape::sphere::Sphere;

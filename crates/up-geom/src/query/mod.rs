@@ -12,3 +12,4 @@ pub mod toi_bisect;
 pub mod toi_sphere_sphere;
 pub mod toi_sphere_triangle;
 pub mod toi_sphere_trimesh;
+pub mod triangle_reach;

@@ -32,7 +32,7 @@
 
 use glam::{Quat, Vec3};
 use up_geom::norm::Norm;
-use up_geom::{closest_point_triangle, Sphere, SphereTree};
+use up_geom::{closest_point_triangle, Sphere, SphereTree, TriangleReach};
 
 /// How much wider than a leaf the test in the balloon's frame is, m: far
 /// more than the rounding between a point turned into that frame and a leaf
@@ -40,11 +40,28 @@ use up_geom::{closest_point_triangle, Sphere, SphereTree};
 /// tens of metres), so no leaf the placed test would push from is skipped.
 const FRAME_SLACK: f32 = 1e-4;
 
-/// A room triangle near a ribbon this step, with its unit inward normal.
+/// A room triangle near a ribbon this step, with its unit inward normal,
+/// its box and its edge lines (what each push reads of it, found once).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct NearTriangle {
     pub corners: [Vec3; 3],
     pub normal: Vec3,
+    lo: Vec3,
+    hi: Vec3,
+    edges: TriangleReach,
+}
+
+impl NearTriangle {
+    pub fn new(corners: [Vec3; 3], normal: Vec3) -> NearTriangle {
+        let [a, b, c] = corners;
+        NearTriangle {
+            corners,
+            normal,
+            lo: a.min(b).min(c),
+            hi: a.max(b).max(c),
+            edges: TriangleReach::new(corners, normal),
+        }
+    }
 }
 
 /// A point's friction against the room over one step's substeps: μ times
@@ -67,64 +84,72 @@ impl Grip {
     }
 }
 
-/// Pushes `point` (which was at `start` when the substep began) out of the
+/// `point` (which was at `start` when the substep began) pushed out of the
 /// triangles `near`, with friction `mu`: its slide from `grip`'s anchor is
 /// taken back up to what `grip` has left with this call's pushes added; a
 /// point that slides further than that keeps sliding from where it is.
 pub(crate) fn push_out_of_room(
-    point: &mut Vec3,
+    mut point: Vec3,
     start: Vec3,
     radius: f32,
     mu: f32,
     near: &[NearTriangle],
     grip: &mut Grip,
-) {
+) -> Vec3 {
     for t in near {
         let [a, b, c] = t.corners;
-        let height = (*point - a).dot(t.normal);
+        let height = (point - a).dot(t.normal);
         if height >= radius {
             continue;
         }
         // Over the face, or over its border by less than the radius: a room
         // is flat across the seams of its triangles (an edge pushes along the
         // face normal, never sideways, as a ribbon lying over a seam needs).
-        let on_plane = *point - height * t.normal;
-        // Outside the triangle's box widened past the radius (and rounding),
-        // it is farther than the radius: skip the closest point's cost.
-        let reach = Vec3::splat(radius * 1.001 + 1e-6);
-        if on_plane.cmplt(a.min(b).min(c) - reach).any()
-            || on_plane.cmpgt(a.max(b).max(c) + reach).any()
-        {
-            continue;
-        }
-        let (closest, _) = closest_point_triangle(on_plane, a, b, c);
-        if closest.distance_squared(on_plane) > radius * radius {
-            continue;
+        let on_plane = point - height * t.normal;
+        // Well inside or outside the edge lines the answer is sure (what the
+        // closest point would say); near an edge the closest point decides.
+        match t.edges.within(on_plane, radius) {
+            Some(true) => {}
+            Some(false) => continue,
+            None => {
+                // Outside the triangle's box widened past the radius (and
+                // rounding), it is farther than the radius: skip the
+                // closest point's cost.
+                let reach = Vec3::splat(radius * 1.001 + 1e-6);
+                if on_plane.cmplt(t.lo - reach).any() || on_plane.cmpgt(t.hi + reach).any() {
+                    continue;
+                }
+                let (closest, _) = closest_point_triangle(on_plane, a, b, c);
+                if closest.distance_squared(on_plane) > radius * radius {
+                    continue;
+                }
+            }
         }
         // In front of the face at the substep's start: it may not cross.
         if (start - a).dot(t.normal) <= -radius {
             continue;
         }
         let push = (radius - height) * t.normal;
-        *point += push;
+        point += push;
         grip.left += mu * push;
     }
     let held = grip.left.norm();
     if held <= 0.0 {
-        return;
+        return point;
     }
     // Along the pushes' normal, what the point slid across it.
     let normal = grip.left / held;
-    let moved = *point - grip.anchor;
+    let moved = point - grip.anchor;
     let slide = moved - moved.dot(normal) * normal;
     let slide_len = slide.norm();
     if slide_len <= held {
-        *point -= slide;
+        point -= slide;
         grip.left = normal * (held - slide_len);
     } else {
-        *point -= slide * (held / slide_len);
-        *grip = Grip::new(*point);
+        point -= slide * (held / slide_len);
+        *grip = Grip::new(point);
     }
+    point
 }
 
 /// Coulomb friction at position level: of `moved`, the point's move over the
@@ -235,10 +260,7 @@ mod tests {
             Vec3::new(-1.0, 0.0, 1.0),
             Vec3::new(1.0, 0.0, -1.0),
         ];
-        vec![NearTriangle {
-            corners,
-            normal: Vec3::Y,
-        }]
+        vec![NearTriangle::new(corners, Vec3::Y)]
     }
 
     #[test]
@@ -246,7 +268,7 @@ mod tests {
         // Fell 5 cm in one substep, from just above the floor to well below it.
         let start = Vec3::new(0.0, 0.01, -0.5);
         let mut p = Vec3::new(0.0, -0.04, -0.5);
-        push_out_of_room(&mut p, start, 0.0025, 0.5, &floor(), &mut Grip::new(start));
+        p = push_out_of_room(p, start, 0.0025, 0.5, &floor(), &mut Grip::new(start));
         assert!((p.y - 0.0025).abs() < 1e-6, "{p}");
     }
 
@@ -255,7 +277,7 @@ mod tests {
         let start = Vec3::new(0.0, 0.0025, -0.5);
         let mut slow = start + Vec3::new(0.001, -0.004, 0.0);
         let mut grip = Grip::new(start);
-        push_out_of_room(&mut slow, start, 0.0025, 0.5, &floor(), &mut grip);
+        slow = push_out_of_room(slow, start, 0.0025, 0.5, &floor(), &mut grip);
         assert!((slow.x - start.x).abs() < 1e-7, "{slow}");
         // Of the 2 mm of friction the 4 mm push gave, 1 mm is left.
         assert!(
@@ -263,14 +285,7 @@ mod tests {
             "{grip:?}"
         );
         let mut fast = start + Vec3::new(0.02, -0.004, 0.0);
-        push_out_of_room(
-            &mut fast,
-            start,
-            0.0025,
-            0.5,
-            &floor(),
-            &mut Grip::new(start),
-        );
+        fast = push_out_of_room(fast, start, 0.0025, 0.5, &floor(), &mut Grip::new(start));
         assert!((fast.x - 0.018).abs() < 1e-6, "{fast}");
     }
 
@@ -282,17 +297,17 @@ mod tests {
         let start = Vec3::new(0.0, 0.0025, -0.5);
         let mut p = start + Vec3::new(0.0, -0.004, 0.0);
         let mut grip = Grip::new(start);
-        push_out_of_room(&mut p, start, 0.0025, 0.5, &floor(), &mut grip);
+        p = push_out_of_room(p, start, 0.0025, 0.5, &floor(), &mut grip);
         p += Vec3::new(0.0015, 0.0001, 0.0);
-        push_out_of_room(&mut p, start, 0.0025, 0.5, &floor(), &mut grip);
+        p = push_out_of_room(p, start, 0.0025, 0.5, &floor(), &mut grip);
         assert!((p.x - start.x).abs() < 1e-7, "{p}");
         assert!((grip.left.y - 0.0005).abs() < 1e-7, "{grip:?}");
         // Pulled 3 mm instead, it slides by what is beyond the 2 mm.
         let mut p = start + Vec3::new(0.0, -0.004, 0.0);
         let mut grip = Grip::new(start);
-        push_out_of_room(&mut p, start, 0.0025, 0.5, &floor(), &mut grip);
+        p = push_out_of_room(p, start, 0.0025, 0.5, &floor(), &mut grip);
         p += Vec3::new(0.003, 0.0001, 0.0);
-        push_out_of_room(&mut p, start, 0.0025, 0.5, &floor(), &mut grip);
+        p = push_out_of_room(p, start, 0.0025, 0.5, &floor(), &mut grip);
         assert!((p.x - 0.001).abs() < 1e-6, "{p}");
         assert_eq!(grip, Grip::new(p), "slides on from where it is");
     }

@@ -173,17 +173,23 @@ impl LaneGroup {
         if self.room_lanes == 0 {
             return;
         }
+        // Each lane's triangles, sliced once for all its points.
+        let near_of: [&[NearTriangle]; LANES] = std::array::from_fn(|l| match self.lanes.get(l) {
+            Some(lane) if l < self.live => {
+                &triangles[lane.triangles.start as usize..lane.triangles.end as usize]
+            }
+            _ => &[],
+        });
         for i in 1..self.points.len() {
             let mut lanes = self.near_room(i);
             while lanes != 0 {
                 let l = lanes.trailing_zeros() as usize;
                 lanes &= lanes - 1;
-                let range = &self.lanes[l].triangles;
-                let near = &triangles[range.start as usize..range.end as usize];
+                let near = near_of[l];
                 let (start, radius) = (self.start[i].lane(l), self.radius(i).as_array()[l]);
-                let mut point: Vec3 = self.points[i].lane(l);
+                let point: Vec3 = self.points[i].lane(l);
                 let grip = &mut self.grips[i * LANES + l];
-                push_out_of_room(&mut point, start, radius, ROOM_FRICTION, near, grip);
+                let point = push_out_of_room(point, start, radius, ROOM_FRICTION, near, grip);
                 self.points[i].set_lane(l, point);
                 self.note_grip(l, i);
             }

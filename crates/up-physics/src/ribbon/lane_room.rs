@@ -1,8 +1,9 @@
 //! Which of a lane group's points may touch the room this substep, four
 //! lanes at once, so that the pushes out of the room (`collide`, point by
-//! point) run only for them: the room's triangles near each ribbon, lined
-//! up across the lanes (the `k`th of each lane's), give each point's height
-//! over each plane in one pass; a point clear of every plane by more than
+//! point) run only for them: the planes of the room's triangles near each
+//! ribbon (a plane once, however many triangles lie in it), lined up across
+//! the lanes (the `k`th of each lane's), give each point's height over each
+//! plane in one pass; a point clear of every plane by more than
 //! its radius, with no friction held from an earlier push this step, is
 //! one the push would leave as it is.
 
@@ -16,7 +17,7 @@ use crate::solver::lanes::{set, F4, LANES, V4};
 /// coordinates, ~1e-5 m in a room of tens of metres), m.
 const PLANE_SLACK: f32 = 1e-3;
 
-/// The `k`th room triangle near each lane: its plane (unit inward normal,
+/// The `k`th room plane near each lane (unit inward normal,
 /// and the normal's dot product with a corner), and the lanes that have a
 /// `k`th (bit `l` for lane `l`).
 #[derive(Clone, Copy, Debug, Default)]
@@ -41,13 +42,26 @@ impl LaneGroup {
                 continue;
             }
             self.room_lanes |= 1 << l;
-            if self.room_slots.len() < near.len() {
-                self.room_slots.resize(near.len(), RoomSlot::default());
-            }
-            for (slot, t) in self.room_slots.iter_mut().zip(near) {
+            // A plane once: the triangles of a flat floor or wall share it,
+            // and the same plane gives the same heights.
+            let mut planes = 0;
+            for (k, t) in near.iter().enumerate() {
+                let offset = t.corners[0].dot(t.normal);
+                let same = |u: &NearTriangle| {
+                    u.normal.to_array().map(f32::to_bits) == t.normal.to_array().map(f32::to_bits)
+                        && u.corners[0].dot(u.normal).to_bits() == offset.to_bits()
+                };
+                if near[..k].iter().any(same) {
+                    continue;
+                }
+                if self.room_slots.len() == planes {
+                    self.room_slots.push(RoomSlot::default());
+                }
+                let slot = &mut self.room_slots[planes];
                 slot.normal.set_lane(l, t.normal);
-                set(&mut slot.offset, l, t.corners[0].dot(t.normal));
+                set(&mut slot.offset, l, offset);
                 slot.lanes |= 1 << l;
+                planes += 1;
             }
         }
     }

@@ -83,6 +83,9 @@ struct RibbonList {
     room_reach: Aabb,
     /// Room triangles in the order the room's tree gives them.
     triangles: Vec<u32>,
+    /// Each of `triangles` as the pushes read it (its edge lines found once
+    /// a list, not once a step: the room does not move).
+    near: Vec<NearTriangle>,
 }
 
 impl Default for RibbonList {
@@ -93,6 +96,7 @@ impl Default for RibbonList {
             bodies: Vec::new(),
             room_reach: Aabb::EMPTY,
             triangles: Vec::new(),
+            near: Vec::new(),
         }
     }
 }
@@ -259,8 +263,12 @@ impl NearLists {
         if fresh || !within(aabb, &list.room_reach) {
             list.room_reach = aabb.expanded(ROOM_MARGIN);
             list.triangles.clear();
+            list.near.clear();
             if let Some(room) = room {
                 room.query_aabb(&list.room_reach, |t| list.triangles.push(t));
+                let near = list.triangles.iter();
+                let near = near.map(|&t| NearTriangle::new(room.triangle(t), room.normal(t)));
+                list.near.extend(near);
             }
         }
         let first = bodies.len();
@@ -280,12 +288,9 @@ impl NearLists {
             bodies[first..].sort_unstable();
         }
         if let Some(room) = room {
-            for &t in &list.triangles {
+            for (&t, near) in list.triangles.iter().zip(&list.near) {
                 if !room.is_degenerate(t) && room.triangle_aabb(t).overlaps(aabb) {
-                    triangles.push(NearTriangle {
-                        corners: room.triangle(t),
-                        normal: room.normal(t),
-                    });
+                    triangles.push(*near);
                 }
             }
         }
