@@ -147,10 +147,32 @@ fn side(pair: &Touching, a: &Ends, b: &Ends, s: f32, t: f32) -> (Vec3, f32) {
     }
 }
 
+/// Whether the two segments' boxes, grown by the most their radii can be,
+/// do not meet: their capsules cannot touch, and the pair is passed over
+/// without the closest points (most of a step's pairs, found for the
+/// step's whole sweep, are apart at any one pass). Its side stays as last
+/// set, which is how a pair found apart keeps the side it was found on.
+fn apart(a: &Ends, b: &Ends) -> bool {
+    let bound = |e: &Ends| {
+        if e.last {
+            e.end_radius.max(RIBBON_RADIUS)
+        } else {
+            RIBBON_RADIUS
+        }
+    };
+    let reach = Vec3::splat(bound(a) + bound(b));
+    let (a_low, a_high) = (a.p[0].min(a.p[1]), a.p[0].max(a.p[1]));
+    let (b_low, b_high) = (b.p[0].min(b.p[1]), b.p[0].max(b.p[1]));
+    (a_low - b_high).cmpgt(reach).any() || (b_low - a_high).cmpgt(reach).any()
+}
+
 /// `pair` pushed apart, if its capsules overlap or have passed through each
 /// other, with friction.
 fn project_pair(pair: &mut Touching, groups: &mut [LaneGroup], friction: f32, most: f32) {
     let (a, b) = (ends(groups, pair.a), ends(groups, pair.b));
+    if apart(&a, &b) {
+        return;
+    }
     let (s, t) = parameters(pair, &a, &b);
     let reach = radius(&a, s, pair.end_a) + radius(&b, t, pair.end_b);
     let (normal, distance) = side(pair, &a, &b, s, t);

@@ -34,8 +34,11 @@
 //! segments turn, so that a segment swept through another shows as a
 //! separation turned negative; elsewhere along the line between the closest
 //! points, passed through where that turned more than a right angle. A pair
-//! that passed through is pushed back to the side it came from. The lengths
-//! the last push changed are the next substep's solve's to restore.
+//! that passed through is pushed back to the side it came from. A pass
+//! skips a pair whose segments' boxes, grown by their radii, do not meet
+//! (most of the pairs, found for the step's whole sweep, at any one pass):
+//! it keeps the side it last had. The lengths the last push changed are
+//! the next substep's solve's to restore.
 //!
 //! The pass runs on one thread in a fixed order, so the result is the same
 //! on any number of threads; with no pair in a step the substeps run as
