@@ -40,7 +40,14 @@
 //! it keeps the side it last had. The lengths the last push changed are
 //! the next substep's solve's to restore.
 //!
-//! The pass runs on one thread in a fixed order, so the result is the same
+//! The chains' solves that follow a pass see the contacts it pushed apart
+//! (`held`): the ribbons those link are solved together, the contacts rows
+//! of the same solve that may push but not pull, so that a segment caught
+//! on another, dragged by a carried end or a taut pull, is not pulled back
+//! through it by a solve that does not see it.
+//!
+//! The pass and the linked ribbons' solve run on one thread in a fixed
+//! order, so the result is the same
 //! on any number of threads; with no pair in a step the substeps run as
 //! they would without it (one pass per group, bit for bit), so ribbons that
 //! never touch, and sleeping ones, cost no more than the pairing.
@@ -48,6 +55,7 @@
 mod broad;
 mod closest;
 mod contact;
+pub(crate) mod held;
 pub use contact::RibbonContact;
 
 pub mod crossings;
@@ -151,6 +159,8 @@ pub(crate) struct RibbonTouch {
     segment_boxes: Vec<Aabb>,
     near_a: Vec<u32>,
     near_b: Vec<u32>,
+    /// The last pass's contacts as rows of the chains' solve that follows.
+    held: held::HeldSolve,
 }
 
 impl Default for RibbonTouch {
@@ -166,6 +176,7 @@ impl Default for RibbonTouch {
             segment_boxes: Vec::new(),
             near_a: Vec::new(),
             near_b: Vec::new(),
+            held: held::HeldSolve::default(),
         }
     }
 }
