@@ -139,19 +139,25 @@ fn a_ribbon_dropped_across_a_taut_one_hangs_over_it() {
     );
     assert!(rms < 0.01, "still moving at {rms} m/s after 10 s");
     // What the page marks: the crest rests on the taut ribbon, touching it
-    // from above (the taut one's segment listed first: it was added first).
-    let on_crest = contacts
+    // from above: the contacts listed within 3 cm of it (the fold's two
+    // segments on the taut one's flanks, or its point on top), each within
+    // half the two ribbons' thickness of touching, hold it up together
+    // (their normals, from the taut ribbon, listed first as it was added
+    // first, toward the dropped one, sum to within 45° of straight up).
+    let on_crest: Vec<_> = contacts
         .iter()
-        .find(|c| c.point.distance(points[top]) < 0.03)
-        .unwrap_or_else(|| {
-            panic!(
-                "no contact listed at the crest {}: {contacts:?}",
-                points[top]
-            )
-        });
-    // Within half the two ribbons' thickness of touching.
-    assert!(on_crest.separation.abs() < 2.5e-3, "{on_crest:?}");
-    assert!(on_crest.normal.y.abs() > 0.7, "not on top: {on_crest:?}");
+        .filter(|c| c.point.distance(points[top]) < 0.03)
+        .collect();
+    assert!(
+        !on_crest.is_empty(),
+        "no contact listed at the crest {}: {contacts:?}",
+        points[top]
+    );
+    for c in &on_crest {
+        assert!(c.separation.abs() < 2.5e-3, "{c:?}");
+    }
+    let up = on_crest.iter().map(|c| c.normal).sum::<Vec3>().normalize();
+    assert!(up.y > 0.7, "not on top: {on_crest:?}");
 }
 
 #[test]

@@ -105,6 +105,9 @@ pub(crate) struct LaneGroup {
     /// A contact between ribbons moved one of its points since its chains
     /// were last solved.
     pub pushed: bool,
+    /// Bit l: lane l's ribbon touches another as the last pass left them,
+    /// and is solved with its contacts (`touch::held`), not in the lanes.
+    pub held_lanes: u8,
 }
 
 impl LaneGroup {
@@ -123,6 +126,7 @@ impl LaneGroup {
             v.resize(points, V4::ZERO);
         }
         self.windy = false;
+        self.held_lanes = 0;
         self.air_speed = F4::ZERO;
         self.inv_mass.resize(points, F4::ZERO);
         self.grips.resize(points * LANES, Grip::new(Vec3::ZERO));

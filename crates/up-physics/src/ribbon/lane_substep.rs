@@ -107,6 +107,7 @@ impl LaneGroup {
         let (input, states) = (near.input, near.states);
         let h = input.h;
         self.push_out_of_room(input.triangles, false);
+        self.held_lanes = 0;
         self.step_impulse = self.step_impulse + self.impulse;
         self.substeps += 1;
         self.h = h;
@@ -270,6 +271,21 @@ impl LaneGroup {
     fn solve_chains(&mut self, knots: &Knots) -> F4 {
         let tolerance = F4::splat(CHAIN_TOLERANCE) * self.segment_length;
         let mut moving = self.live_mask;
+        if self.held_lanes != 0 {
+            // Those lanes are solved with their contacts (`touch::held`).
+            let held = self.held_lanes;
+            let others = std::array::from_fn(|l| {
+                if held & (1 << l) != 0 {
+                    0.0
+                } else {
+                    f32::from_bits(!0)
+                }
+            });
+            moving &= F4::new(others);
+            if !moving.any() {
+                return moving;
+            }
+        }
         ROWS.with_borrow_mut(|rows| {
             rows.resize(self.points.len() - 1);
             for _ in 0..CHAIN_ITERATIONS {

@@ -12,8 +12,9 @@
 //!    projected apart (`touch`), on one thread, between this and 3, and
 //!    again between 3 and 4;
 //! 3. the chain, knot included, is brought back to its lengths by direct
-//!    solves (`chain`; follow-the-leader if a jerk outruns them), and the
-//!    room's push repeated for what that moved;
+//!    solves (`chain`; follow-the-leader if a jerk outruns them), those of
+//!    ribbons a contact just pushed apart together with those contacts
+//!    (`touch::held`), and the room's push repeated for what that moved;
 //! 4. each point's velocity is what it moved over the substep (less any
 //!    bounce off a balloon).
 //!
@@ -302,6 +303,7 @@ fn substep(
                 g.substep_solve(&near);
             }
         });
+        touch.solve_held(groups);
         for _ in 1..super::touch::SOLVES {
             touch.project(groups, f32::MAX);
             fill_chunks(groups, GROUP_CHUNK, |_, groups| {
@@ -309,6 +311,7 @@ fn substep(
                     g.substep_solve_again();
                 }
             });
+            touch.solve_held(groups);
         }
         touch.project(groups, super::touch::LAST_PASS_MOST);
         fill_chunks(groups, GROUP_CHUNK, |_, groups| {

@@ -100,8 +100,22 @@ impl RibbonTouch {
     /// Projects every pair once, in order, on the groups' points as the
     /// substep's fall and pushes left them, each by at most `most` m.
     pub(crate) fn project(&mut self, groups: &mut [LaneGroup], most: f32) {
-        for pair in &mut self.pairs {
-            project_pair(pair, groups, self.friction, most);
+        for g in groups.iter_mut() {
+            g.held_lanes = 0;
+        }
+        self.held.rows.clear();
+        for k in 0..self.pairs.len() {
+            let mut pair = self.pairs[k];
+            if let Some((normal, s, t)) = project_pair(&mut pair, groups, self.friction, most) {
+                let side = |seg: Segment, at: f32| super::held::Side {
+                    group: seg.group,
+                    lane: seg.lane,
+                    segment: seg.index,
+                    at,
+                };
+                self.hold(groups, side(pair.a, s), side(pair.b, t), normal);
+            }
+            self.pairs[k] = pair;
         }
     }
 }
@@ -147,17 +161,45 @@ fn side(pair: &Touching, a: &Ends, b: &Ends, s: f32, t: f32) -> (Vec3, f32) {
     }
 }
 
+/// Whether the two segments' boxes, grown by the most their radii can be,
+/// do not meet: their capsules cannot touch, and the pair is passed over
+/// without the closest points (most of a step's pairs, found for the
+/// step's whole sweep, are apart at any one pass). Its side stays as last
+/// set, which is how a pair found apart keeps the side it was found on.
+fn apart(a: &Ends, b: &Ends) -> bool {
+    let bound = |e: &Ends| {
+        if e.last {
+            e.end_radius.max(RIBBON_RADIUS)
+        } else {
+            RIBBON_RADIUS
+        }
+    };
+    let reach = Vec3::splat(bound(a) + bound(b));
+    let (a_low, a_high) = (a.p[0].min(a.p[1]), a.p[0].max(a.p[1]));
+    let (b_low, b_high) = (b.p[0].min(b.p[1]), b.p[0].max(b.p[1]));
+    (a_low - b_high).cmpgt(reach).any() || (b_low - a_high).cmpgt(reach).any()
+}
+
 /// `pair` pushed apart, if its capsules overlap or have passed through each
-/// other, with friction.
-fn project_pair(pair: &mut Touching, groups: &mut [LaneGroup], friction: f32, most: f32) {
+/// other, with friction. Returns, for a pair pushed, its normal and its
+/// closest points' parameters: a row of the solve that follows (`held`).
+fn project_pair(
+    pair: &mut Touching,
+    groups: &mut [LaneGroup],
+    friction: f32,
+    most: f32,
+) -> Option<(Vec3, f32, f32)> {
     let (a, b) = (ends(groups, pair.a), ends(groups, pair.b));
+    if apart(&a, &b) {
+        return None;
+    }
     let (s, t) = parameters(pair, &a, &b);
     let reach = radius(&a, s, pair.end_a) + radius(&b, t, pair.end_b);
     let (normal, distance) = side(pair, &a, &b, s, t);
     pair.normal = normal;
     let depth = (reach - pair.allowed - distance).min(most);
     if depth <= 0.0 {
-        return;
+        return None;
     }
     let ((a_start, a_inv_mass), (b_start, b_inv_mass)) =
         (starts(groups, pair.a), starts(groups, pair.b));
@@ -165,7 +207,7 @@ fn project_pair(pair: &mut Touching, groups: &mut [LaneGroup], friction: f32, mo
     let wb = [(1.0 - t) * b_inv_mass[0], t * b_inv_mass[1]];
     let w = (1.0 - s) * wa[0] + s * wa[1] + (1.0 - t) * wb[0] + t * wb[1];
     if w <= 0.0 {
-        return;
+        return None;
     }
     // The push: b along the normal, a against it, by inverse mass.
     let push = normal * (depth / w);
@@ -185,6 +227,7 @@ fn project_pair(pair: &mut Touching, groups: &mut [LaneGroup], friction: f32, mo
     let impulse = push + grip;
     shift(groups, pair.a, -wa[0] * impulse, -wa[1] * impulse);
     shift(groups, pair.b, wb[0] * impulse, wb[1] * impulse);
+    Some((normal, s, t))
 }
 
 /// Where two ribbons touch at a step's end, for drawing (`World::ribbon_contacts`).

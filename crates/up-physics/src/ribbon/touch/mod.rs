@@ -34,10 +34,20 @@
 //! segments turn, so that a segment swept through another shows as a
 //! separation turned negative; elsewhere along the line between the closest
 //! points, passed through where that turned more than a right angle. A pair
-//! that passed through is pushed back to the side it came from. The lengths
-//! the last push changed are the next substep's solve's to restore.
+//! that passed through is pushed back to the side it came from. A pass
+//! skips a pair whose segments' boxes, grown by their radii, do not meet
+//! (most of the pairs, found for the step's whole sweep, at any one pass):
+//! it keeps the side it last had. The lengths the last push changed are
+//! the next substep's solve's to restore.
 //!
-//! The pass runs on one thread in a fixed order, so the result is the same
+//! The chains' solves that follow a pass see the contacts it pushed apart
+//! (`held`): the ribbons those link are solved together, the contacts rows
+//! of the same solve that may push but not pull, so that a segment caught
+//! on another, dragged by a carried end or a taut pull, is not pulled back
+//! through it by a solve that does not see it.
+//!
+//! The pass and the linked ribbons' solve run on one thread in a fixed
+//! order, so the result is the same
 //! on any number of threads; with no pair in a step the substeps run as
 //! they would without it (one pass per group, bit for bit), so ribbons that
 //! never touch, and sleeping ones, cost no more than the pairing.
@@ -45,6 +55,7 @@
 mod broad;
 mod closest;
 mod contact;
+pub(crate) mod held;
 pub use contact::RibbonContact;
 
 pub mod crossings;
@@ -148,6 +159,8 @@ pub(crate) struct RibbonTouch {
     segment_boxes: Vec<Aabb>,
     near_a: Vec<u32>,
     near_b: Vec<u32>,
+    /// The last pass's contacts as rows of the chains' solve that follows.
+    held: held::HeldSolve,
 }
 
 impl Default for RibbonTouch {
@@ -163,6 +176,7 @@ impl Default for RibbonTouch {
             segment_boxes: Vec::new(),
             near_a: Vec::new(),
             near_b: Vec::new(),
+            held: held::HeldSolve::default(),
         }
     }
 }
