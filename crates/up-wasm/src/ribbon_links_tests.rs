@@ -123,10 +123,12 @@ fn ribbons_now(state: &mut State) -> Vec<Vec<Vec3>> {
 /// The page's gesture (e2e/bouquetTwist.spec.ts), natively: balloon 0 held
 /// by its top from above (a level drag plane) and carried twice round the
 /// weights' middle, 0.25 m out (within its ribbon's reach, so that its
-/// weight stays on the floor), a turn in 4 s, then let go for a second.
-/// Today each of the other ribbons slips through the carried one about once
-/// a turn, where the two lie at 8 to 25 degrees to each other and the
-/// wrap's contact is held at 4 to 5 mm of overlap: see the ignore reason.
+/// weight stays on the floor), a turn in 4 s, then let go: wrapped every
+/// half second for two seconds after.
+/// Today the carried ribbon catches on others (a link of ±1 for a few tenths
+/// of a second) and they slip through it where the two lie at 8 to 25
+/// degrees to each other, the wrap's contact held at 4 to 5 mm of overlap:
+/// 7 crossings in the two turns (14 with contacts off), none left wrapped.
 #[test]
 #[ignore = "ribbons twisted round each other pass through each other as they are pulled straight (docs/physics.md, ribbons touching ribbons: limits as built)"]
 fn a_balloon_carried_twice_round_the_bouquet_leaves_its_ribbon_wrapped() {
@@ -153,7 +155,9 @@ fn a_balloon_carried_twice_round_the_bouquet_leaves_its_ribbon_wrapped() {
     let steps = (2.0 * TURN_S * 60.0) as u32;
     let mut before = ribbons_now(&mut state);
     let mut crossed = 0;
-    for k in 0..steps + 60 {
+    // Linking numbers every half second for two seconds after it is let go.
+    let mut after = Vec::new();
+    for k in 1..=steps + 120 {
         if k < steps {
             state
                 .drag_to(aim(start + 2.0 * TAU * k as f32 / steps as f32))
@@ -162,13 +166,15 @@ fn a_balloon_carried_twice_round_the_bouquet_leaves_its_ribbon_wrapped() {
             state.release().unwrap();
         }
         state.step(1).unwrap();
-        let after = ribbons_now(&mut state);
-        crossed += crossings(&before, &after, 2.0 * RIBBON_RADIUS);
-        before = after;
+        let now = ribbons_now(&mut state);
+        crossed += crossings(&before, &now, 2.0 * RIBBON_RADIUS);
+        before = now;
+        if k > steps && (k - steps).is_multiple_of(30) {
+            after.push(links_now(&mut state, ribbon));
+        }
     }
-    let links = links_now(&mut state, ribbon);
     assert!(
-        links.iter().any(|&l| l != 0),
-        "links {links:?}; ribbons passed through each other {crossed} times"
+        after.iter().all(|links| links.iter().any(|&l| l != 0)),
+        "links every half second after {after:?}; ribbons passed through each other {crossed} times"
     );
 }
