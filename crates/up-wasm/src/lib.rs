@@ -36,7 +36,8 @@
 //! and the page's buffers; one thin method per call) → the feature files
 //! (`export`, `forces`, `gas`, `live`, `model_mesh`, `ribbons`, `squash`, `contacts`,
 //! `stats`), each free functions or a small buffer struct of its own on a
-//! `&World` or `&Loaded` (`loaded.rs`) → up-scene and up-physics. No feature
+//! `&World` or `&Loaded` (`loaded.rs`; `ribbon_links` on the page's own copy
+//! of the ribbons' points, needing no world) → up-scene and up-physics. No feature
 //! file knows `State`; the numbers they share live in `limits.rs`. Physics
 //! models (the squash of a balloon) are up-scene's, so that the CLI can use
 //! them; this crate only packs what they give for the page.
@@ -59,6 +60,7 @@ mod limits;
 mod live;
 mod loaded;
 mod model_mesh;
+mod ribbon_links;
 mod ribbons;
 mod squash;
 mod state;
@@ -82,6 +84,7 @@ pub use gas::{AdvanceReport, FloatCounts, GroupFloat, MAX_ADVANCE_S};
 pub use info::{Constants, EngineStats, NamedColor, SceneLimits, WorldSummary};
 pub use live::{LiveRange, LiveSetting, MAX_LIVE_GRAVITY};
 pub use model_mesh::{MeshBuffers, MESH_VERTEX_FLOATS};
+pub use ribbon_links::{ribbon_linking, ribbon_links};
 pub use ribbons::{pack_rgb, MAX_RIBBON_LENGTH_M, RIBBON_POINT_FLOATS};
 pub use squash::{MEMBRANE_OVERPRESSURE_PA, SQUASH_FLOATS};
 pub use state::{

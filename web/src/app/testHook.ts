@@ -77,6 +77,8 @@ export function createTestHook(app: App) {
       if (p.length < e + 3) return null;
       return { end: [p[e], p[e + 1], p[e + 2]], body: bodies[r] };
     },
+    /** Every ribbon's points in the current frame (x, y, z each, the knot first), each ribbon's first point (then the total) and balloon: what the engine's `ribbon_linking` reads. */
+    ribbonPoints: () => ({ points: Array.from(bridge.ribbonsCurr), offsets: Array.from(bridge.ribbons.offsets), bodies: Array.from(bridge.ribbons.bodies) }),
     steps: () => bridge.current?.steps ?? 0,
     /** Threads stepping the engine (0 before it is ready), and whether the page is cross-origin isolated. */
     threads: () => app.info?.threads ?? 0,
