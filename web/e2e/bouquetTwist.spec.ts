@@ -2,15 +2,16 @@
 // mouse and carried twice round the bouquet's middle leaves its ribbon wrapped
 // round the others: its linking number with one of them (the engine's
 // `ribbon_linking`, from the ribbons' points the page holds) is not 0 for the
-// two seconds after it is let go, where before it was 0 with every one. The page's own gestures throughout: the
-// arrow keys to look down on the bouquet, a press on the balloon, moves, a
-// release. The twisted bouquet is photographed in the debug view, where
+// two seconds after it is let go, where before it was 0 with every one. The
+// page's own gestures throughout: the arrow keys to look down on the
+// bouquet, a press on the balloon, moves, a release. The twisted bouquet is photographed in the debug view, where
 // ribbons touching each other are marked.
 
 import { readFileSync } from "node:fs";
 import type { Page, TestInfo } from "@playwright/test";
 import type * as Glue from "../public/wasm/up_wasm";
 import { expect, open, sceneHash, test } from "./fixtures";
+import { RIBBON_POINT_STRIDE } from "../src/sim/frameLayout";
 
 const WASM_DIR = new URL("../public/wasm/", import.meta.url);
 const BOUQUET = new URL("../../assets/scenes/bouquet.toml", import.meta.url);
@@ -121,12 +122,12 @@ test("a balloon carried twice round the bouquet leaves its ribbon wrapped round 
   // Looked down on, the drag plane (facing the camera through the grabbed point) is all but level.
   await tiltTo(page, "ArrowUp", 83);
   await zoomIn(page, 10);
-  const start = await page.evaluate(() => {
+  const start = await page.evaluate((stride) => {
     const up = window.__up!;
     const { points, offsets, bodies } = up.ribbonPoints();
     // The weights' middle: the free ends' mean.
     const middle = [0, 0, 0];
-    for (let r = 0; r < bodies.length; r++) for (let k = 0; k < 3; k++) middle[k] += points[(offsets[r + 1] - 1) * 3 + k] / bodies.length;
+    for (let r = 0; r < bodies.length; r++) for (let k = 0; k < 3; k++) middle[k] += points[(offsets[r + 1] - 1) * stride + k] / bodies.length;
     // The balloon farthest out, whose top nothing hides from above.
     let best = { ribbon: -1, body: -1, out: -1, center: [0, 0, 0] };
     for (let r = 0; r < bodies.length; r++) {
@@ -135,7 +136,7 @@ test("a balloon carried twice round the bouquet leaves its ribbon wrapped round 
       if (out > best.out) best = { ribbon: r, body: bodies[r], out, center: c };
     }
     return { middle, ...best, pixel: up.project(best.center[0], best.center[1], best.center[2]) };
-  });
+  }, RIBBON_POINT_STRIDE);
   const before = await links(page, glue, start.ribbon);
   expect(before, "the settled bouquet's ribbons are not twisted").toEqual([0, 0, 0, 0, 0, 0]);
 

@@ -13,16 +13,24 @@
 //! plane, the weight the triangle's area times its height squared, so the
 //! thick middle gets more, smaller cells than the thin rim (a sphere must be at
 //! least as large as the half-thickness where it sits; cells there must be
-//! small to keep it near that). Then rounds of: each triangle to the sphere
-//! that holds it with the least radius, each centre moved to where its
-//! triangles need the least radius (a convex problem: subgradient steps
-//! towards the farthest corner), the round with the smallest union kept.
-//! The placement is made again `PLACEMENTS` times, each triangle's weight
-//! scaled by how far its sphere's part of the union stands outside the
-//! mesh (`planar_excess`), so thin parts (a star's arms) get the cells the
-//! broad middle can spare. Last the largest sphere is lowered (`balance`).
-//! Fixed starts and sweep orders: the same mesh and count give the same
-//! spheres.
+//! small to keep it near that). Two covers are made from there:
+//!
+//! - the even one: rounds of each triangle to the sphere that already holds
+//!   it with the smallest radius (else the one it grows least), each centre
+//!   moved to where its triangles need the least radius (a convex problem:
+//!   subgradient steps towards the farthest corner); the spheres come out
+//!   about as large as the largest, which `balance` then lowers;
+//! - the tight one: rounds of each triangle to the sphere that holds it
+//!   with the least radius, each centre moved likewise, the round with the
+//!   smallest union kept; placed `PLACEMENTS` times in all, each time with
+//!   each triangle's weight scaled by how far its sphere's part of the union
+//!   stood outside the mesh (`planar_excess`), so thin parts (a star's
+//!   arms) get the cells the broad middle can spare; `balance` last.
+//!
+//! The tight cover is kept unless its largest sphere stands higher than the
+//! even one's (by more than `TOP_SLACK`): the largest spheres set how far two
+//! flat shapes rest apart face to face. Fixed starts and sweep orders: the
+//! same mesh and count give the same spheres.
 //!
 //! The union's volume is exact per column across the plane: every centre lies
 //! on it, so along a line through the plane the spheres' chords share their
@@ -37,9 +45,14 @@ use super::principal_axis::{covariance, symmetric_eigen};
 /// stood out most.
 const PLACEMENTS: usize = 4;
 /// Rounds of giving triangles to spheres and moving the spheres, per placement.
-const ENCLOSING_ROUNDS: usize = 12;
+const ENCLOSING_ROUNDS: usize = 8;
+/// Squares across the plane the k-means gathers the triangles into.
+const BINS: usize = 64;
 /// Rounds of k-means from the farthest-point start.
 const K_MEANS_ITERATIONS: usize = 40;
+/// Columns across the plane when a round's union is weighed (to keep the
+/// best round: coarser than the placement's weighing, which steers cells).
+const ROUND_COLUMNS: usize = 64;
 /// Columns across the plane when a placement's union is weighed.
 const EXCESS_COLUMNS: usize = 128;
 /// Rounds of the even cover.
@@ -137,20 +150,11 @@ fn need(c: DVec2, corners: &[DVec3; 3]) -> f64 {
     })
 }
 
-/// The plane point that holds `tris` with the least radius, from `start`.
-fn least_radius_centre(start: DVec2, tris: &[&[DVec3; 3]]) -> DVec2 {
-    // Each corner once (neighbouring triangles share theirs), in the order
-    // first met: the farthest is the same point, found several times faster.
-    let mut seen = std::collections::HashSet::with_capacity(3 * tris.len());
-    let corners: Vec<DVec3> = tris
-        .iter()
-        .flat_map(|t| t.iter())
-        .filter(|p| seen.insert([p.x.to_bits(), p.y.to_bits(), p.z.to_bits()]))
-        .copied()
-        .collect();
+/// The plane point that holds `corners` with the least radius, from `start`.
+fn least_radius_centre(start: DVec2, corners: &[DVec3]) -> DVec2 {
     let farthest = |c: DVec2| {
         let mut far = (0.0f64, c);
-        for p in &corners {
+        for p in corners {
             let d = (p.x - c.x).powi(2) + (p.y - c.y).powi(2) + p.z * p.z;
             if d > far.0 {
                 far = (d, DVec2::new(p.x, p.y));
@@ -175,6 +179,31 @@ fn least_radius_centre(start: DVec2, tris: &[&[DVec3; 3]]) -> DVec2 {
     }
 }
 
+/// Each triangle's corners as vertex numbers, to gather a sphere's corners
+/// once each (neighbouring triangles share theirs).
+struct Corners<'a> {
+    ids: &'a [[u32; 3]],
+    points: &'a [DVec3],
+}
+
+impl Corners<'_> {
+    /// The corners of the triangles `owner` gives sphere `k`, each once, in
+    /// the order first met; `seen` marks vertices already taken (reset here).
+    fn of(&self, owner: &[usize], k: usize, seen: &mut Vec<bool>) -> Vec<DVec3> {
+        seen.clear();
+        seen.resize(self.points.len(), false);
+        let mut corners = Vec::new();
+        for (ids, _) in self.ids.iter().zip(owner).filter(|(_, &o)| o == k) {
+            for &i in ids {
+                if !std::mem::replace(&mut seen[i as usize], true) {
+                    corners.push(self.points[i as usize]);
+                }
+            }
+        }
+        corners
+    }
+}
+
 /// Covers the surface with at most `count` spheres centred on `frame`'s plane.
 pub fn fit_planar_spheres(
     vertices: &[Vec3],
@@ -182,11 +211,17 @@ pub fn fit_planar_spheres(
     frame: &PlaneFrame,
     count: usize,
 ) -> Vec<PlanarSphere> {
-    let tris: Vec<[DVec3; 3]> = triangles
+    let ids: Vec<[u32; 3]> = triangles
         .iter()
         .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
-        .map(|t| t.map(|i| frame.local(vertices[i as usize])))
+        .copied()
         .collect();
+    let points: Vec<DVec3> = vertices.iter().map(|&v| frame.local(v)).collect();
+    let tris: Vec<[DVec3; 3]> = ids.iter().map(|t| t.map(|i| points[i as usize])).collect();
+    let corners = Corners {
+        ids: &ids,
+        points: &points,
+    };
     if tris.is_empty() {
         return Vec::new();
     }
@@ -211,13 +246,13 @@ pub fn fit_planar_spheres(
     // which is lowered as far as it goes.
     let mut even = start.clone();
     k_means(&points, &mut even, K_MEANS_ITERATIONS);
-    let even_owner = enclose_evenly(&tris, &mut even);
+    let even_owner = enclose_evenly(&tris, &corners, &mut even);
     // Tight: the smallest union, placed again where it stands out most.
     let mut centres = start;
     let mut owner = Vec::new();
     for round in 0..PLACEMENTS {
-        k_means(&points, &mut centres, K_MEANS_ITERATIONS);
-        owner = enclose_tightly(&tris, &mut centres);
+        k_means(&binned(&points), &mut centres, K_MEANS_ITERATIONS);
+        owner = enclose_tightly(&tris, &corners, &mut centres);
         if round + 1 == PLACEMENTS {
             break;
         }
@@ -240,7 +275,8 @@ pub fn fit_planar_spheres(
             .fold(0.0f64, f64::max)
             .sqrt()
     };
-    if largest(&owner, &centres) > largest(&even_owner, &even) * (1.0 + TOP_SLACK) {
+    let (tight_top, even_top) = (largest(&owner, &centres), largest(&even_owner, &even));
+    if tight_top > even_top * (1.0 + TOP_SLACK) {
         (owner, centres) = (even_owner, even);
     }
     let radii = radii_of(&tris, &owner, &centres);
@@ -252,6 +288,37 @@ pub fn fit_planar_spheres(
             center,
             radius: r2.sqrt(),
         })
+        .collect()
+}
+
+/// The weighted points gathered into `BINS` × `BINS` squares over their
+/// bounds, each square's weighted mean with its summed weight: k-means on
+/// a fine mesh's tens of thousands of triangles places its cells as well
+/// from a few thousand.
+fn binned(points: &[(DVec2, f64)]) -> Vec<(DVec2, f64)> {
+    let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+    for &(p, _) in points {
+        lo = lo.min(p);
+        hi = hi.max(p);
+    }
+    let size = (hi - lo).max_element() / BINS as f64;
+    if size.is_nan() || size <= 0.0 {
+        return points.to_vec();
+    }
+    let mut bins = vec![(DVec2::ZERO, 0.0f64); BINS * BINS];
+    for &(p, w) in points {
+        let cell = ((p - lo) / size).floor();
+        let (i, j) = (
+            (cell.x as usize).min(BINS - 1),
+            (cell.y as usize).min(BINS - 1),
+        );
+        let b = &mut bins[j * BINS + i];
+        b.0 += p * w;
+        b.1 += w;
+    }
+    bins.into_iter()
+        .filter(|b| b.1 > 0.0)
+        .map(|(sum, w)| (sum / w, w))
         .collect()
 }
 
@@ -275,7 +342,7 @@ fn k_means(points: &[(DVec2, f64)], centres: &mut [DVec2], iterations: usize) {
 /// Gives each triangle to a sphere and moves each sphere to hold its own
 /// with the least radius, then lowers the largest (`balance`); returns each
 /// triangle's sphere.
-fn enclose_tightly(tris: &[[DVec3; 3]], centres: &mut [DVec2]) -> Vec<usize> {
+fn enclose_tightly(tris: &[[DVec3; 3]], corners: &Corners, centres: &mut [DVec2]) -> Vec<usize> {
     // Rounds of: each triangle to the sphere that holds it with the least
     // radius, each sphere moved to hold its own with the least radius; the
     // round whose union is smallest is kept (the rounds drift towards the
@@ -301,18 +368,19 @@ fn enclose_tightly(tris: &[[DVec3; 3]], centres: &mut [DVec2]) -> Vec<usize> {
                 radius: r2.sqrt(),
             })
             .collect();
-        let volume = union_volume_on_plane(&spheres, EXCESS_COLUMNS);
-        if volume < best.0 {
+        let volume = union_volume_on_plane(&spheres, ROUND_COLUMNS);
+        // (A NaN volume keeps the first round rather than none.)
+        if volume < best.0 || best.1.is_empty() {
             best = (volume, owner.clone(), centres.to_vec());
         }
         if round + 1 == ENCLOSING_ROUNDS {
             break;
         }
-        move_to_least_radius(tris, &owner, centres);
+        move_to_least_radius(corners, &owner, centres);
     }
     let (_, mut owner, kept) = best;
     centres.copy_from_slice(&kept);
-    balance(tris, &mut owner, centres);
+    balance(tris, corners, &mut owner, centres);
     owner
 }
 
@@ -320,7 +388,7 @@ fn enclose_tightly(tris: &[[DVec3; 3]], centres: &mut [DVec2]) -> Vec<usize> {
 /// sphere that already holds it with the smallest radius (else the one it
 /// grows least): the spheres come out about as large as the largest, which
 /// `balance` then lowers.
-fn enclose_evenly(tris: &[[DVec3; 3]], centres: &mut [DVec2]) -> Vec<usize> {
+fn enclose_evenly(tris: &[[DVec3; 3]], corners: &Corners, centres: &mut [DVec2]) -> Vec<usize> {
     let mut owner = vec![0usize; tris.len()];
     let mut radii = vec![f64::INFINITY; centres.len()];
     for round in 0..EVEN_ROUNDS {
@@ -338,22 +406,18 @@ fn enclose_evenly(tris: &[[DVec3; 3]], centres: &mut [DVec2]) -> Vec<usize> {
         if round + 1 == EVEN_ROUNDS {
             break;
         }
-        move_to_least_radius(tris, &owner, centres);
+        move_to_least_radius(corners, &owner, centres);
         radii = radii_of(tris, &owner, centres);
     }
-    balance(tris, &mut owner, centres);
+    balance(tris, corners, &mut owner, centres);
     owner
 }
 
 /// Moves each sphere to where it holds its own triangles with the least radius.
-fn move_to_least_radius(tris: &[[DVec3; 3]], owner: &[usize], centres: &mut [DVec2]) {
+fn move_to_least_radius(corners: &Corners, owner: &[usize], centres: &mut [DVec2]) {
+    let mut seen = Vec::new();
     for (k, c) in centres.iter_mut().enumerate() {
-        let mine: Vec<&[DVec3; 3]> = tris
-            .iter()
-            .zip(owner)
-            .filter(|(_, &o)| o == k)
-            .map(|(t, _)| t)
-            .collect();
+        let mine = corners.of(owner, k, &mut seen);
         if !mine.is_empty() {
             *c = least_radius_centre(*c, &mine);
         }
@@ -366,7 +430,8 @@ fn move_to_least_radius(tris: &[[DVec3; 3]], owner: &[usize], centres: &mut [DVe
 /// sets how far two flat shapes stay apart face to face (the pair of
 /// largest spheres meets first), so this is what keeps them near the drawn
 /// thickness.
-fn balance(tris: &[[DVec3; 3]], owner: &mut [usize], centres: &mut [DVec2]) {
+fn balance(tris: &[[DVec3; 3]], corners: &Corners, owner: &mut [usize], centres: &mut [DVec2]) {
+    let mut seen = Vec::new();
     let mut radii = radii_of(tris, owner, centres);
     for _ in 0..20 * centres.len() {
         let (k, top) =
@@ -398,16 +463,14 @@ fn balance(tris: &[[DVec3; 3]], owner: &mut [usize], centres: &mut [DVec2]) {
         if !moved {
             return;
         }
-        let mine: Vec<&[DVec3; 3]> = tris
-            .iter()
-            .zip(owner.iter())
-            .filter(|(_, &o)| o == k)
-            .map(|(t, _)| t)
-            .collect();
+        let mine = corners.of(owner, k, &mut seen);
         if !mine.is_empty() {
             centres[k] = least_radius_centre(centres[k], &mine);
         }
-        radii[k] = mine.iter().fold(0.0f64, |m, t| m.max(need(centres[k], t)));
+        let c = centres[k];
+        radii[k] = mine.iter().fold(0.0f64, |m, p| {
+            m.max((p.x - c.x).powi(2) + (p.y - c.y).powi(2) + p.z * p.z)
+        });
     }
 }
 
@@ -501,7 +564,7 @@ mod tests {
     fn the_least_radius_centre_of_two_points_is_between_them() {
         let t1 = [DVec3::new(-1.0, 0.0, 0.0); 3];
         let t2 = [DVec3::new(1.0, 0.0, 0.0); 3];
-        let c = least_radius_centre(DVec2::new(0.9, 0.0), &[&t1, &t2]);
+        let c = least_radius_centre(DVec2::new(0.9, 0.0), &[t1[0], t2[0]]);
         assert!(c.length() < 0.02, "{c}");
     }
 }

@@ -29,10 +29,10 @@ use crate::solver::lanes::{select, F4, M4, V4};
 
 /// A diagonal below this is a constraint between two immovable points: it is
 /// left out (its multiplier 0).
-const TINY: f32 = 1e-20;
+pub(super) const TINY: f32 = 1e-20;
 /// The knot's segment shorter than its length by more than this fraction is
 /// slack (a taut one is within float rounding of it).
-const SLACK: f32 = 1e-3;
+pub(super) const SLACK: f32 = 1e-3;
 /// A segment shorter than this has no direction of its own, m.
 const NO_LENGTH: f32 = 1e-9;
 

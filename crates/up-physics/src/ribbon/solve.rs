@@ -14,7 +14,9 @@
 //! 3. the chain, knot included, is brought back to its lengths by direct
 //!    solves (`chain`; follow-the-leader if a jerk outruns them), those of
 //!    ribbons a contact just pushed apart together with those contacts
-//!    (`touch::held`), and the room's push repeated for what that moved;
+//!    (`touch::held`; no follow-the-leader there: it would pull a caught
+//!    strand back through the other), and the room's push repeated for what
+//!    that moved;
 //! 4. each point's velocity is what it moved over the substep (less any
 //!    bounce off a balloon).
 //!

@@ -104,7 +104,10 @@ impl Inflated {
             return 0.0;
         }
         let (d, w) = (f64::from(d), f64::from(self.area_radius));
-        let tube = (d * (2.0 * f64::from(local) - d)).max(0.0).sqrt();
+        // Never narrower than the point's own distance (a width read between
+        // nodes next to the rim mixes in the outside's 0).
+        let local = f64::from(local).max(d);
+        let tube = (d * (2.0 * local - d)).max(0.0).sqrt();
         (w * paulsen_profile(1.0 - d / w)).min(tube) as f32
     }
 }

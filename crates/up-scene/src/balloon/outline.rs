@@ -5,7 +5,7 @@
 //!
 //! Heart and star are polygons: the heart the classic curve
 //! `x = 16 sin³t, y = 13 cos t − 5 cos 2t − 2 cos 3t − cos 4t`, the star five
-//! points with the inner corners at 0.5 of the tips' radius, its tips
+//! points with the inner corners at `STAR_INNER` of the tips' radius, its tips
 //! rounded by the same offset that rounds a real sealed rim (2 % of the
 //! height). The digits are drawn here, not taken from a font: each is a few
 //! strokes (polylines; arcs as 24-point polygons) in a 0.6 × 1 box, drawn
@@ -124,10 +124,16 @@ fn heart(height: f32) -> Vec<Vec2> {
     normalised(raw, height)
 }
 
+/// The star's inner corners over its tips' radius: a guess from pictures of
+/// foil stars (their points are short and broad), set where the 19″ star
+/// holds about what a shop chart gives (10.6 L against 0.4 ft³, 11.3 L;
+/// docs/scene-format.md).
+const STAR_INNER: f32 = 0.65;
+
 fn star(height: f32) -> Vec<Vec2> {
     let raw: Vec<Vec2> = (0..10)
         .map(|i| {
-            let r = if i % 2 == 0 { 1.0 } else { 0.5 };
+            let r = if i % 2 == 0 { 1.0 } else { STAR_INNER };
             let (cos, sin) = cos_sin(PI / 2.0 + PI * i as f32 / 5.0);
             v(r * cos, r * sin)
         })

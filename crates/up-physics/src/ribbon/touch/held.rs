@@ -20,7 +20,7 @@
 
 use glam::{Mat3, Vec3};
 
-use super::super::chain::Knots;
+use super::super::chain::{Knots, SLACK, TINY};
 use super::super::lane_group::LaneGroup;
 use super::super::solve::{CHAIN_ITERATIONS, CHAIN_TOLERANCE};
 use super::RibbonTouch;
@@ -35,17 +35,10 @@ const MOST_ROWS: usize = 4;
 /// Rounds of leaving out the contacts that pull.
 const ROUNDS: usize = 3;
 
-/// A diagonal below this is a row of immovable points: left out.
-const TINY: f32 = 1e-20;
-
 /// Added to a contact's own entry of the Schur complement, a fraction of
 /// its own weight: two contacts on one segment with about one normal would
 /// make it singular.
 const REGULAR: f32 = 1e-2;
-
-/// The knot's segment shorter than its length by more than this fraction
-/// is slack (as in `chain`).
-const SLACK: f32 = 1e-3;
 
 /// One side of a contact row: a point along a segment of a ribbon.
 #[derive(Clone, Copy, Debug, Default)]
@@ -290,6 +283,9 @@ impl HeldSolve {
         self.right.resize(k, 0.0);
         self.lambda.clear();
         self.lambda.resize(k, 0.0);
+        // Not followed by follow-the-leader where it does not converge, as
+        // the four-lane solve is: that pull ignores the contacts and drags a
+        // caught strand back through the one it caught on.
         for _ in 0..CHAIN_ITERATIONS {
             if self.iterate() {
                 break;
@@ -376,6 +372,12 @@ impl HeldSolve {
                 let f = first + j;
                 self.lower[f] = self.off[f - 1] / self.pivot[f - 1];
                 self.pivot[f] = self.diag[f] - self.lower[f] * self.off[f - 1];
+                if self.pivot[f].abs() < TINY {
+                    // Dependent on the rows before (points in a line off a
+                    // fixed knot): left out, as the chain's own solve does.
+                    self.pivot[f] = 1.0;
+                    self.rhs[f] = 0.0;
+                }
             }
             for j in 0..n {
                 self.z[first + j] = self.rhs[first + j];
