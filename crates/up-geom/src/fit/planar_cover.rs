@@ -216,11 +216,12 @@ pub fn fit_planar_spheres(
         .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
         .copied()
         .collect();
-    let points: Vec<DVec3> = vertices.iter().map(|&v| frame.local(v)).collect();
-    let tris: Vec<[DVec3; 3]> = ids.iter().map(|t| t.map(|i| points[i as usize])).collect();
+    // Every vertex in the plane's frame; the triangles' corners from them.
+    let local: Vec<DVec3> = vertices.iter().map(|&v| frame.local(v)).collect();
+    let tris: Vec<[DVec3; 3]> = ids.iter().map(|t| t.map(|i| local[i as usize])).collect();
     let corners = Corners {
         ids: &ids,
-        points: &points,
+        points: &local,
     };
     if tris.is_empty() {
         return Vec::new();
