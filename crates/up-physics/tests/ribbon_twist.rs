@@ -222,7 +222,7 @@ fn assert_twist_held(on: &Pulled, off: &Pulled) {
 
 /// At the world's 4 substeps a step (`WorldDef::default`).
 #[test]
-#[ignore = "fails at 4 substeps a step: the linking number goes from −3 to 0 in the 10th step (0.17 s), as the balloons, risen 10 cm to take up the slack the strands were laid with, go taut at 0.95 m/s: the turns have run together near the weight (90–135° of twist a 4.7 cm segment), and the linked chains' solve (`touch::held`), which does all the chain solving for ribbons that touch, pulls the strands through each other there (the fall after it through more); at 32–64 substeps it holds (the test below); see docs/perf-log.md"]
+#[ignore = "fails at 4 substeps a step: the linking number goes from −3 to 0 in the 10th step (0.17 s): the strands' Y opening above the turns has run them together near the weight (75–135° of twist a 4.7 cm segment), and there the linked chains' solve (`touch::held`), which does all the chain solving for ribbons that touch, pulls the strands through each other (one solve, 4 rows of the 30 or so pairs touching, not converging in its 8 iterations, took all three turns); with the balloons' rise held to 0.1 or 0.02 m/s, the ribbons not yet taut, it goes at 0.47 or 0.73 s; at 32–64 substeps it holds (the test below); see docs/perf-log.md"]
 fn ribbons_twisted_three_turns_stay_twisted_under_a_pull() {
     let (on, off) = pulled_on_and_off(WorldDef::default().substeps);
     assert_twist_held(&on, &off);
@@ -231,8 +231,8 @@ fn ribbons_twisted_three_turns_stay_twisted_under_a_pull() {
 /// The same at 48 substeps a step (a 0.35 ms substep): the contacts keep
 /// the twist through the balloons' going taut and the 60 s of pull, no
 /// segment through the other; what the default's 4 substeps lack is time
-/// resolution at the moment the ribbons go taut (24 substeps fail, 32 to
-/// 64 hold). The crossings count sees segments pass through each other at
+/// resolution while the turns run together (24 substeps fail, 32 to 64
+/// hold). The crossings count sees segments pass through each other at
 /// an angle, not two strands untwisting side by side (without contacts it
 /// counts 0 to 2 while the linking number goes from 3 to 0): the linking
 /// number is the test.
