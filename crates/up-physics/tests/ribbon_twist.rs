@@ -186,7 +186,7 @@ fn twist_and_pull(contacts: bool, substeps: u32, seconds: f32) -> Pulled {
 }
 
 /// The pair twisted and pulled at `substeps` substeps a step, with the
-/// contacts on and off, printed; the first two.
+/// contacts on and off, each printed.
 fn pulled_on_and_off(substeps: u32) -> (Pulled, Pulled) {
     let (on, off) = (
         twist_and_pull(true, substeps, 60.0),
