@@ -21,7 +21,6 @@ impl RibbonTouch {
     /// plus `margin` m (gravity's fall and the speculative distance).
     pub(crate) fn find_pairs(&mut self, lanes: &RibbonLanes, dt: f32, margin: f32) {
         self.pairs.clear();
-        self.backward = false;
         self.push_out = super::OVERLAP_PUSH_OUT_SPEED * dt;
         self.ribbons.clear();
         self.segment_boxes.clear();

@@ -97,65 +97,28 @@ pub(super) fn begin(pair: &mut Touching, groups: &[LaneGroup], push_out: f32) {
 }
 
 impl RibbonTouch {
-    /// Projects every pair once, in order (every other pass in reverse), on
-    /// the groups' points as the substep's fall and pushes left them, each
-    /// pushed by at most `most` m; a finite `most` marks the substep's last
-    /// pass, after which the pairs' pushes and friction are let go.
+    /// Projects every pair once, in order, on the groups' points as the
+    /// substep's fall and pushes left them, each by at most `most` m.
     pub(crate) fn project(&mut self, groups: &mut [LaneGroup], most: f32) {
         for g in groups.iter_mut() {
             g.held_lanes = 0;
         }
         self.held.rows.clear();
-        let n = self.pairs.len();
-        self.pressed.resize(n, 0.0);
-        self.gripped.resize(n, Vec3::ZERO);
-        // Every other pass backward: a pass in one order walks a ribbon
-        // draped over another along it (each push and grip moves the point
-        // the next pair shares, which that pair takes for a slide and
-        // grips against), a few millimetres a second toward its free end
-        // even against its weight; passes that take turns cancel that.
-        let backward = self.backward;
-        self.backward = !backward;
-        for j in 0..n {
-            let k = if backward { n - 1 - j } else { j };
+        for k in 0..self.pairs.len() {
             let mut pair = self.pairs[k];
-            let mut grip = Grip {
-                friction: self.friction,
-                pressed: self.pressed[k],
-                gripped: self.gripped[k],
-            };
-            if let Some((normal, s, t)) = project_pair(&mut pair, groups, &mut grip, most) {
+            if let Some((normal, s, t)) = project_pair(&mut pair, groups, self.friction, most) {
                 let side = |seg: Segment, at: f32| super::held::Side {
                     group: seg.group,
                     lane: seg.lane,
                     segment: seg.index,
                     at,
                 };
-                self.hold(groups, k, side(pair.a, s), side(pair.b, t), normal);
+                self.hold(groups, side(pair.a, s), side(pair.b, t), normal);
             }
             self.pairs[k] = pair;
-            self.pressed[k] = grip.pressed;
-            self.gripped[k] = grip.gripped;
-        }
-        if most < f32::MAX {
-            self.pressed.iter_mut().for_each(|p| *p = 0.0);
-            self.gripped.iter_mut().for_each(|g| *g = Vec3::ZERO);
         }
     }
 }
-
-/// A pair's friction over the substep so far: the coefficient, the
-/// impulse the pair was pushed apart with (its passes' and the chains'
-/// solves'), and the friction impulse its passes gave it.
-struct Grip {
-    friction: f32,
-    pressed: f32,
-    gripped: Vec3,
-}
-
-/// How far apart two capsules may be and still grip, m: what a solve that
-/// held them at touching leaves between them.
-const GRIP_GAP: f32 = 1e-5;
 
 /// Below this sine of the angle between two segments they are taken as
 /// parallel: their common perpendicular gives no side.
@@ -218,14 +181,12 @@ fn apart(a: &Ends, b: &Ends) -> bool {
 }
 
 /// `pair` pushed apart, if its capsules overlap or have passed through each
-/// other, with friction on what their closest points slid past each other
-/// over the substep, while they touch. Returns, for a pair pushed, its
-/// normal and its closest points' parameters: a row of the solve that
-/// follows (`held`).
+/// other, with friction. Returns, for a pair pushed, its normal and its
+/// closest points' parameters: a row of the solve that follows (`held`).
 fn project_pair(
     pair: &mut Touching,
     groups: &mut [LaneGroup],
-    grip: &mut Grip,
+    friction: f32,
     most: f32,
 ) -> Option<(Vec3, f32, f32)> {
     let (a, b) = (ends(groups, pair.a), ends(groups, pair.b));
@@ -236,13 +197,8 @@ fn project_pair(
     let reach = radius(&a, s, pair.end_a) + radius(&b, t, pair.end_b);
     let (normal, distance) = side(pair, &a, &b, s, t);
     pair.normal = normal;
-    let overlap = reach - pair.allowed - distance;
-    let depth = overlap.min(most);
-    // Friction grips while they touch and something pressed them together
-    // this substep: a solve that holds a contact (`held`) leaves it just
-    // touching, with its push in `pressed`.
-    let gripping = grip.pressed > 0.0 && overlap > -GRIP_GAP;
-    if depth <= 0.0 && !gripping {
+    let depth = (reach - pair.allowed - distance).min(most);
+    if depth <= 0.0 {
         return None;
     }
     let ((a_start, a_inv_mass), (b_start, b_inv_mass)) =
@@ -254,32 +210,24 @@ fn project_pair(
         return None;
     }
     // The push: b along the normal, a against it, by inverse mass.
-    let pushed = depth.max(0.0) / w;
-    grip.pressed += pushed;
+    let push = normal * (depth / w);
     // Friction on what the closest points slid past each other this
-    // substep: the impulse that takes it out, added to what the passes
-    // gave before, the sum held within μ times the pushes' (Coulomb's law
-    // over the substep, as an iterative solver accumulates and clamps it;
-    // the passes' own pushes alone, with the solves holding the contacts,
-    // were a fraction of the normal force and let a draped ribbon slide).
+    // substep, taken out whole while the push could hold it, else by
+    // the push times the coefficient.
     let slid = (at(b.p, t) - at(b_start, t)) - (at(a.p, s) - at(a_start, s));
     let slid = slid - slid.dot(normal) * normal;
-    let gripped = grip.gripped - grip.gripped.dot(normal) * normal;
-    let wanted = gripped - slid / w;
-    let limit = grip.friction * grip.pressed.max(0.0);
-    let length = wanted.length();
-    let total = if length > limit && length > 0.0 {
-        wanted * (limit / length)
+    let slide = slid.length();
+    let limit = friction * depth;
+    let held = if slide > limit && slide > 0.0 {
+        limit / slide
     } else {
-        wanted
+        1.0
     };
-    let impulse = normal * pushed + (total - gripped);
-    grip.gripped = total;
-    if impulse != Vec3::ZERO {
-        shift(groups, pair.a, -wa[0] * impulse, -wa[1] * impulse);
-        shift(groups, pair.b, wb[0] * impulse, wb[1] * impulse);
-    }
-    (depth > 0.0).then_some((normal, s, t))
+    let grip = -slid * (held / w);
+    let impulse = push + grip;
+    shift(groups, pair.a, -wa[0] * impulse, -wa[1] * impulse);
+    shift(groups, pair.b, wb[0] * impulse, wb[1] * impulse);
+    Some((normal, s, t))
 }
 
 /// Where two ribbons touch at a step's end, for drawing (`World::ribbon_contacts`).

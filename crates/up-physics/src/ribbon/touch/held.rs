@@ -60,8 +60,6 @@ pub(crate) struct HeldRow {
     pub normal: Vec3,
     /// The least `normal·(p_b − p_a)` may be, m.
     pub floor: f32,
-    /// The pair it stands for (`RibbonTouch::pairs`).
-    pub pair: u32,
 }
 
 /// A ribbon in the solve: its lane, where its points and distance rows
@@ -116,9 +114,6 @@ pub(crate) struct HeldSolve {
     /// lane) in this solve.
     parent: Vec<u32>,
     pub(super) rows: Vec<HeldRow>,
-    /// Per row: how hard the solve pushed it apart, summed over its
-    /// linearised solves (as `RibbonTouch::pressed`).
-    pub(super) pushed: Vec<f32>,
     /// Per row: its two sides' chains.
     row_chains: Vec<(u32, u32)>,
     set_rows: Vec<u32>,
@@ -143,14 +138,7 @@ pub(crate) struct HeldSolve {
 impl RibbonTouch {
     /// Adds a row: the closest points `a` and `b` of a pair just pushed
     /// apart may not come closer along `normal` than they now are.
-    pub(super) fn hold(
-        &mut self,
-        groups: &mut [LaneGroup],
-        pair: usize,
-        a: Side,
-        b: Side,
-        normal: Vec3,
-    ) {
+    pub(super) fn hold(&mut self, groups: &mut [LaneGroup], a: Side, b: Side, normal: Vec3) {
         if a.segment == 0 || b.segment == 0 {
             return; // a knot's segment: the balloon holds it
         }
@@ -168,19 +156,14 @@ impl RibbonTouch {
             b,
             normal,
             floor,
-            pair: pair as u32,
         });
     }
 
     /// Solves the chains the last pass's rows link, with those rows, and
-    /// lets the rows go, their pushes added to their pairs' (what their
-    /// friction may hold with).
+    /// lets the rows go.
     pub(crate) fn solve_held(&mut self, groups: &mut [LaneGroup]) {
         if !self.held.rows.is_empty() {
             self.held.solve(groups);
-            for (row, pushed) in self.held.rows.iter().zip(&self.held.pushed) {
-                self.pressed[row.pair as usize] += pushed;
-            }
         }
         self.held.rows.clear();
     }
@@ -226,8 +209,6 @@ impl HeldSolve {
         self.chains.clear();
         self.parent.clear();
         self.row_chains.clear();
-        self.pushed.clear();
-        self.pushed.resize(self.rows.len(), 0.0);
         for r in 0..self.rows.len() {
             let row = self.rows[r];
             let (ca, cb) = (self.chain_of(groups, row.a), self.chain_of(groups, row.b));
@@ -441,7 +422,6 @@ impl HeldSolve {
             if !self.active[r] {
                 self.lambda[r] = 0.0;
             }
-            self.pushed[self.set_rows[r] as usize] += self.lambda[r];
         }
         // λ_d = z − Y·λ_c, then each point moved by its rows.
         let total = self.z.len();

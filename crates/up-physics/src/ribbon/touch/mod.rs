@@ -161,16 +161,6 @@ pub(crate) struct RibbonTouch {
     near_b: Vec<u32>,
     /// The last pass's contacts as rows of the chains' solve that follows.
     held: held::HeldSolve,
-    /// Per pair, over the substep so far: the impulse (as a pass pushes,
-    /// m·kg⁻¹·…: a displacement over the pair's inverse mass) its passes
-    /// and the chains' solves pushed it apart with, and the friction
-    /// impulse its passes gave it, which Coulomb's law bounds by μ times
-    /// the first; let go after the substep's last pass.
-    pressed: Vec<f32>,
-    gripped: Vec<Vec3>,
-    /// The next pass takes the pairs in reverse order (each step begins
-    /// forward).
-    pub(super) backward: bool,
 }
 
 impl Default for RibbonTouch {
@@ -187,9 +177,6 @@ impl Default for RibbonTouch {
             near_a: Vec::new(),
             near_b: Vec::new(),
             held: held::HeldSolve::default(),
-            pressed: Vec::new(),
-            gripped: Vec::new(),
-            backward: false,
         }
     }
 }
