@@ -229,9 +229,9 @@ impl World {
 
     /// Hands the points back to the ribbons, each knot where its balloon
     /// ended the step; keeps the largest stretch; marks the balloons whose
-    /// ribbons still move as a whole (their points' root-mean-square speed:
-    /// a free end's millimetre sway alone keeps no pile awake) — those may
-    /// not sleep yet — and those whose ribbons
+    /// ribbons still move as a whole (their points' root-mean-square speed
+    /// past their knot's: a free end's millimetre sway alone keeps no pile
+    /// awake) — those may not sleep yet — and those whose ribbons
     /// went non-finite (quarantined with them).
     pub(super) fn finish_ribbons(&mut self) {
         let stage = &mut self.stages.ribbons;
@@ -266,8 +266,12 @@ impl World {
                 self.stages.faults.non_finite.push(i);
                 continue;
             }
-            stage.moving[i] =
-                ribbon.rms_speed() >= slow || r.air_speed >= crate::air::RESTLESS_AIR_SPEED;
+            // Beyond what its knot moves: a balloon slow enough to rest (under
+            // the sleep speeds) may still turn its knot at a few mm/s, and the
+            // ribbon it drags must not keep it awake for that alone.
+            let knot_speed = ribbon.velocities[0].length();
+            stage.moving[i] = ribbon.rms_speed() >= slow + knot_speed
+                || r.air_speed >= crate::air::RESTLESS_AIR_SPEED;
             max_stretch = max_stretch.max(ribbon.stretch());
         }
         stage.lanes.clear();
