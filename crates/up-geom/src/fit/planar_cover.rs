@@ -29,8 +29,20 @@
 //!
 //! The tight cover is kept unless its largest sphere stands higher than the
 //! even one's (by more than `TOP_SLACK`): the largest spheres set how far two
-//! flat shapes rest apart face to face. Fixed starts and sweep orders: the
-//! same mesh and count give the same spheres.
+//! flat shapes rest apart face to face. Where it stands higher (a pillow,
+//! whose broad middle is nearly as high as its top), a capped cover is tried
+//! and the lower of it and the even one kept. Its caps form a dome (`Dome`):
+//! a little over the surface's highest point, dropping half as fast as the
+//! surface does, so that the shape lying on a plane rests on the leaves
+//! nearest its middle and a tip brings it back, as its curved face would (a
+//! plateau of leaves all one height leaves it rocking from leaf to leaf).
+//! Its cells are placed as densely as spheres under the caps need them
+//! (where the surface stands `z` off the plane a sphere of radius `cap`
+//! holds a patch `√(cap² − z²)` across: a few centimetres over a pillow's
+//! middle), the triangles, split finer, go to the spheres that stand least
+//! past their caps, and the spheres are then shrunk within the worst such
+//! overshoot. Fixed starts and sweep orders: the same mesh and count give
+//! the same spheres.
 //!
 //! The union's volume is exact per column across the plane: every centre lies
 //! on it, so along a line through the plane the spheres' chords share their
@@ -60,6 +72,20 @@ const EVEN_ROUNDS: usize = 4;
 /// How much higher (relatively) the tight cover's largest sphere may stand
 /// than the even cover's.
 const TOP_SLACK: f64 = 1e-4;
+/// The capped cover's cap, as a share of the way from the surface's highest
+/// point to the even cover's largest sphere (it shapes where the cells go;
+/// the cover that comes of it is weighed by its own largest sphere).
+const CAP_SHARE: f64 = 0.5;
+/// Times the triangles are split in four for the capped cover: a sphere
+/// must hold whole triangles, and a coarse mesh's (a pillow's are 2.7 cm
+/// long across its middle) keep the cells there from being small.
+const CAPPED_SPLITS: usize = 2;
+/// Rounds of shrinking a capped cover under its largest sphere.
+const TIGHTEN_ROUNDS: usize = 6;
+/// How fast the capped cover's caps drop where the surface does, as a
+/// share of its drop: the tops form a dome, so that a flat shape lying on a
+/// plane rests on the leaves nearest the middle and tips back when tipped.
+const DOME_FOLLOW: f64 = 0.5;
 
 /// The mid-plane: a point on it and an orthonormal frame, `normal` across it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -179,17 +205,48 @@ fn least_radius_centre(start: DVec2, corners: &[DVec3]) -> DVec2 {
     }
 }
 
-/// Each triangle's corners as vertex numbers, to gather a sphere's corners
-/// once each (neighbouring triangles share theirs).
-struct Corners<'a> {
-    ids: &'a [[u32; 3]],
-    points: &'a [DVec3],
+/// A surface in the plane's frame: its vertices, and its triangles both as
+/// vertex numbers (to gather a sphere's corners once each: neighbouring
+/// triangles share theirs) and as corners.
+struct Surface {
+    ids: Vec<[u32; 3]>,
+    points: Vec<DVec3>,
+    tris: Vec<[DVec3; 3]>,
 }
 
-impl Corners<'_> {
+impl Surface {
+    fn new(ids: Vec<[u32; 3]>, points: Vec<DVec3>) -> Self {
+        let tris = ids.iter().map(|t| t.map(|i| points[i as usize])).collect();
+        Surface { ids, points, tris }
+    }
+
+    /// Each triangle split in four at its edges' midpoints, shared between
+    /// the two triangles of an edge. The pieces tile each triangle, so a
+    /// sphere that holds a triangle's pieces holds the triangle.
+    fn split(&self) -> Surface {
+        let mut points = self.points.clone();
+        let mut middles = std::collections::HashMap::new();
+        let mut middle = |a: u32, b: u32, points: &mut Vec<DVec3>| {
+            *middles.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                points.push(0.5 * (points[a as usize] + points[b as usize]));
+                (points.len() - 1) as u32
+            })
+        };
+        let mut ids = Vec::with_capacity(4 * self.ids.len());
+        for &[a, b, c] in &self.ids {
+            let (ab, bc, ca) = (
+                middle(a, b, &mut points),
+                middle(b, c, &mut points),
+                middle(c, a, &mut points),
+            );
+            ids.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
+        }
+        Surface::new(ids, points)
+    }
+
     /// The corners of the triangles `owner` gives sphere `k`, each once, in
     /// the order first met; `seen` marks vertices already taken (reset here).
-    fn of(&self, owner: &[usize], k: usize, seen: &mut Vec<bool>) -> Vec<DVec3> {
+    fn corners_of(&self, owner: &[usize], k: usize, seen: &mut Vec<bool>) -> Vec<DVec3> {
         seen.clear();
         seen.resize(self.points.len(), false);
         let mut corners = Vec::new();
@@ -217,12 +274,8 @@ pub fn fit_planar_spheres(
         .copied()
         .collect();
     // Every vertex in the plane's frame; the triangles' corners from them.
-    let local: Vec<DVec3> = vertices.iter().map(|&v| frame.local(v)).collect();
-    let tris: Vec<[DVec3; 3]> = ids.iter().map(|t| t.map(|i| local[i as usize])).collect();
-    let corners = Corners {
-        ids: &ids,
-        points: &local,
-    };
+    let surface = Surface::new(ids, vertices.iter().map(|&v| frame.local(v)).collect());
+    let tris = &surface.tris;
     if tris.is_empty() {
         return Vec::new();
     }
@@ -247,19 +300,19 @@ pub fn fit_planar_spheres(
     // which is lowered as far as it goes.
     let mut even = start.clone();
     k_means(&points, &mut even, K_MEANS_ITERATIONS);
-    let even_owner = enclose_evenly(&tris, &corners, &mut even);
+    let even_owner = enclose_evenly(&surface, &mut even);
     // Tight: the smallest union, placed again where it stands out most.
     let mut centres = start;
     let mut owner = Vec::new();
     for round in 0..PLACEMENTS {
         k_means(&binned(&points), &mut centres, K_MEANS_ITERATIONS);
-        owner = enclose_tightly(&tris, &corners, &mut centres);
+        owner = enclose_tightly(&surface, &mut centres);
         if round + 1 == PLACEMENTS {
             break;
         }
         // Where the union stands out most, more (smaller) cells next time.
-        let r2 = radii_of(&tris, &owner, &centres);
-        let excess = excess_by_leaf(&tris, &centres, &r2, EXCESS_COLUMNS);
+        let r2 = radii_of(tris, &owner, &centres);
+        let excess = excess_by_leaf(tris, &centres, &r2, EXCESS_COLUMNS);
         let mean = excess.iter().sum::<f64>() / excess.len() as f64;
         if mean <= 0.0 {
             break;
@@ -269,18 +322,142 @@ pub fn fit_planar_spheres(
         }
     }
     // Two flat shapes face to face rest as far apart as their largest
-    // spheres stand: the tight cover only where that costs (almost) nothing.
-    let largest = |owner: &[usize], centres: &[DVec2]| {
-        radii_of(&tris, owner, centres)
+    // spheres stand: the tight cover only where that costs (almost) nothing,
+    // else the lower of the even and the capped cover.
+    let largest = |tris: &[[DVec3; 3]], owner: &[usize], centres: &[DVec2]| {
+        radii_of(tris, owner, centres)
             .into_iter()
             .fold(0.0f64, f64::max)
             .sqrt()
     };
-    let (tight_top, even_top) = (largest(&owner, &centres), largest(&even_owner, &even));
-    if tight_top > even_top * (1.0 + TOP_SLACK) {
-        (owner, centres) = (even_owner, even);
+    let (tight_top, even_top) = (
+        largest(tris, &owner, &centres),
+        largest(tris, &even_owner, &even),
+    );
+    if tight_top <= even_top * (1.0 + TOP_SLACK) {
+        return spheres_of(tris, &owner, &centres);
     }
-    let radii = radii_of(&tris, &owner, &centres);
+    let dome = Dome {
+        top: z_max + CAP_SHARE * (even_top - z_max),
+        z_max,
+    };
+    let (capped_top, capped) = capped_cover(&surface, dome, count);
+    if capped_top < even_top {
+        capped
+    } else {
+        spheres_of(tris, &even_owner, &even)
+    }
+}
+
+/// The tops a capped cover keeps under: `top` over the surface's highest
+/// point, and lower where the surface is, dropping `DOME_FOLLOW` as fast.
+#[derive(Clone, Copy, Debug)]
+struct Dome {
+    top: f64,
+    z_max: f64,
+}
+
+impl Dome {
+    /// The cap where the surface stands `z` off the plane.
+    fn cap(&self, z: f64) -> f64 {
+        self.top - DOME_FOLLOW * (self.z_max - z)
+    }
+}
+
+/// How far the surface stands off the plane over plane point `c` (its
+/// highest triangle there), 0 off the outline.
+fn height_over(tris: &[[DVec3; 3]], c: DVec2) -> f64 {
+    let mut height = 0.0f64;
+    for t in tris {
+        let (a, b, d) = (t[0].truncate(), t[1].truncate(), t[2].truncate());
+        let area = (b - a).perp_dot(d - a);
+        if area.abs() <= f64::MIN_POSITIVE {
+            continue;
+        }
+        let (u, v) = (
+            (b - c).perp_dot(d - c) / area,
+            (d - c).perp_dot(a - c) / area,
+        );
+        if u >= 0.0 && v >= 0.0 && u + v <= 1.0 {
+            height = height.max((u * t[0].z + v * t[1].z + (1.0 - u - v) * t[2].z).abs());
+        }
+    }
+    height
+}
+
+/// The capped cover (the module's notes): cells placed for spheres under
+/// `dome` (`start_under`), the triangles (split finer) shared out so that
+/// no sphere stands further past its cap than it must, then shrunk within
+/// that; with the largest sphere's radius.
+fn capped_cover(surface: &Surface, dome: Dome, count: usize) -> (f64, Vec<PlanarSphere>) {
+    let mut fine = surface.split();
+    for _ in 1..CAPPED_SPLITS {
+        fine = fine.split();
+    }
+    let mut centres = start_under(&fine.tris, dome, count);
+    let caps = |centres: &[DVec2]| -> Vec<f64> {
+        centres
+            .iter()
+            .map(|&c| dome.cap(height_over(&surface.tris, c)))
+            .collect()
+    };
+    let past = |n: f64, cap: f64| n.sqrt() - cap;
+    let tris = &fine.tris;
+    let mut owner = vec![0usize; tris.len()];
+    let mut worst_past = vec![f64::NEG_INFINITY; centres.len()];
+    let mut cap = caps(&centres);
+    for round in 0..EVEN_ROUNDS {
+        for (t, o) in tris.iter().zip(owner.iter_mut()) {
+            let mut pick = ((f64::INFINITY, f64::INFINITY), 0usize);
+            for (k, &c) in centres.iter().enumerate() {
+                let p = past(need(c, t), cap[k]);
+                let key = (p.max(worst_past[k]), p);
+                if key < pick.0 {
+                    pick = (key, k);
+                }
+            }
+            *o = pick.1;
+        }
+        if round + 1 == EVEN_ROUNDS {
+            break;
+        }
+        move_to_least_radius(&fine, &owner, &mut centres);
+        cap = caps(&centres);
+        worst_past = radii_of(tris, &owner, &centres)
+            .iter()
+            .zip(&cap)
+            .map(|(&r2, &c)| past(r2, c))
+            .collect();
+    }
+    // Shrunk: each triangle to the sphere that holds it with the least
+    // radius among those it keeps within the worst overshoot.
+    let worst = radii_of(tris, &owner, &centres)
+        .iter()
+        .zip(&cap)
+        .fold(f64::NEG_INFINITY, |m, (&r2, &c)| m.max(past(r2, c)));
+    for _ in 0..TIGHTEN_ROUNDS {
+        for (t, o) in tris.iter().zip(owner.iter_mut()) {
+            let mut pick = (need(centres[*o], t), *o);
+            for (k, &c) in centres.iter().enumerate() {
+                let n = need(c, t);
+                if n < pick.0 && past(n, cap[k]) <= worst {
+                    pick = (n, k);
+                }
+            }
+            *o = pick.1;
+        }
+        move_to_least_radius(&fine, &owner, &mut centres);
+        cap = caps(&centres);
+    }
+    let spheres = spheres_of(tris, &owner, &centres);
+    let top = spheres.iter().fold(0.0f64, |m, s| m.max(s.radius));
+    (top, spheres)
+}
+
+/// The spheres of a cover: each centre with the radius its triangles need
+/// (centres given none left out).
+fn spheres_of(tris: &[[DVec3; 3]], owner: &[usize], centres: &[DVec2]) -> Vec<PlanarSphere> {
+    let radii = radii_of(tris, owner, centres);
     centres
         .iter()
         .zip(&radii)
@@ -290,6 +467,30 @@ pub fn fit_planar_spheres(
             radius: r2.sqrt(),
         })
         .collect()
+}
+
+/// Cells placed for a cover whose spheres stand under `dome`: a sphere on
+/// the plane no larger than the cap holds a patch about `√(cap² − z²)`
+/// across where the surface stands `z` off it, so the cells go
+/// `1 / (cap² − z²)` to a unit of area (k-means places its cells as the
+/// square root of its weights).
+fn start_under(tris: &[[DVec3; 3]], dome: Dome, count: usize) -> Vec<DVec2> {
+    let floor = 1e-3 * dome.top * dome.top;
+    let points: Vec<(DVec2, f64)> = tris
+        .iter()
+        .map(|t| {
+            let centre = (t[0] + t[1] + t[2]) / 3.0;
+            let area = 0.5 * (t[1] - t[0]).cross(t[2] - t[0]).length();
+            let z = t.iter().fold(0.0f64, |m, p| m.max(p.z.abs()));
+            let cap = dome.cap(z);
+            let patch = (cap * cap - z * z).max(floor);
+            (DVec2::new(centre.x, centre.y), area / (patch * patch))
+        })
+        .collect();
+    let points = binned(&points);
+    let mut centres = farthest_point_start(&points, count);
+    k_means(&points, &mut centres, K_MEANS_ITERATIONS);
+    centres
 }
 
 /// The weighted points gathered into `BINS` × `BINS` squares over their
@@ -343,7 +544,8 @@ fn k_means(points: &[(DVec2, f64)], centres: &mut [DVec2], iterations: usize) {
 /// Gives each triangle to a sphere and moves each sphere to hold its own
 /// with the least radius, then lowers the largest (`balance`); returns each
 /// triangle's sphere.
-fn enclose_tightly(tris: &[[DVec3; 3]], corners: &Corners, centres: &mut [DVec2]) -> Vec<usize> {
+fn enclose_tightly(surface: &Surface, centres: &mut [DVec2]) -> Vec<usize> {
+    let tris = &surface.tris;
     // Rounds of: each triangle to the sphere that holds it with the least
     // radius, each sphere moved to hold its own with the least radius; the
     // round whose union is smallest is kept (the rounds drift towards the
@@ -377,11 +579,11 @@ fn enclose_tightly(tris: &[[DVec3; 3]], corners: &Corners, centres: &mut [DVec2]
         if round + 1 == ENCLOSING_ROUNDS {
             break;
         }
-        move_to_least_radius(corners, &owner, centres);
+        move_to_least_radius(surface, &owner, centres);
     }
     let (_, mut owner, kept) = best;
     centres.copy_from_slice(&kept);
-    balance(tris, corners, &mut owner, centres);
+    balance(surface, &mut owner, centres);
     owner
 }
 
@@ -389,7 +591,8 @@ fn enclose_tightly(tris: &[[DVec3; 3]], corners: &Corners, centres: &mut [DVec2]
 /// sphere that already holds it with the smallest radius (else the one it
 /// grows least): the spheres come out about as large as the largest, which
 /// `balance` then lowers.
-fn enclose_evenly(tris: &[[DVec3; 3]], corners: &Corners, centres: &mut [DVec2]) -> Vec<usize> {
+fn enclose_evenly(surface: &Surface, centres: &mut [DVec2]) -> Vec<usize> {
+    let tris = &surface.tris;
     let mut owner = vec![0usize; tris.len()];
     let mut radii = vec![f64::INFINITY; centres.len()];
     for round in 0..EVEN_ROUNDS {
@@ -407,18 +610,18 @@ fn enclose_evenly(tris: &[[DVec3; 3]], corners: &Corners, centres: &mut [DVec2])
         if round + 1 == EVEN_ROUNDS {
             break;
         }
-        move_to_least_radius(corners, &owner, centres);
+        move_to_least_radius(surface, &owner, centres);
         radii = radii_of(tris, &owner, centres);
     }
-    balance(tris, corners, &mut owner, centres);
+    balance(surface, &mut owner, centres);
     owner
 }
 
 /// Moves each sphere to where it holds its own triangles with the least radius.
-fn move_to_least_radius(corners: &Corners, owner: &[usize], centres: &mut [DVec2]) {
+fn move_to_least_radius(surface: &Surface, owner: &[usize], centres: &mut [DVec2]) {
     let mut seen = Vec::new();
     for (k, c) in centres.iter_mut().enumerate() {
-        let mine = corners.of(owner, k, &mut seen);
+        let mine = surface.corners_of(owner, k, &mut seen);
         if !mine.is_empty() {
             *c = least_radius_centre(*c, &mine);
         }
@@ -431,7 +634,8 @@ fn move_to_least_radius(corners: &Corners, owner: &[usize], centres: &mut [DVec2
 /// sets how far two flat shapes stay apart face to face (the pair of
 /// largest spheres meets first), so this is what keeps them near the drawn
 /// thickness.
-fn balance(tris: &[[DVec3; 3]], corners: &Corners, owner: &mut [usize], centres: &mut [DVec2]) {
+fn balance(surface: &Surface, owner: &mut [usize], centres: &mut [DVec2]) {
+    let tris = &surface.tris;
     let mut seen = Vec::new();
     let mut radii = radii_of(tris, owner, centres);
     for _ in 0..20 * centres.len() {
@@ -464,7 +668,7 @@ fn balance(tris: &[[DVec3; 3]], corners: &Corners, owner: &mut [usize], centres:
         if !moved {
             return;
         }
-        let mine = corners.of(owner, k, &mut seen);
+        let mine = surface.corners_of(owner, k, &mut seen);
         if !mine.is_empty() {
             centres[k] = least_radius_centre(centres[k], &mine);
         }

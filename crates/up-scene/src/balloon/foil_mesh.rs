@@ -18,9 +18,11 @@
 //! `BalloonDimensions` describe it as a latex balloon's: the valve is its
 //! "knot", a small ball at the tip (its mass, not its shape). The sphere
 //! tree is the planar fitter's (`up_geom::fit::planar_cover`), 64 leaves
-//! over its face: those over the middle each hold a patch about 7 cm across
-//! and stand up to 8 mm past the face, so two pillows face to face rest
-//! 1.5 cm off their drawn thickness.
+//! over its face: those over the middle each hold a patch about 4 cm across
+//! and stand up to 4 mm past the face, so two pillows face to face rest
+//! within 1 cm of their drawn thickness; the tops drop away from the middle
+//! (3 mm lower 10 cm out), so a pillow lying on a ceiling rests on its
+//! middle and rights itself when tipped.
 //! Everything scales with the diameter. Closed and watertight (one vertex per face
 //! centre, rings share their seam vertex), wound counter-clockwise seen from
 //! outside, smooth per-vertex normals: 2,400 triangles.
