@@ -16,9 +16,9 @@ use std::ops::Range;
 
 use super::body_spheres::BodySpheres;
 use super::chain::Knots;
-use super::collide::{Grip, NearBalloon};
+use super::collide::NearBalloon;
 use super::lane_pushes::NearSlot;
-use super::lane_room::RoomSlot;
+use super::lane_room::{RoomSlot, TriangleSlot};
 use super::solve::ActiveRibbon;
 use super::{Ribbon, MAX_SEGMENTS};
 use crate::solver::lanes::{set, F4, LANES, M4, V4};
@@ -66,14 +66,16 @@ pub(crate) struct LaneGroup {
     pub touch_normal: Vec<V4>,
     pub touch_velocity: Vec<V4>,
     pub touched: bool,
-    /// Per point and lane (`point * LANES + lane`), in lanes near the room:
-    /// its friction against the room over the step's substeps; plain, not
-    /// lane-shuffled, since only the scalar room push reads it.
-    pub grips: Vec<Grip>,
-    /// The room's triangles near the lanes lined up across them, the lanes
-    /// that have any (bit `l` for lane `l`), and per point the lanes whose
-    /// grip holds friction (`lane_room`).
+    /// Per point, in lanes near the room: its friction against the room
+    /// over the step's substeps (`collide::Grip`, the lanes' `left` and
+    /// `anchor`).
+    pub grip_left: Vec<V4>,
+    pub grip_anchor: Vec<V4>,
+    /// The room's planes and triangles near the lanes lined up across them,
+    /// the lanes that have any (bit `l` for lane `l`), and per point the
+    /// lanes whose grip holds friction (`lane_room`).
     pub room_slots: Vec<RoomSlot>,
+    pub triangle_slots: Vec<TriangleSlot>,
     pub room_lanes: u32,
     pub gripped: Vec<u8>,
     /// Per point, once `windy`: the air's velocity there this step, sampled
@@ -129,7 +131,8 @@ impl LaneGroup {
         self.held_lanes = 0;
         self.air_speed = F4::ZERO;
         self.inv_mass.resize(points, F4::ZERO);
-        self.grips.resize(points * LANES, Grip::new(Vec3::ZERO));
+        self.grip_left.resize(points, V4::ZERO);
+        self.grip_anchor.resize(points, V4::ZERO);
         self.room_lanes = 0;
         self.step_impulse = V4::ZERO;
         self.substeps = 0;
