@@ -48,7 +48,8 @@ impl LaneGroup {
     pub(super) fn push_out_of_balloons(&mut self, near: &NearInput) {
         self.touched = false;
         let (mut lo, mut hi) = (self.points[1], self.points[1]);
-        for p in &self.points[2..] {
+        // Points past `active` rest: nothing pushes them.
+        for p in &self.points[2..self.active] {
             lo = V4::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z));
             hi = V4::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
         }
@@ -73,8 +74,7 @@ impl LaneGroup {
             }
             self.near_slots.push(slot);
         }
-        let n = self.points.len() - 1;
-        for i in 1..=n {
+        for i in 1..self.active {
             let movable = self.inv_mass[i].simd_gt(F4::ZERO).to_bitmask();
             let radius = self.radius(i);
             for k in 0..most {
@@ -180,7 +180,7 @@ impl LaneGroup {
             }
             _ => &[],
         });
-        for i in 1..self.points.len() {
+        for i in 1..self.active {
             let lanes = self.near_room(i);
             if lanes != 0 {
                 self.push_point_out_of_room(i, lanes, &near_of);

@@ -279,6 +279,7 @@ mod tests {
         for round in 0..300 {
             let mut group = LaneGroup {
                 live: LANES,
+                active: points,
                 points: vec![V4::ZERO; points],
                 start: vec![V4::ZERO; points],
                 inv_mass: vec![F4::ONE; points],
