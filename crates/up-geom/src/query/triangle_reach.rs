@@ -69,6 +69,14 @@ impl TriangleReach {
         reach
     }
 
+    /// Its edge lines: per edge, the unit normal in the plane pointing into
+    /// the triangle and that normal's dot product with the edge's first
+    /// corner; and the margin (infinite where no answer is sure). For a test
+    /// of several points at once that must answer as `within` does.
+    pub fn lines(&self) -> ([Vec3; 3], [f32; 3], f32) {
+        (self.inward, self.offset, self.margin)
+    }
+
     /// Whether `point`, in the triangle's plane, is within `distance` of
     /// the triangle, where that is sure: `Some(true)` on it, `Some(false)`
     /// farther, `None` unsure (near an edge, a thin triangle, a NaN).

@@ -72,6 +72,12 @@ pub(crate) struct ChainRows {
 }
 
 impl ChainRows {
+    /// Segment `j`'s multiplier λ_j in each lane as the last solve found it
+    /// (kg·m; negative where the segment pulls its points together).
+    pub fn lambda(&self, j: usize) -> F4 {
+        self.rhs[j]
+    }
+
     /// Rows for chains of `segments` segments.
     pub fn resize(&mut self, segments: usize) {
         self.dir.resize(segments, V4::ZERO);
@@ -136,7 +142,10 @@ pub(crate) fn solve_chains(
         let c = if j + 1 < n {
             let len = segment(points, j + 1, dir[j], dir);
             rhs[j + 1] = segment_length - len;
-            worst = max_of_number(worst, rhs[j + 1].abs());
+            // A segment held at both ends (resting points, `lane_group`)
+            // is none of the solve's to bring back: it does not count.
+            let free = (w_next + inv_mass[j + 2]).simd_gt(zero);
+            worst = max_of_number(worst, select(free, rhs[j + 1].abs(), zero));
             let c = -w_next * dir[j].dot(dir[j + 1]);
             if j == 0 {
                 select(taut_knot, c, zero)
@@ -167,7 +176,8 @@ pub(crate) fn solve_chains(
         rhs[j] = previous_rhs;
         w_j = w_next;
     }
-    // One pass up: back substitution (`rhs` becomes λ_j), and each point
+    // One pass up: back substitution (`rhs` becomes λ_j, kept for
+    // `ChainRows::lambda`), and each point
     // moved as soon as both its segments' λ are known:
     // Δx_i = w_i·(λ_{i−1}·n_{i−1} − λ_i·n_i).
     let mut lambda_after = rhs[n - 1];
@@ -175,6 +185,7 @@ pub(crate) fn solve_chains(
     points[n] = V4::select(moving, moved, points[n]);
     for j in (0..n - 1).rev() {
         let lambda = rhs[j] - upper[j] * lambda_after;
+        rhs[j] = lambda;
         let i = j + 1;
         let moved = points[i] + inv_mass[i] * (lambda * dir[j] - lambda_after * dir[i]);
         points[i] = V4::select(moving, moved, points[i]);

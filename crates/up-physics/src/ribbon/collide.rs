@@ -62,18 +62,44 @@ impl NearTriangle {
             edges: TriangleReach::new(corners, normal),
         }
     }
+
+    /// Its edge lines (`TriangleReach`).
+    pub fn edges(&self) -> &TriangleReach {
+        &self.edges
+    }
+
+    /// Whether `on_plane`, a point in its plane that its edge lines leave
+    /// unsure of (`TriangleReach::within` is None), is within `radius` of
+    /// it: outside its box widened past the radius (and rounding) it is
+    /// farther, which spares the closest point's cost. A NaN point is
+    /// taken as within.
+    pub fn within_near_edge(&self, on_plane: Vec3, radius: f32) -> bool {
+        let reach = Vec3::splat(radius * 1.001 + 1e-6);
+        if on_plane.cmplt(self.lo - reach).any() || on_plane.cmpgt(self.hi + reach).any() {
+            return false;
+        }
+        let [a, b, c] = self.corners;
+        let (closest, _) = closest_point_triangle(on_plane, a, b, c);
+        if closest.distance_squared(on_plane) > radius * radius {
+            return false;
+        }
+        true
+    }
 }
 
 /// A point's friction against the room over one step's substeps: μ times
 /// the room's pushes on it so far, less the slide friction took back, along
 /// their normal (m), and where it holds the point: where it was when the
-/// step began, or where it last slid to.
+/// step began, or where it last slid to. The lanes keep it as two vectors
+/// a point (`LaneGroup::grip_left`, `grip_anchor`).
+#[cfg(test)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Grip {
     pub left: Vec3,
     pub anchor: Vec3,
 }
 
+#[cfg(test)]
 impl Grip {
     /// At the step's start, the point at `start`: nothing held yet.
     pub fn new(start: Vec3) -> Grip {
@@ -88,6 +114,10 @@ impl Grip {
 /// triangles `near`, with friction `mu`: its slide from `grip`'s anchor is
 /// taken back up to what `grip` has left with this call's pushes added; a
 /// point that slides further than that keeps sliding from where it is.
+/// One point of one ribbon: the lanes push four ribbons' points at once
+/// (`LaneGroup::push_point_out_of_room`), each as this does, bit for bit,
+/// which this is kept to test.
+#[cfg(test)]
 pub(crate) fn push_out_of_room(
     mut point: Vec3,
     start: Vec3,
@@ -97,7 +127,7 @@ pub(crate) fn push_out_of_room(
     grip: &mut Grip,
 ) -> Vec3 {
     for t in near {
-        let [a, b, c] = t.corners;
+        let a = t.corners[0];
         let height = (point - a).dot(t.normal);
         if height >= radius {
             continue;
@@ -111,19 +141,8 @@ pub(crate) fn push_out_of_room(
         match t.edges.within(on_plane, radius) {
             Some(true) => {}
             Some(false) => continue,
-            None => {
-                // Outside the triangle's box widened past the radius (and
-                // rounding), it is farther than the radius: skip the
-                // closest point's cost.
-                let reach = Vec3::splat(radius * 1.001 + 1e-6);
-                if on_plane.cmplt(t.lo - reach).any() || on_plane.cmpgt(t.hi + reach).any() {
-                    continue;
-                }
-                let (closest, _) = closest_point_triangle(on_plane, a, b, c);
-                if closest.distance_squared(on_plane) > radius * radius {
-                    continue;
-                }
-            }
+            None if t.within_near_edge(on_plane, radius) => {}
+            None => continue,
         }
         // In front of the face at the substep's start: it may not cross.
         if (start - a).dot(t.normal) <= -radius {

@@ -11,16 +11,28 @@
 //! (`RibbonLanes::take_out`). A
 //! group short of four ribbons fills its spare lanes with copies of its
 //! first: they compute harmless numbers that nothing reads.
+//!
+//! A point lying still on the room rests for the step (`Rest`): held where
+//! it lies, as an anchored end is, so no fall, push or friction is worked
+//! out for it; and where every lane's points rest from some point to the
+//! end, the substeps stop at the first of them (`active`), so a ribbon
+//! lying on the floor costs what its moving part does. A point rests only
+//! while it, the point before it and every point after it ended the last
+//! step exactly still (friction held them: a ribbon dragged along the floor
+//! slips somewhere along its lying part, and rests nowhere), lying on a room
+//! triangle near it, apart from every body near the ribbon; a move ends the
+//! rest of the point after it the next step, so a pull that starts reaches
+//! along a lying ribbon a point a step.
 
 use std::ops::Range;
 
 use super::body_spheres::BodySpheres;
 use super::chain::Knots;
-use super::collide::{Grip, NearBalloon};
+use super::collide::{NearBalloon, NearTriangle};
 use super::lane_pushes::NearSlot;
-use super::lane_room::RoomSlot;
+use super::lane_room::{RoomSlot, TriangleSlot};
 use super::solve::ActiveRibbon;
-use super::{Ribbon, MAX_SEGMENTS};
+use super::{Ribbon, MAX_SEGMENTS, RIBBON_RADIUS};
 use crate::solver::lanes::{set, F4, LANES, M4, V4};
 use glam::{Mat3, Vec3};
 
@@ -66,14 +78,16 @@ pub(crate) struct LaneGroup {
     pub touch_normal: Vec<V4>,
     pub touch_velocity: Vec<V4>,
     pub touched: bool,
-    /// Per point and lane (`point * LANES + lane`), in lanes near the room:
-    /// its friction against the room over the step's substeps; plain, not
-    /// lane-shuffled, since only the scalar room push reads it.
-    pub grips: Vec<Grip>,
-    /// The room's triangles near the lanes lined up across them, the lanes
-    /// that have any (bit `l` for lane `l`), and per point the lanes whose
-    /// grip holds friction (`lane_room`).
+    /// Per point, in lanes near the room: its friction against the room
+    /// over the step's substeps (`collide::Grip`, the lanes' `left` and
+    /// `anchor`).
+    pub grip_left: Vec<V4>,
+    pub grip_anchor: Vec<V4>,
+    /// The room's planes and triangles near the lanes lined up across them,
+    /// the lanes that have any (bit `l` for lane `l`), and per point the
+    /// lanes whose grip holds friction (`lane_room`).
     pub room_slots: Vec<RoomSlot>,
+    pub triangle_slots: Vec<TriangleSlot>,
     pub room_lanes: u32,
     pub gripped: Vec<u8>,
     /// Per point, once `windy`: the air's velocity there this step, sampled
@@ -108,6 +122,82 @@ pub(crate) struct LaneGroup {
     /// Bit l: lane l's ribbon touches another as the last pass left them,
     /// and is solved with its contacts (`touch::held`), not in the lanes.
     pub held_lanes: u8,
+    /// Per point, the lanes (bit `l` for lane `l`) where it rests this step,
+    /// and its inverse mass were it not resting.
+    pub rested: Vec<u8>,
+    pub free_inv_mass: Vec<F4>,
+    /// How far the room's friction holds a point against a pull over a
+    /// substep, per kilogram of it: μ·g·h² (m·kg⁻¹·kg, so kg·m a kilogram).
+    pub rest_hold: f32,
+    /// Per lane, the first point of its resting tail (the point count if
+    /// none rests).
+    pub rest_from: [usize; LANES],
+    /// The points the substeps move and solve: `active..` rest in every lane
+    /// (all of them if none do); at least three.
+    pub active: usize,
+}
+
+/// A point lying this close to its radius over a room triangle's plane
+/// lies on it, m (a push leaves it at the radius, to rounding).
+const LYING_WITHIN: f32 = 1e-5;
+
+/// What tells which of a ribbon's points may rest this step: the room's
+/// triangles and the bodies near it, and every body's sphere (widened by
+/// its move this step and the margin, `NearbyBodies`).
+#[derive(Clone, Copy)]
+pub(crate) struct Rest<'a> {
+    pub triangles: &'a [NearTriangle],
+    pub bodies: &'a [u32],
+    pub centers: &'a [Vec3],
+    pub radii: &'a [f32],
+}
+
+impl Rest<'_> {
+    /// Which of `ribbon`'s points (not its knot) rest, into `rests`: those
+    /// that, with the point before them and every point after, ended the
+    /// last step exactly still, lie on a near triangle, and no near body's
+    /// sphere reaches.
+    fn find(&self, ribbon: &Ribbon, rests: &mut [bool]) {
+        let (v, points) = (&ribbon.velocities, &ribbon.points);
+        let n = v.len() - 1;
+        // The still tail: from `still_from` to the end, every point ended the
+        // last step exactly still.
+        let still_tail = v.iter().rev().take_while(|v| **v == Vec3::ZERO).count();
+        let still_from = v.len() - still_tail;
+        let mut lo = Vec3::splat(f32::INFINITY);
+        let mut hi = Vec3::splat(f32::NEG_INFINITY);
+        for i in 1..=n {
+            let (p, radius) = (points[i], ribbon.radius(i));
+            rests[i] = i > still_from
+                && self.triangles.iter().any(|t| {
+                    let height = (p - t.corners[0]).dot(t.normal);
+                    (height - radius).abs() <= LYING_WITHIN
+                        && t.edges().within(p - height * t.normal, radius) == Some(true)
+                });
+            if rests[i] {
+                (lo, hi) = (lo.min(p), hi.max(p));
+            }
+        }
+        if lo.x > hi.x {
+            return;
+        }
+        // The bodies whose spheres meet the resting points' box (grown by
+        // the largest radius), each against those points.
+        let reach = Vec3::splat(ribbon.radius(n).max(RIBBON_RADIUS));
+        let (lo, hi) = (lo - reach, hi + reach);
+        for &b in self.bodies {
+            let (c, r) = (self.centers[b as usize], self.radii[b as usize]);
+            if c.clamp(lo, hi).distance_squared(c) > r * r {
+                continue;
+            }
+            for i in 1..=n {
+                let reach = r + ribbon.radius(i);
+                if rests[i] && points[i].distance_squared(c) < reach * reach {
+                    rests[i] = false;
+                }
+            }
+        }
+    }
 }
 
 impl LaneGroup {
@@ -129,7 +219,12 @@ impl LaneGroup {
         self.held_lanes = 0;
         self.air_speed = F4::ZERO;
         self.inv_mass.resize(points, F4::ZERO);
-        self.grips.resize(points * LANES, Grip::new(Vec3::ZERO));
+        self.rested.clear();
+        self.rested.resize(points, 0);
+        self.free_inv_mass.resize(points, F4::ZERO);
+        self.rest_from = [points; LANES];
+        self.grip_left.resize(points, V4::ZERO);
+        self.grip_anchor.resize(points, V4::ZERO);
         self.room_lanes = 0;
         self.step_impulse = V4::ZERO;
         self.substeps = 0;
@@ -137,15 +232,25 @@ impl LaneGroup {
     }
 
     /// Puts `r`, whose points are `ribbon`'s, in the next lane: an anchored
-    /// end where it is tied, still; a held point of no inverse mass.
-    fn add(&mut self, r: &ActiveRibbon, ribbon: &Ribbon) {
+    /// end where it is tied, still; a held point of no inverse mass; with
+    /// `rest`, a point that rests held too.
+    /// `from`: the first point of its resting tail (the point count if
+    /// none rests).
+    fn add(&mut self, r: &ActiveRibbon, ribbon: &Ribbon, from: usize) {
         let l = self.live;
         self.live += 1;
         let n = ribbon.points.len() - 1;
+        self.rest_from[l] = from;
         for (i, (p, v)) in ribbon.points.iter().zip(&ribbon.velocities).enumerate() {
             self.points[i].set_lane(l, *p);
             self.velocities[i].set_lane(l, *v);
-            set(&mut self.inv_mass[i], l, r.inv_mass(i, n));
+            let free = r.inv_mass(i, n);
+            set(&mut self.free_inv_mass[i], l, free);
+            let rests = i >= from && free > 0.0;
+            if rests {
+                self.rested[i] |= 1 << l;
+            }
+            set(&mut self.inv_mass[i], l, if rests { 0.0 } else { free });
         }
         if let Some(anchor) = r.anchor {
             self.points[n].set_lane(l, anchor);
@@ -168,10 +273,28 @@ impl LaneGroup {
         lane.grab_speed = r.grab_speed;
     }
 
-    /// Fills the spare lanes with copies of the first, and sets `live_mask`.
+    /// Fills the spare lanes with copies of the first, and sets `live_mask`
+    /// and `active`.
     fn pad(&mut self) {
         let all = F4::splat(f32::from_bits(!0));
         let live = self.live;
+        // The spare lanes rest where the first does.
+        let every = (1u8 << LANES) - 1;
+        let spare = every & !((1u8 << live) - 1);
+        for r in &mut self.rested {
+            if *r & 1 != 0 {
+                *r |= spare;
+            }
+        }
+        for l in live..LANES {
+            self.rest_from[l] = self.rest_from[0];
+        }
+        for x in &mut self.free_inv_mass {
+            for l in live..LANES {
+                set(x, l, x.as_array()[0]);
+            }
+        }
+        self.set_active();
         if live == LANES {
             self.live_mask = all;
             return;
@@ -205,6 +328,48 @@ impl LaneGroup {
             lane.grab = None;
             lane.reactions.clear();
             lane.near.clear();
+        }
+    }
+
+    /// `active`: the chains end at the first point from which every lane
+    /// rests (it held), at the third point at the earliest.
+    fn set_active(&mut self) {
+        let every = (1u8 << LANES) - 1;
+        let resting = self.rested.iter().rev().take_while(|&&r| r == every);
+        self.active = (self.points.len() - resting.count() + 1).clamp(3, self.points.len());
+    }
+
+    /// Ends the rest of the lanes in `lanes` (bit `l` for lane `l`) from
+    /// here on: their resting points free again, still where they lie, with
+    /// nothing held against the room yet this step.
+    pub(super) fn end_rest(&mut self, lanes: u32) {
+        let before = self.active;
+        for l in (0..LANES).filter(|l| lanes & (1 << l) != 0) {
+            let from = std::mem::replace(&mut self.rest_from[l], self.points.len());
+            for i in from..self.points.len() {
+                if self.rested[i] & (1 << l) == 0 {
+                    continue;
+                }
+                self.rested[i] &= !(1 << l);
+                set(
+                    &mut self.inv_mass[i],
+                    l,
+                    self.free_inv_mass[i].as_array()[l],
+                );
+                let p: Vec3 = self.points[i].lane(l);
+                self.start[i].set_lane(l, p);
+                self.grip_anchor[i].set_lane(l, p);
+                self.grip_left[i].set_lane(l, Vec3::ZERO);
+            }
+        }
+        self.set_active();
+        // The points the substeps now reach, resting in the other lanes or
+        // not, start the rest of the substep where they lie (past `active`
+        // nothing kept their start).
+        for i in before..self.active {
+            self.start[i] = self.points[i];
+            self.grip_anchor[i] = self.points[i];
+            self.grip_left[i] = V4::ZERO;
         }
     }
 
@@ -243,7 +408,8 @@ pub(crate) struct RibbonLanes {
     /// Per awake ribbon, in the solver's order: its group and lane (pulls
     /// are applied in this order, whatever the grouping).
     pub order: Vec<(u32, u32)>,
-    /// Per segment count: the group being filled (`u32::MAX`: none).
+    /// Per segment count, and whether more than half rests: the group being
+    /// filled (`u32::MAX`: none).
     filling: Vec<u32>,
     /// The bodies' spheres at the substep's pose.
     pub bodies: BodySpheres,
@@ -260,14 +426,25 @@ impl RibbonLanes {
         self.used = 0;
         self.order.clear();
         self.filling.clear();
-        self.filling.resize(MAX_SEGMENTS as usize + 1, u32::MAX);
+        self.filling
+            .resize(2 * (MAX_SEGMENTS as usize + 1), u32::MAX);
     }
 
     /// Lays out the next awake ribbon `r`, whose points are `ribbon`'s: in
-    /// the latest group of its segment count with a free lane.
-    pub fn add(&mut self, r: &ActiveRibbon, ribbon: &Ribbon) {
+    /// the latest group of its segment count with a free lane; with `rest`,
+    /// its points lying still rest (`Rest`).
+    pub fn add(&mut self, r: &ActiveRibbon, ribbon: &Ribbon, rest: Option<Rest>) {
         let segments = ribbon.points.len() - 1;
-        let mut g = self.filling[segments];
+        let mut rests = [false; MAX_SEGMENTS as usize + 1];
+        if let Some(rest) = rest {
+            rest.find(ribbon, &mut rests);
+        }
+        // A tail: from the last point that does not rest on, none is held.
+        let tail = rests[..=segments].iter().rev().take_while(|&&r| r).count();
+        // Ribbons resting over more than half their points share groups,
+        // whose substeps then stop early, apart from the others.
+        let key = segments * 2 + usize::from(2 * tail > segments);
+        let mut g = self.filling[key];
         if g == u32::MAX || self.groups[g as usize].live == LANES {
             g = self.used as u32;
             if self.groups.len() == self.used {
@@ -275,11 +452,11 @@ impl RibbonLanes {
             }
             self.used += 1;
             self.groups[g as usize].begin(segments);
-            self.filling[segments] = g;
+            self.filling[key] = g;
         }
         let group = &mut self.groups[g as usize];
         self.order.push((g, group.live as u32));
-        group.add(r, ribbon);
+        group.add(r, ribbon, segments + 1 - tail);
     }
 
     /// Pads the groups once every awake ribbon is added.

@@ -8,10 +8,10 @@ use glam::Vec3;
 use up_geom::Sphere;
 
 use super::body_spheres::{BodySpheres, Bound};
-use super::collide::{push_out_of_balloon, push_out_of_room, Grip, NearBalloon, NearTriangle};
+use super::collide::{push_out_of_balloon, NearBalloon, NearTriangle};
 use super::lane_group::LaneGroup;
 use super::solve::SubstepInput;
-use super::{BALLOON_FRICTION, RIBBON_RADIUS, ROOM_FRICTION};
+use super::{BALLOON_FRICTION, RIBBON_RADIUS};
 use crate::solver::body_state::BodyState;
 use crate::solver::lanes::{set, F4, LANES, V4};
 
@@ -48,7 +48,8 @@ impl LaneGroup {
     pub(super) fn push_out_of_balloons(&mut self, near: &NearInput) {
         self.touched = false;
         let (mut lo, mut hi) = (self.points[1], self.points[1]);
-        for p in &self.points[2..] {
+        // Points past `active` rest: nothing pushes them.
+        for p in &self.points[2..self.active] {
             lo = V4::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z));
             hi = V4::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
         }
@@ -73,8 +74,7 @@ impl LaneGroup {
             }
             self.near_slots.push(slot);
         }
-        let n = self.points.len() - 1;
-        for i in 1..=n {
+        for i in 1..self.active {
             let movable = self.inv_mass[i].simd_gt(F4::ZERO).to_bitmask();
             let radius = self.radius(i);
             for k in 0..most {
@@ -159,15 +159,15 @@ impl LaneGroup {
     }
 
     /// Pushes each ribbon's movable points out of the room's triangles near
-    /// it, those that may touch it (`near_room`); `first`: the step's first
-    /// push, its friction from nothing yet.
+    /// it, those that may touch it (`near_room`), four lanes at once
+    /// (`lane_room`); `first`: the step's first push, its friction from
+    /// nothing yet.
     pub(super) fn push_out_of_room(&mut self, triangles: &[NearTriangle], first: bool) {
         if first {
             self.line_up_room(triangles);
-            for l in (0..self.live).filter(|l| self.room_lanes & (1 << l) != 0) {
-                for (i, start) in self.start.iter().enumerate() {
-                    self.grips[i * LANES + l] = Grip::new(start.lane(l));
-                }
+            if self.room_lanes != 0 {
+                self.grip_left.fill(V4::ZERO);
+                self.grip_anchor.copy_from_slice(&self.start);
             }
         }
         if self.room_lanes == 0 {
@@ -180,18 +180,10 @@ impl LaneGroup {
             }
             _ => &[],
         });
-        for i in 1..self.points.len() {
-            let mut lanes = self.near_room(i);
-            while lanes != 0 {
-                let l = lanes.trailing_zeros() as usize;
-                lanes &= lanes - 1;
-                let near = near_of[l];
-                let (start, radius) = (self.start[i].lane(l), self.radius(i).as_array()[l]);
-                let point: Vec3 = self.points[i].lane(l);
-                let grip = &mut self.grips[i * LANES + l];
-                let point = push_out_of_room(point, start, radius, ROOM_FRICTION, near, grip);
-                self.points[i].set_lane(l, point);
-                self.note_grip(l, i);
+        for i in 1..self.active {
+            let lanes = self.near_room(i);
+            if lanes != 0 {
+                self.push_point_out_of_room(i, lanes, &near_of);
             }
         }
     }

@@ -12,6 +12,7 @@ use super::chain::{div, norm, solve_chains, ChainRows, Knots};
 use super::lane_group::{set_matrix, LaneGroup};
 use super::lane_pushes::NearInput;
 use super::solve::{SubstepInput, CHAIN_ITERATIONS, CHAIN_TOLERANCE};
+use super::ROOM_FRICTION;
 use crate::forces::field::PointSample;
 use crate::solver::body_state::BodyState;
 use crate::solver::lanes::{prefetch, set, F4, LANES, V4};
@@ -138,16 +139,19 @@ impl LaneGroup {
     fn fall(&mut self, input: &SubstepInput, h: f32) {
         let n = self.points.len() - 1;
         self.start[0] = self.points[0];
+        // Points past `active` rest where they lie, still.
+        let last = self.active - 1;
         if self.substeps == 0 {
             if let Some(air) = input.air {
                 self.sample_air(air);
             }
         }
+        self.rest_hold = ROOM_FRICTION * up_geom::norm::Norm::norm(input.gravity) * h * h;
         let fields = (!input.fields.is_empty()).then_some(input.fields);
         let (h4, one) = (F4::splat(h), F4::ONE);
         let hg = h * input.gravity;
         let hg = V4::new(F4::splat(hg.x), F4::splat(hg.y), F4::splat(hg.z));
-        for i in 1..=n {
+        for i in 1..=last {
             self.start[i] = self.points[i];
             let inv_mass = self.inv_mass[i];
             let movable = inv_mass.simd_ne(F4::ZERO);
@@ -286,17 +290,31 @@ impl LaneGroup {
                 return moving;
             }
         }
+        // Lanes with a resting tail, and the pull their first resting point
+        // takes from the segment before it over this solve, kg·m.
+        let resting = (0..LANES).filter(|&l| self.rest_from[l] < self.points.len());
+        let resting = resting.fold(0u32, |bits, l| bits | 1 << l);
+        let mut pull = [0.0f32; LANES];
         ROWS.with_borrow_mut(|rows| {
-            rows.resize(self.points.len() - 1);
+            // The chains end at the first point resting in every lane (held).
+            let active = self.active;
+            rows.resize(active - 1);
             for _ in 0..CHAIN_ITERATIONS {
                 let (impulse, worst) = solve_chains(
-                    &mut self.points,
-                    &self.inv_mass,
+                    &mut self.points[..active],
+                    &self.inv_mass[..active],
                     self.segment_length,
                     knots,
                     moving,
                     rows,
                 );
+                let solved = moving.to_bitmask();
+                for (l, pull) in pull.iter_mut().enumerate() {
+                    if resting & solved & (1 << l) != 0 {
+                        let lambda = rows.lambda(self.rest_from[l] - 1).as_array()[l];
+                        *pull += lambda.abs();
+                    }
+                }
                 // The knot moves with its body's share before the next solve.
                 let knot = self.points[0] + knots.point_motion(impulse);
                 self.points[0] = V4::select(moving, knot, self.points[0]);
@@ -307,6 +325,18 @@ impl LaneGroup {
                 }
             }
         });
+        // A resting tail pulled (or pushed) harder than the room's friction
+        // holds its first point moves again from here on: the points it held
+        // back then follow in the next solve, with their friction.
+        let pulled = (0..LANES).filter(|&l| {
+            let first = self.rest_from[l];
+            resting & (1 << l) != 0
+                && pull[l] > self.rest_hold / self.free_inv_mass[first].as_array()[l]
+        });
+        let pulled = pulled.fold(0u32, |bits, l| bits | 1 << l);
+        if pulled != 0 {
+            self.end_rest(pulled);
+        }
         moving
     }
 
@@ -319,7 +349,7 @@ impl LaneGroup {
     /// round. A held point stays.
     fn follow_the_leader(&mut self, lanes: F4) {
         let length = self.segment_length;
-        for i in 1..self.points.len() {
+        for i in 1..self.active {
             let d = self.points[i] - self.points[i - 1];
             let len = norm(d);
             let pulled = self.points[i - 1] + (length / len) * d;
@@ -333,7 +363,8 @@ impl LaneGroup {
     /// latex is inelastic); the knot's, its balloon's at the knot.
     fn update_velocities(&mut self, h: f32, states: &[BodyState]) {
         let inv_h = F4::splat(1.0 / h);
-        for i in 1..self.points.len() {
+        // Those past `active` rest: still, as they were.
+        for i in 1..self.active {
             let mut v = inv_h * (self.points[i] - self.start[i]);
             if self.touched {
                 let normal = self.touch_normal[i];

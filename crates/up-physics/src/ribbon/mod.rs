@@ -32,7 +32,7 @@ mod body_spheres;
 pub(crate) mod chain;
 pub(crate) mod collide;
 mod hang_path;
-mod lane_group;
+pub(crate) mod lane_group;
 mod lane_pushes;
 mod lane_room;
 mod lane_substep;

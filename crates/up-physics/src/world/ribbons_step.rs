@@ -7,6 +7,7 @@ use up_geom::norm::Norm;
 use up_geom::Aabb;
 
 use super::World;
+use crate::ribbon::lane_group::Rest;
 use crate::ribbon::nearby::{sphere_meets_box, NearbyBodies, Spheres};
 use crate::ribbon::solve::ActiveRibbon;
 use crate::ribbon::GRAB_MAX_SPEED;
@@ -218,7 +219,16 @@ impl World {
             lists.near(slot, &aabb, spheres, room, bodies, triangles);
             r.bodies = first_body as u32..stage.bodies.len() as u32;
             r.triangles = first_triangle as u32..stage.triangles.len() as u32;
-            stage.lanes.add(r, ribbon);
+            // Points lying still rest, but not where ribbons touch each
+            // other (their contacts move points the lanes hold) or a point
+            // is carried.
+            let rest = (!self.def.ribbon_contacts && r.grab.is_none()).then(|| Rest {
+                triangles: &stage.triangles[first_triangle..],
+                bodies: &stage.bodies[first_body..],
+                centers: spheres.centers,
+                radii: spheres.radii,
+            });
+            stage.lanes.add(r, ribbon, rest);
         }
         stage.awake = count;
         stage.lanes.finish_packing();
