@@ -9,8 +9,6 @@ use std::sync::Arc;
 
 use common::*;
 use glam::{Quat, Vec3};
-use up_physics::forces::buoyancy::buoyancy_force;
-use up_physics::forces::gravity::gravity_force;
 use up_physics::ribbon::{RibbonDef, ROOM_FRICTION, WEIGHT_RADIUS};
 use up_physics::{BodyId, FieldSample, ForceField, RibbonId, World, WorldDef};
 
@@ -42,10 +40,9 @@ struct Pull {
 
 impl ForceField for Pull {
     fn force(&self, body: &FieldSample) -> Vec3 {
-        let own = gravity_force(body.mass, self.gravity)
-            + buoyancy_force(self.air_density, body.volume, self.gravity);
         let ramp = (body.time / RAMP_SECONDS).min(1.0) as f32;
-        LIFT * Vec3::Y - own + ramp * self.side * Vec3::X
+        lift_in_place_of_weight(body, self.gravity, self.air_density, LIFT)
+            + ramp * self.side * Vec3::X
     }
 }
 

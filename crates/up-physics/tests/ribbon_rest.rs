@@ -10,8 +10,6 @@ use std::sync::Arc;
 
 use common::*;
 use glam::{Quat, Vec3};
-use up_physics::forces::buoyancy::buoyancy_force;
-use up_physics::forces::gravity::gravity_force;
 use up_physics::ribbon::RibbonDef;
 use up_physics::{FieldSample, ForceField, WorldDef};
 
@@ -35,11 +33,9 @@ struct Pull {
 
 impl ForceField for Pull {
     fn force(&self, body: &FieldSample) -> Vec3 {
-        let own = gravity_force(body.mass, self.gravity)
-            + buoyancy_force(self.air_density, body.volume, self.gravity);
         let pulled = body.time >= SETTLED && body.center.z < 0.5;
         let side = if pulled { SIDE } else { 0.0 };
-        LIFT * Vec3::Y - own + side * Vec3::X
+        lift_in_place_of_weight(body, self.gravity, self.air_density, LIFT) + side * Vec3::X
     }
 }
 

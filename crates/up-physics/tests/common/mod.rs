@@ -4,7 +4,9 @@
 
 use glam::{Mat3, Quat, Vec3};
 use up_geom::{Pose, Sphere, SphereTree, TriMesh};
-use up_physics::{BalloonShape, BodyDef, BodyId, ShapeId, World, WorldDef};
+use up_physics::forces::buoyancy::buoyancy_force;
+use up_physics::forces::gravity::gravity_force;
+use up_physics::{BalloonShape, BodyDef, BodyId, FieldSample, ShapeId, World, WorldDef};
 
 /// Head radius of the reference balloon, m.
 pub const HEAD_RADIUS: f32 = 0.14;
@@ -142,4 +144,16 @@ pub fn sixty_released() -> World {
         add(&mut world, shape, Vec3::new(x, 0.3, z), q);
     }
     world
+}
+
+/// The force that leaves `lift` N straight up on a body in place of its
+/// weight and buoyancy, so that what its ribbon or the floor bears is known.
+pub fn lift_in_place_of_weight(
+    body: &FieldSample,
+    gravity: Vec3,
+    air_density: f32,
+    lift: f32,
+) -> Vec3 {
+    let own = gravity_force(body.mass, gravity) + buoyancy_force(air_density, body.volume, gravity);
+    lift * Vec3::Y - own
 }
