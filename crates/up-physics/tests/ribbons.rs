@@ -446,6 +446,68 @@ fn balloons_and_their_ribbons_fall_asleep_and_wake_together() {
 }
 
 #[test]
+fn a_balloon_does_not_rest_while_its_ribbon_swings() {
+    // A balloon resting against the ceiling, its ribbon's end drawn 30 cm
+    // aside and let go: the ribbon swings under it, and the balloon may not
+    // fall asleep (freezing the ribbon mid-swing) until the swing has died
+    // down to about the sleep speed, whatever its knot does meanwhile.
+    let (mut world, id, ribbon) =
+        balloon_on_ribbon(Some((6.0, 3.0)), Vec3::new(0.0, 2.0, 0.0), |body| {
+            RibbonDef::new(body, KNOT, 1.5, 16)
+        });
+    for _ in 0..(3 * 60) {
+        world.step();
+    }
+    let end = *world.ribbon_points(ribbon).unwrap().last().unwrap();
+    world.grab_ribbon(ribbon, 16, end).unwrap();
+    for k in 1..=30 {
+        world
+            .set_grab_target(end + Vec3::new(0.3 * k as f32 / 30.0, 0.0, 0.0))
+            .unwrap();
+        world.step();
+    }
+    world.release_grab();
+    let dt = world.def().dt;
+    let slow = world.def().sleep_linear_speed;
+    let mut last: Vec<Vec3> = world.ribbon_points(ribbon).unwrap().to_vec();
+    let mut swing = Vec::new();
+    for _ in 0..(60 * 60) {
+        world.step();
+        if world.is_awake(id) == Some(false) {
+            break;
+        }
+        let now = world.ribbon_points(ribbon).unwrap();
+        let sum: f32 = now
+            .iter()
+            .zip(&last)
+            .skip(1)
+            .map(|(a, b)| (*a - *b).length_squared())
+            .sum();
+        swing.push((sum / (now.len() - 1) as f32).sqrt() / dt);
+        last = now.to_vec();
+    }
+    assert_eq!(world.is_awake(id), Some(false), "never rested");
+    // Over the half second before it rested (the rest clock's), the
+    // ribbon's points moved no faster than the sleep speed past what a
+    // resting balloon may turn its knot at (its own sleep speeds, the knot
+    // 0.2 m from its centre): the swing had died down from tens of cm/s.
+    let before = &swing[swing.len().saturating_sub(30)..];
+    let fastest = before.iter().fold(0.0f32, |m, &v| m.max(v));
+    let at_first = swing.iter().take(60).fold(0.0f32, |m, &v| m.max(v));
+    let knot_may = slow + world.def().sleep_angular_speed * KNOT.length();
+    println!(
+        "swung at {at_first:.3} m/s; rested {:.1} s after the release, the ribbon at most \
+         {fastest:.4} m/s the last 0.5 s",
+        swing.len() as f32 * dt
+    );
+    assert!(at_first > 0.1, "the ribbon hardly swung: {at_first} m/s");
+    assert!(
+        fastest < slow + knot_may,
+        "rested while its ribbon swung at {fastest} m/s"
+    );
+}
+
+#[test]
 fn a_balloon_pulled_down_by_its_ribbon_follows_it() {
     let (mut world, id, ribbon) =
         balloon_on_ribbon(Some((6.0, 3.0)), Vec3::new(0.0, 2.0, 0.0), |body| {

@@ -186,6 +186,17 @@ impl Ribbon {
         (sum / self.segments() as f32).sqrt()
     }
 
+    /// Root-mean-square speed of the points past the knot relative to the
+    /// knot, m/s: 0 for a ribbon its balloon drags along rigidly.
+    pub fn rms_speed_past_knot(&self) -> f32 {
+        let knot = self.velocities[0];
+        let sum: f32 = self.velocities[1..]
+            .iter()
+            .map(|v| (*v - knot).length_squared())
+            .sum();
+        (sum / self.segments() as f32).sqrt()
+    }
+
     /// Total mass, weight included, kg.
     pub fn total_mass(&self) -> f32 {
         self.point_mass * (self.segments() - 1) as f32 + self.end_mass

@@ -278,10 +278,12 @@ impl World {
             }
             // Beyond what its knot moves: a balloon slow enough to rest (under
             // the sleep speeds) may still turn its knot at a few mm/s, and the
-            // ribbon it drags must not keep it awake for that alone.
+            // ribbon it drags must not keep it awake for that alone; a ribbon
+            // swinging against its knot moves past it by its own speed and more.
             let knot_speed = ribbon.velocities[0].length();
-            stage.moving[i] = ribbon.rms_speed() >= slow + knot_speed
-                || r.air_speed >= crate::air::RESTLESS_AIR_SPEED;
+            let speed = ribbon.rms_speed().max(ribbon.rms_speed_past_knot());
+            stage.moving[i] =
+                speed >= slow + knot_speed || r.air_speed >= crate::air::RESTLESS_AIR_SPEED;
             max_stretch = max_stretch.max(ribbon.stretch());
         }
         stage.lanes.clear();
