@@ -2,10 +2,11 @@
 //! rest and falls asleep. Fitted over its face it leans its face on the
 //! ceiling (its rim, a seam, cannot hold it on edge: the net lift acts
 //! below the seam's top) and rests on a few of its leaves. A tree whose
-//! leaves leave the net lift barely inside the few that touch rocks between
-//! them for ever in the 1/60 s step, its ribbon swinging at about the sleep
-//! speed (docs/perf-log.md, 2026-12-05): this keeps the tree the scenes get
-//! from doing that, over ribbons of several lengths and weights.
+//! leaves leave the net lift barely inside the few that touch can rock
+//! between them in the 1/60 s step, dragging its ribbon (docs/perf-log.md,
+//! 2026-12-05 and 2026-12-06); a rocking pillow under the sleep speeds may
+//! now rest, one above them may not: this keeps the tree the scenes get
+//! settling, over ribbons of several lengths and weights.
 
 use up_scene::build::build_world;
 use up_scene::scene::Scene;

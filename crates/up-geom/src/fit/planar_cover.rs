@@ -67,20 +67,25 @@ const K_MEANS_ITERATIONS: usize = 40;
 const ROUND_COLUMNS: usize = 64;
 /// Columns across the plane when a placement's union is weighed.
 const EXCESS_COLUMNS: usize = 128;
-/// Rounds of the even cover.
+/// Rounds of the even cover, and of the capped cover's share-out.
 const EVEN_ROUNDS: usize = 4;
 /// How much higher (relatively) the tight cover's largest sphere may stand
 /// than the even cover's.
 const TOP_SLACK: f64 = 1e-4;
-/// The capped cover's cap, as a share of the way from the surface's highest
-/// point to the even cover's largest sphere (it shapes where the cells go;
-/// the cover that comes of it is weighed by its own largest sphere).
+/// The capped cover's cap over the surface's highest point, as a share of
+/// the way from that point to the even cover's largest sphere (the caps
+/// decide where the cells go and how the triangles are shared out; the
+/// cover that comes of it is weighed by its own largest sphere).
 const CAP_SHARE: f64 = 0.5;
 /// Times the triangles are split in four for the capped cover: a sphere
 /// must hold whole triangles, and a coarse mesh's (a pillow's are 2.7 cm
 /// long across its middle) keep the cells there from being small.
 const CAPPED_SPLITS: usize = 2;
-/// Rounds of shrinking a capped cover under its largest sphere.
+/// No split that would pass this many triangles (the pillow's 2,400 split
+/// twice come to 38,400): a fine mesh needs none, and its pieces' cost
+/// grows as their count.
+const CAPPED_TRIANGLES: usize = 40_000;
+/// Rounds of shrinking a capped cover within its worst overshoot.
 const TIGHTEN_ROUNDS: usize = 6;
 /// How fast the capped cover's caps drop where the surface does, as a
 /// share of its drop: the tops form a dome, so that a flat shape lying on a
@@ -390,10 +395,15 @@ fn height_over(tris: &[[DVec3; 3]], c: DVec2) -> f64 {
 /// no sphere stands further past its cap than it must, then shrunk within
 /// that; with the largest sphere's radius.
 fn capped_cover(surface: &Surface, dome: Dome, count: usize) -> (f64, Vec<PlanarSphere>) {
-    let mut fine = surface.split();
-    for _ in 1..CAPPED_SPLITS {
-        fine = fine.split();
+    let mut fine = None::<Surface>;
+    for _ in 0..CAPPED_SPLITS {
+        let last = fine.as_ref().unwrap_or(surface);
+        if 4 * last.tris.len() > CAPPED_TRIANGLES {
+            break;
+        }
+        fine = Some(last.split());
     }
+    let fine = fine.as_ref().unwrap_or(surface);
     let mut centres = start_under(&fine.tris, dome, count);
     let caps = |centres: &[DVec2]| -> Vec<f64> {
         centres
@@ -421,7 +431,7 @@ fn capped_cover(surface: &Surface, dome: Dome, count: usize) -> (f64, Vec<Planar
         if round + 1 == EVEN_ROUNDS {
             break;
         }
-        move_to_least_radius(&fine, &owner, &mut centres);
+        move_to_least_radius(fine, &owner, &mut centres);
         cap = caps(&centres);
         worst_past = radii_of(tris, &owner, &centres)
             .iter()
@@ -446,7 +456,7 @@ fn capped_cover(surface: &Surface, dome: Dome, count: usize) -> (f64, Vec<Planar
             }
             *o = pick.1;
         }
-        move_to_least_radius(&fine, &owner, &mut centres);
+        move_to_least_radius(fine, &owner, &mut centres);
         cap = caps(&centres);
     }
     let spheres = spheres_of(tris, &owner, &centres);
@@ -763,6 +773,47 @@ mod tests {
         let v = union_volume_on_plane(&s, 400);
         let ball = 4.0 / 3.0 * std::f64::consts::PI * 0.125;
         assert!((v / ball - 1.0).abs() < 1e-3, "{v} vs {ball}");
+    }
+
+    #[test]
+    fn the_height_over_a_point_is_the_triangles_whichever_way_they_wind() {
+        let a = DVec3::new(0.0, 0.0, 0.1);
+        let b = DVec3::new(1.0, 0.0, 0.3);
+        let c = DVec3::new(0.0, 1.0, -0.1);
+        let at = DVec2::new(0.25, 0.25);
+        // z there: 0.5·0.1 + 0.25·0.3 + 0.25·(−0.1) = 0.1.
+        let expected = 0.1;
+        for t in [[a, b, c], [a, c, b]] {
+            assert!((height_over(&[t], at) - expected).abs() < 1e-12);
+            assert_eq!(height_over(&[t], DVec2::new(0.8, 0.8)), 0.0);
+        }
+        let high = [a + DVec3::Z, b + DVec3::Z, c + DVec3::Z];
+        assert!((height_over(&[[a, b, c], high], at) - (1.0 + expected)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_split_surface_tiles_each_triangle_and_shares_its_edges_midpoints() {
+        let points = vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 0.0, 0.2),
+            DVec3::new(0.0, 1.0, 0.4),
+            DVec3::new(1.0, 1.0, 0.0),
+        ];
+        let surface = Surface::new(vec![[0, 1, 2], [1, 3, 2]], points);
+        let fine = surface.split();
+        assert_eq!(fine.tris.len(), 8);
+        // 4 corners and 5 edges' midpoints (the shared edge once).
+        assert_eq!(fine.points.len(), 9);
+        let area = |t: &[DVec3; 3]| 0.5 * (t[1] - t[0]).cross(t[2] - t[0]).length();
+        let whole: f64 = surface.tris.iter().map(area).sum();
+        let pieces: f64 = fine.tris.iter().map(area).sum();
+        assert!((whole - pieces).abs() < 1e-12, "{whole} against {pieces}");
+        for t in &fine.tris {
+            let normal = (t[1] - t[0]).cross(t[2] - t[0]);
+            let before = (surface.tris[0][1] - surface.tris[0][0])
+                .cross(surface.tris[0][2] - surface.tris[0][0]);
+            assert!(normal.z * before.z > 0.0, "a piece turned over");
+        }
     }
 
     #[test]

@@ -289,7 +289,7 @@ pub fn build_balloon_with(
     };
     let custom = matches!(surface, BalloonSurface::Custom { .. });
     let flat = match surface {
-        // The pillow is flat too (over its face: tightness 1.41, where
+        // The pillow is flat too (over its face: tightness 1.32, where
         // along its axis it is 3.85); the latex balloon is round.
         BalloonSurface::Standard => spec.kind == EnvelopeKind::Foil,
         BalloonSurface::FoilOutline(_) => true,

@@ -22,7 +22,7 @@ use crate::balloon::outline::OutlineKind;
 
 /// Leaves of a flat shape's tree: spread over its face, fewer leave each one
 /// far thicker than the shape where it sits (`planar_cover`; the 18″
-/// pillow's mesh would be 1.61 with 32, 1.50 with 48, 1.41 with 64).
+/// pillow is 1.32 with 64).
 pub const FLAT_LEAVES: usize = 64;
 
 /// Radius of a custom mesh's knot ball (its mass's place), in units of the

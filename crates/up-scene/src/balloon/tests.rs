@@ -251,6 +251,19 @@ fn the_foil_pillow_is_fitted_over_its_face_and_covers_it() {
             .fold(0.0, f32::max)
     };
     assert!(
+        top_at(0.1) > half * 0.5,
+        "no leaf 10 cm out: {}",
+        top_at(0.1)
+    );
+    // Every vertex of the mesh is inside a leaf (the cover is exact, not
+    // only at the coverage samples).
+    for p in &m.mesh.positions {
+        let inside = tree
+            .leaf_spheres()
+            .any(|s| s.center.distance(*p) <= s.radius);
+        assert!(inside, "vertex {p} outside every leaf");
+    }
+    assert!(
         top_at(0.1) < widest - 0.002,
         "{} against {widest}",
         top_at(0.1)
