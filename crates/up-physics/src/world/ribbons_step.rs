@@ -239,9 +239,9 @@ impl World {
 
     /// Hands the points back to the ribbons, each knot where its balloon
     /// ended the step; keeps the largest stretch; marks the balloons whose
-    /// ribbons still move as a whole (their points' root-mean-square speed
-    /// past their knot's: a free end's millimetre sway alone keeps no pile
-    /// awake) — those may not sleep yet — and those whose ribbons
+    /// ribbons still move as a whole (their points' root-mean-square speed,
+    /// or that past the knot, beyond the knot's own: a free end's millimetre
+    /// sway alone keeps no pile awake) — those may not sleep yet — and those whose ribbons
     /// went non-finite (quarantined with them).
     pub(super) fn finish_ribbons(&mut self) {
         let stage = &mut self.stages.ribbons;
