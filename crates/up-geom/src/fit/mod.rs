@@ -21,8 +21,10 @@ pub mod axial_cover;
 pub mod coverage;
 pub mod mesh_check;
 pub mod mesh_integrals;
+mod planar_capped;
 pub mod planar_cover;
 mod planar_excess;
+mod planar_surface;
 pub mod principal_axis;
 pub mod union_volume;
 
