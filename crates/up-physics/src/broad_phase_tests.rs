@@ -171,3 +171,57 @@ fn woken_pairs_defer_to_a_full_update_when_large_bodies_are_about() {
     bp.update(&center, &radius, &[false, false], 0.2);
     assert!(!bp.add_woken_pairs(&center, &radius, &[false, false], &[true, false]));
 }
+
+/// The table and the pairs are the same on any number of threads: built
+/// fresh (the counting sort in runs), kept with bodies moved within their
+/// cells (entries written in tasks), and rebuilt after some leave them.
+#[cfg(feature = "parallel")]
+#[test]
+fn the_table_is_the_same_on_any_number_of_threads() {
+    let mut rnd = random(777);
+    let n = 5_000;
+    let center: Vec<Vec3> = (0..n)
+        .map(|_| Vec3::new(rnd(), rnd(), rnd()) * 6.0 - 3.0)
+        .collect();
+    let radius: Vec<f32> = (0..n)
+        .map(|i| {
+            if i % 101 == 0 {
+                0.5
+            } else {
+                0.05 + 0.1 * rnd()
+            }
+        })
+        .collect();
+    let awake: Vec<bool> = (0..n).map(|i| i % 7 != 0).collect();
+    // Some woken or put to sleep (in place), then bodies moved out of their cells.
+    let woken: Vec<bool> = (0..n).map(|i| i % 7 != 0 || i % 2 == 0).collect();
+    let moved: Vec<Vec3> = center
+        .iter()
+        .map(|&c| c + Vec3::new(0.05, -0.03, 0.02))
+        .collect();
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut bp = BroadPhase::default();
+            let mut seen = Vec::new();
+            let ordinary: Vec<f32> = radius.iter().map(|&r| r.min(0.2)).collect();
+            // Only ordinary bodies: the kept table is refreshed in place.
+            for (centers, awake) in [(&center, &awake), (&center, &woken), (&moved, &woken)] {
+                bp.update(centers, &ordinary, awake, 0.2);
+                seen.push((bp.pairs.clone(), bp.start.clone(), bp.slot_of.clone()));
+            }
+            // With large bodies: rebuilt each time.
+            bp.update(&center, &radius, &awake, 0.2);
+            seen.push((bp.pairs.clone(), bp.start.clone(), bp.slot_of.clone()));
+            seen
+        })
+    };
+    let one = run(1);
+    assert!(one.iter().all(|(pairs, _, _)| !pairs.is_empty()));
+    for threads in [2, 3, 4] {
+        assert!(run(threads) == one, "{threads} threads");
+    }
+}
