@@ -30,6 +30,12 @@ impl World {
         stage.bound_center.clear();
         stage.bound_radius.clear();
         stage.awake_bodies.clear();
+        // Only a sleeping ribbon is woken: with none (a room without
+        // ribbons, or every ribbon awake) the bodies are not even looked at.
+        let asleep = |body| self.handles.dense(body).is_some_and(|i| !b.awake[i]);
+        if !self.ribbons.iter().any(|(_, r)| asleep(r.body)) {
+            return;
+        }
         // A balloon slower than the sleep speed pushes no ribbon aside to
         // speak of: waking a ribbon for it would keep a pile awake for ever,
         // each group woken by its neighbours as it falls asleep.
@@ -47,8 +53,7 @@ impl World {
                 .push(shape.bound_radius * b.size[i].scale + reach);
             stage.awake_bodies.push(i as u32);
         }
-        let asleep = |body| self.handles.dense(body).is_some_and(|i| !b.awake[i]);
-        if stage.awake_bodies.is_empty() || !self.ribbons.iter().any(|(_, r)| asleep(r.body)) {
+        if stage.awake_bodies.is_empty() {
             return;
         }
         // A few restless bodies are tested against each ribbon directly:
