@@ -299,7 +299,6 @@ fn substep(
                 g.substep_before_solve(&near);
             }
         });
-        touch.begin_substep();
         touch.project(groups, f32::MAX);
         fill_chunks(groups, GROUP_CHUNK, |_, groups| {
             for g in groups {

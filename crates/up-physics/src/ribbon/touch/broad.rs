@@ -21,7 +21,6 @@ impl RibbonTouch {
     /// plus `margin` m (gravity's fall and the speculative distance).
     pub(crate) fn find_pairs(&mut self, lanes: &RibbonLanes, dt: f32, margin: f32) {
         self.pairs.clear();
-        self.passes = 0;
         self.push_out = super::OVERLAP_PUSH_OUT_SPEED * dt;
         self.ribbons.clear();
         self.segment_boxes.clear();
@@ -189,8 +188,6 @@ fn push_pairs(
         end_b: false,
         normal: Vec3::ZERO,
         allowed: 0.0,
-        pushed: 0.0,
-        gripped: Vec3::ZERO,
     };
     super::contact::begin(&mut pair, &lanes.groups, push_out);
     pairs.push(pair);

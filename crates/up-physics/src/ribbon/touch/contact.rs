@@ -104,26 +104,16 @@ impl RibbonTouch {
             g.held_lanes = 0;
         }
         self.held.rows.clear();
-        // Every other pass backward: each push and grip moves the points
-        // the next pair shares, which that pair takes for a slide, so that
-        // passes all in one order walk a draped ribbon along the one under
-        // it; in turns the walks cancel.
-        let backward = self.passes % 2 == 1;
-        self.passes += 1;
-        let n = self.pairs.len();
-        for j in 0..n {
-            let k = if backward { n - 1 - j } else { j };
+        for k in 0..self.pairs.len() {
             let mut pair = self.pairs[k];
-            if let Some((normal, s, t, floor)) =
-                project_pair(&mut pair, groups, self.friction, most)
-            {
+            if let Some((normal, s, t)) = project_pair(&mut pair, groups, self.friction, most) {
                 let side = |seg: Segment, at: f32| super::held::Side {
                     group: seg.group,
                     lane: seg.lane,
                     segment: seg.index,
                     at,
                 };
-                self.hold(groups, k, side(pair.a, s), side(pair.b, t), normal, floor);
+                self.hold(groups, side(pair.a, s), side(pair.b, t), normal);
             }
             self.pairs[k] = pair;
         }
@@ -198,7 +188,7 @@ fn project_pair(
     groups: &mut [LaneGroup],
     friction: f32,
     most: f32,
-) -> Option<(Vec3, f32, f32, f32)> {
+) -> Option<(Vec3, f32, f32)> {
     let (a, b) = (ends(groups, pair.a), ends(groups, pair.b));
     if apart(&a, &b) {
         return None;
@@ -207,8 +197,7 @@ fn project_pair(
     let reach = radius(&a, s, pair.end_a) + radius(&b, t, pair.end_b);
     let (normal, distance) = side(pair, &a, &b, s, t);
     pair.normal = normal;
-    let gap = reach - pair.allowed - distance;
-    let depth = gap.min(most);
+    let depth = (reach - pair.allowed - distance).min(most);
     if depth <= 0.0 {
         return None;
     }
@@ -227,25 +216,18 @@ fn project_pair(
     // the push times the coefficient.
     let slid = (at(b.p, t) - at(b_start, t)) - (at(a.p, s) - at(a_start, s));
     let slid = slid - slid.dot(normal) * normal;
-    // Summed over the substep: the pair's friction so far and what would
-    // undo the rest of the slide, within μ times its pushes so far.
-    pair.pushed += depth / w;
-    let want = pair.gripped - slid / w;
-    let limit = friction * pair.pushed;
-    let size = want.length();
-    let total = if size > limit && size > 0.0 {
-        want * (limit / size)
+    let slide = slid.length();
+    let limit = friction * depth;
+    let held = if slide > limit && slide > 0.0 {
+        limit / slide
     } else {
-        want
+        1.0
     };
-    let grip = total - pair.gripped;
-    pair.gripped = total;
+    let grip = -slid * (held / w);
     let impulse = push + grip;
     shift(groups, pair.a, -wa[0] * impulse, -wa[1] * impulse);
     shift(groups, pair.b, wb[0] * impulse, wb[1] * impulse);
-    // The least the solve that follows may bring them to along the
-    // normal: as near as this push leaves them.
-    Some((normal, s, t, distance + depth))
+    Some((normal, s, t))
 }
 
 /// Where two ribbons touch at a step's end, for drawing (`World::ribbon_contacts`).

@@ -23,10 +23,7 @@ use glam::{Mat3, Vec3};
 use super::super::chain::{Knots, SLACK, TINY};
 use super::super::lane_group::LaneGroup;
 use super::super::solve::{CHAIN_ITERATIONS, CHAIN_TOLERANCE};
-use super::{RibbonTouch, Touching};
-
-mod friction;
-mod schur;
+use super::RibbonTouch;
 
 /// The most rows one linked set of ribbons takes, the first pushed (the
 /// rest are left to the passes): a caught segment has a few; in a pile of
@@ -35,18 +32,13 @@ mod schur;
 /// and the dense solve grows as their cube.
 const MOST_ROWS: usize = 4;
 
-/// Closer than this along both segments, two contacts are one, in
-/// segment lengths.
-const DUPLICATE: f32 = 0.1;
-
-/// Rounds of leaving out the contacts that pull and holding friction to
-/// its cone.
-pub(super) const ROUNDS: usize = 6;
+/// Rounds of leaving out the contacts that pull.
+const ROUNDS: usize = 3;
 
 /// Added to a contact's own entry of the Schur complement, a fraction of
 /// its own weight: two contacts on one segment with about one normal would
 /// make it singular.
-pub(super) const REGULAR: f32 = 1e-2;
+const REGULAR: f32 = 1e-2;
 
 /// One side of a contact row: a point along a segment of a ribbon.
 #[derive(Clone, Copy, Debug, Default)]
@@ -68,37 +60,6 @@ pub(crate) struct HeldRow {
     pub normal: Vec3,
     /// The least `normal·(p_b − p_a)` may be, m.
     pub floor: f32,
-    /// The pair's index in `RibbonTouch::pairs`.
-    pub pair: u32,
-    /// Across the normal: the way the closest points slid past each other
-    /// this substep (or along `a` where they did not) and its cross, and
-    /// `tangent·(p_b − p_a)` where those points began the substep: the
-    /// friction rows hold them there, within the cone.
-    pub tangents: [Vec3; 2],
-    pub goals: [f32; 2],
-}
-
-/// A row of one linked set's solve: a contact's normal, or one of its
-/// two friction directions.
-#[derive(Clone, Copy, Debug, Default)]
-struct SetRow {
-    a: Side,
-    b: Side,
-    dir: Vec3,
-    /// Normal: the least `dir·(p_b − p_a)` may be; friction: what it is
-    /// held to.
-    floor: f32,
-    chains: (u32, u32),
-    /// The contact's index in `set_rows`.
-    source: u32,
-    friction: bool,
-}
-
-/// What a row's λ is in a round of the set's solve.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Held {
-    Free,
-    Fixed(f32),
 }
 
 /// A ribbon in the solve: its lane, where its points and distance rows
@@ -156,7 +117,6 @@ pub(crate) struct HeldSolve {
     /// Per row: its two sides' chains.
     row_chains: Vec<(u32, u32)>,
     set_rows: Vec<u32>,
-    set: Vec<SetRow>,
     set_chains: Vec<u32>,
     x: Vec<Vec3>,
     w: Vec<f32>,
@@ -170,72 +130,24 @@ pub(crate) struct HeldSolve {
     y: Vec<f32>,
     column: Vec<f32>,
     schur: Vec<f32>,
-    schur_built: Vec<f32>,
-    right_built: Vec<f32>,
     right: Vec<f32>,
     lambda: Vec<f32>,
-    state: Vec<Held>,
-    /// Per set row, its λ summed over the linearised iterations.
-    total: Vec<f32>,
-    /// Per set row of a normal: its pair's push and friction (along the
-    /// two tangents) before the solve.
-    before: Vec<[f32; 3]>,
-    friction: f32,
+    active: Vec<bool>,
 }
 
 impl RibbonTouch {
     /// Adds a row: the closest points `a` and `b` of a pair just pushed
     /// apart may not come closer along `normal` than they now are.
-    pub(super) fn hold(
-        &mut self,
-        groups: &mut [LaneGroup],
-        pair: usize,
-        a: Side,
-        b: Side,
-        normal: Vec3,
-        floor: f32,
-    ) {
+    pub(super) fn hold(&mut self, groups: &mut [LaneGroup], a: Side, b: Side, normal: Vec3) {
         if a.segment == 0 || b.segment == 0 {
             return; // a knot's segment: the balloon holds it
         }
-        // A weighted end's pair and its segment's own pair meet at one
-        // point where the segment's closest point is the end: one row, or
-        // the two rows' friction splits into equal and opposite halves.
-        let same = |x: &Side, y: &Side| {
-            x.group == y.group
-                && x.lane == y.lane
-                && x.segment == y.segment
-                && (x.at - y.at).abs() < DUPLICATE
-        };
-        if self
-            .held
-            .rows
-            .iter()
-            .any(|r| same(&r.a, &a) && same(&r.b, &b))
-        {
-            return;
-        }
-        let at = |g: &[LaneGroup], s: Side, start: bool| {
+        let at = |g: &[LaneGroup], s: Side| {
             let g = &g[s.group as usize];
             let (l, i) = (s.lane as usize, s.segment as usize);
-            let p = if start { &g.start } else { &g.points };
-            p[i].lane(l) * (1.0 - s.at) + p[i + 1].lane(l) * s.at
+            g.points[i].lane(l) * (1.0 - s.at) + g.points[i + 1].lane(l) * s.at
         };
-        let now = at(groups, b, false) - at(groups, a, false);
-        let began = at(groups, b, true) - at(groups, a, true);
-        let slid = now - began;
-        let slid = slid - slid.dot(normal) * normal;
-        let along = {
-            let g = &groups[a.group as usize];
-            let (l, i) = (a.lane as usize, a.segment as usize);
-            let d: Vec3 = g.points[i + 1].lane(l) - g.points[i].lane(l);
-            d - d.dot(normal) * normal
-        };
-        let first = slid
-            .try_normalize()
-            .or_else(|| along.try_normalize())
-            .unwrap_or_else(|| normal.any_orthonormal_vector());
-        let tangents = [first, normal.cross(first)];
+        let floor = normal.dot(at(groups, b) - at(groups, a));
         for s in [a, b] {
             groups[s.group as usize].held_lanes |= 1 << s.lane;
         }
@@ -244,9 +156,6 @@ impl RibbonTouch {
             b,
             normal,
             floor,
-            pair: pair as u32,
-            tangents,
-            goals: tangents.map(|t| t.dot(began)),
         });
     }
 
@@ -254,8 +163,7 @@ impl RibbonTouch {
     /// lets the rows go.
     pub(crate) fn solve_held(&mut self, groups: &mut [LaneGroup]) {
         if !self.held.rows.is_empty() {
-            self.held.friction = self.friction;
-            self.held.solve(groups, &mut self.pairs);
+            self.held.solve(groups);
         }
         self.held.rows.clear();
     }
@@ -297,7 +205,7 @@ impl HeldSolve {
         (self.chains.len() - 1) as u32
     }
 
-    fn solve(&mut self, groups: &mut [LaneGroup], pairs: &mut [Touching]) {
+    fn solve(&mut self, groups: &mut [LaneGroup]) {
         self.chains.clear();
         self.parent.clear();
         self.row_chains.clear();
@@ -327,9 +235,7 @@ impl HeldSolve {
                     self.set_rows.push(r as u32);
                 }
             }
-            self.gather_rows(pairs);
             self.solve_set(groups);
-            self.give_back(pairs);
         }
         // The lanes go back to the four-lane solve.
         for chain in &self.chains {
@@ -368,7 +274,7 @@ impl HeldSolve {
         }
         self.dir.clear();
         self.dir.resize(rows, Vec3::ZERO);
-        let k = self.set.len();
+        let k = self.set_rows.len();
         self.y.clear();
         self.y.resize(k * rows, 0.0);
         self.schur.clear();
@@ -380,8 +286,8 @@ impl HeldSolve {
         // Not followed by follow-the-leader where it does not converge, as
         // the four-lane solve is: that pull ignores the contacts and drags a
         // caught strand back through the one it caught on.
-        for n in 0..CHAIN_ITERATIONS {
-            if self.iterate(n == 0) {
+        for _ in 0..CHAIN_ITERATIONS {
+            if self.iterate() {
                 break;
             }
         }
@@ -411,10 +317,8 @@ impl HeldSolve {
     }
 
     /// One linearised solve of the set; true once its lengths hold.
-    fn iterate(&mut self, first: bool) -> bool {
-        // Friction's rows are solved at least once: lengths that hold
-        // say nothing of a slide.
-        let mut converged = !(first && self.set.iter().any(|r| r.friction));
+    fn iterate(&mut self) -> bool {
+        let mut converged = true;
         for k in 0..self.set_chains.len() {
             let c = self.set_chains[k] as usize;
             let (first, n, length) = {
@@ -483,11 +387,11 @@ impl HeldSolve {
         if converged {
             return true;
         }
-        let k = self.set.len();
+        let k = self.set_rows.len();
         for r in 0..k {
             self.coupling(r);
             // Y_r = A⁻¹·B_r over the chains the row touches.
-            let (ca, cb) = self.set[r].chains;
+            let (ca, cb) = self.row_chains[self.set_rows[r] as usize];
             let total = self.column.len();
             let y = &mut self.y[r * total..(r + 1) * total];
             y.copy_from_slice(&self.column);
@@ -499,11 +403,24 @@ impl HeldSolve {
                 }
             }
         }
-        self.build_schur();
-        self.solve_rows();
+        self.active.clear();
+        self.active.resize(k, true);
+        for _ in 0..ROUNDS {
+            self.schur_solve();
+            let mut dropped = false;
+            for r in 0..k {
+                if self.active[r] && self.lambda[r] < 0.0 {
+                    self.active[r] = false;
+                    dropped = true;
+                }
+            }
+            if !dropped {
+                break;
+            }
+        }
         for r in 0..k {
-            if let Held::Fixed(v) = self.state[r] {
-                self.lambda[r] = v;
+            if !self.active[r] {
+                self.lambda[r] = 0.0;
             }
         }
         // λ_d = z − Y·λ_c, then each point moved by its rows.
@@ -532,13 +449,12 @@ impl HeldSolve {
             self.chains[c].impulse += impulse;
         }
         for r in 0..k {
-            let row = self.set[r];
-            let (ca, cb) = row.chains;
-            self.total[r] += self.lambda[r];
+            let row = self.rows[self.set_rows[r] as usize];
+            let (ca, cb) = self.row_chains[self.set_rows[r] as usize];
             for (c, side, sign) in [(ca, row.a, -1.0f32), (cb, row.b, 1.0)] {
                 let (p, c_) = self.side_points(c, &side);
                 for m in 0..2 {
-                    let push = sign * c_[m] * self.lambda[r] * row.dir;
+                    let push = sign * c_[m] * self.lambda[r] * row.normal;
                     self.x[p[m]] += self.w[p[m]] * push;
                 }
             }
@@ -551,8 +467,8 @@ impl HeldSolve {
     /// pushes along −normal, side b along normal.
     fn coupling(&mut self, r: usize) {
         self.column.iter_mut().for_each(|c| *c = 0.0);
-        let row = self.set[r];
-        let (ca, cb) = row.chains;
+        let row = self.rows[self.set_rows[r] as usize];
+        let (ca, cb) = self.row_chains[self.set_rows[r] as usize];
         for (c, side, sign) in [(ca, row.a, -1.0f32), (cb, row.b, 1.0)] {
             let ch = &self.chains[c as usize];
             let (first, n, taut) = (ch.first, ch.segments, ch.taut);
@@ -561,15 +477,97 @@ impl HeldSolve {
             for (m, point) in [q, q + 1].into_iter().enumerate() {
                 let g = self.w[p[m]] * weights[m] * sign;
                 if point >= 1 {
-                    self.column[first + point - 1] += g * self.dir[first + point - 1].dot(row.dir);
+                    self.column[first + point - 1] +=
+                        g * self.dir[first + point - 1].dot(row.normal);
                 }
                 if point < n {
-                    self.column[first + point] -= g * self.dir[first + point].dot(row.dir);
+                    self.column[first + point] -= g * self.dir[first + point].dot(row.normal);
                 }
             }
             if !taut {
                 self.column[first] = 0.0;
             }
+        }
+    }
+
+    /// The active contacts' λ from their Schur complement.
+    fn schur_solve(&mut self) {
+        let k = self.set_rows.len();
+        let total = self.z.len();
+        for r in 0..k {
+            let row = self.rows[self.set_rows[r] as usize];
+            let (ca, cb) = self.row_chains[self.set_rows[r] as usize];
+            let (pa, wa) = self.side_points(ca, &row.a);
+            let (pb, wb) = self.side_points(cb, &row.b);
+            let at = |x: &[Vec3], p: [usize; 2], w: [f32; 2]| x[p[0]] * w[0] + x[p[1]] * w[1];
+            let now = row.normal.dot(at(&self.x, pb, wb) - at(&self.x, pa, wa));
+            self.coupling(r);
+            let bz: f32 = (0..total).map(|j| self.column[j] * self.z[j]).sum();
+            self.right[r] = row.floor - now - bz;
+            for c in 0..k {
+                let other = self.rows[self.set_rows[c] as usize];
+                let (oa, ob) = self.row_chains[self.set_rows[c] as usize];
+                let mut cc = 0.0;
+                for (pc, side, sign) in [(ca, row.a, -1.0f32), (cb, row.b, 1.0)] {
+                    let (p, w) = self.side_points(pc, &side);
+                    for (po, oside, osign) in [(oa, other.a, -1.0f32), (ob, other.b, 1.0)] {
+                        let (q, v) = self.side_points(po, &oside);
+                        for m in 0..2 {
+                            for o in 0..2 {
+                                if p[m] == q[o] {
+                                    cc += self.w[p[m]]
+                                        * sign
+                                        * w[m]
+                                        * osign
+                                        * v[o]
+                                        * row.normal.dot(other.normal);
+                                }
+                            }
+                        }
+                    }
+                }
+                let by: f32 = (0..total)
+                    .map(|j| self.column[j] * self.y[c * total + j])
+                    .sum();
+                self.schur[r * k + c] = cc - by;
+                if c == r {
+                    self.schur[r * k + c] += REGULAR * cc;
+                }
+            }
+        }
+        for r in 0..k {
+            if !self.active[r] {
+                for c in 0..k {
+                    let one = if c == r { 1.0 } else { 0.0 };
+                    self.schur[r * k + c] = one;
+                    self.schur[c * k + r] = one;
+                }
+                self.right[r] = 0.0;
+            }
+        }
+        self.lambda[..k].copy_from_slice(&self.right[..k]);
+        for col in 0..k {
+            let pivot = self.schur[col * k + col];
+            if pivot.abs() < TINY {
+                continue;
+            }
+            for r in col + 1..k {
+                let f = self.schur[r * k + col] / pivot;
+                if f != 0.0 {
+                    for c in col..k {
+                        self.schur[r * k + c] -= f * self.schur[col * k + c];
+                    }
+                    self.lambda[r] -= f * self.lambda[col];
+                }
+            }
+        }
+        for r in (0..k).rev() {
+            let pivot = self.schur[r * k + r];
+            let mut v = self.lambda[r];
+            for c in r + 1..k {
+                v -= self.schur[r * k + c] * self.lambda[c];
+            }
+            self.lambda[r] = if pivot.abs() < TINY { 0.0 } else { v / pivot };
         }
     }
 }

@@ -116,13 +116,6 @@ pub(crate) struct Touching {
     /// How far they may still overlap this step, m: what they began the
     /// step overlapping less `OVERLAP_PUSH_OUT_SPEED` times the step.
     pub allowed: f32,
-    /// This substep's push along the normal so far, passes and solves
-    /// summed, m·kg (a correction over the pair's inverse mass): friction's
-    /// budget, μ times it, as an impulse's accumulated total bounds its
-    /// friction (Coulomb at the position level, over the whole substep).
-    pub pushed: f32,
-    /// This substep's friction so far, the same units, across the normal.
-    pub gripped: Vec3,
 }
 
 /// An awake ribbon's box for the step, and what says whether it can touch
@@ -168,8 +161,6 @@ pub(crate) struct RibbonTouch {
     near_b: Vec<u32>,
     /// The last pass's contacts as rows of the chains' solve that follows.
     held: held::HeldSolve,
-    /// The step's passes so far: every other one runs the pairs backward.
-    passes: u32,
 }
 
 impl Default for RibbonTouch {
@@ -186,7 +177,6 @@ impl Default for RibbonTouch {
             near_a: Vec::new(),
             near_b: Vec::new(),
             held: held::HeldSolve::default(),
-            passes: 0,
         }
     }
 }
@@ -195,13 +185,5 @@ impl RibbonTouch {
     /// No pair this step: the substeps run without the pass.
     pub fn is_empty(&self) -> bool {
         self.pairs.is_empty()
-    }
-
-    /// Starts a substep: no push and no friction yet on any pair.
-    pub(crate) fn begin_substep(&mut self) {
-        for pair in &mut self.pairs {
-            pair.pushed = 0.0;
-            pair.gripped = Vec3::ZERO;
-        }
     }
 }
