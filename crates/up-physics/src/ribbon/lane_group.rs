@@ -113,10 +113,6 @@ pub(crate) struct LaneGroup {
     pub h: f32,
     /// The near balloons' bounds lined up across the lanes.
     pub near_slots: Vec<NearSlot>,
-    /// Per near slot, the lanes whose bound may hold a point of the run
-    /// of points being pushed, and the slots with any (`lane_pushes`).
-    pub run_lanes: Vec<u32>,
-    pub run_slots: Vec<u32>,
     /// The knots as this substep's chains' solve took them, for the solves
     /// that follow the ribbons' contacts (`touch`) within the substep.
     pub knots: Knots,

@@ -4,8 +4,6 @@
 //! the lanes so that each point is tested against them four ribbons at a
 //! time, and the pushes themselves (rare) made point by point.
 
-use std::ops::Range;
-
 use glam::Vec3;
 use up_geom::Sphere;
 
@@ -15,12 +13,7 @@ use super::lane_group::LaneGroup;
 use super::solve::SubstepInput;
 use super::{BALLOON_FRICTION, RIBBON_RADIUS};
 use crate::solver::body_state::BodyState;
-use crate::solver::lanes::{max, set, F4, LANES, V4};
-
-/// Points whose box culls the near balloons' bounds at once (`cull_slots`):
-/// a ribbon's box in a crowd meets a dozen bounds, a few points' box one or
-/// two.
-const CULL_RUN: usize = 4;
+use crate::solver::lanes::{set, F4, LANES, V4};
 
 /// The `k`th near balloon of each lane: its bounding sphere, and the lanes
 /// that have a `k`th (bit `l` for lane `l`).
@@ -81,114 +74,29 @@ impl LaneGroup {
             }
             self.near_slots.push(slot);
         }
-        let mut first = 1;
-        while first < self.active {
-            let end = (first + CULL_RUN).min(self.active);
-            self.cull_slots(first..end, most);
-            for i in first..end {
-                self.push_point_out_of_balloons(i, most, near);
-            }
-            first = end;
-        }
-    }
-
-    /// Which of the near balloons' bounds may hold a point of `run` (points
-    /// as they fell, before any push): per slot, the lanes whose bound
-    /// meets the run's box grown by its largest radius, every slot's lanes
-    /// where a point is not finite (`run_lanes`), and those slots in order
-    /// (`run_slots`). A bound that holds a point meets any box around it, by
-    /// the same rounded arithmetic, so no push is lost.
-    fn cull_slots(&mut self, run: Range<usize>, most: usize) {
-        let (mut lo, mut hi) = (self.points[run.start], self.points[run.start]);
-        let mut finite = F4::splat(f32::from_bits(!0));
-        for p in &self.points[run.clone()] {
-            lo = V4::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z));
-            hi = V4::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
-            // Zero for a finite coordinate, NaN for an infinite or NaN one.
-            let zero = F4::ZERO;
-            finite &=
-                (p.x - p.x).simd_eq(zero) & (p.y - p.y).simd_eq(zero) & (p.z - p.z).simd_eq(zero);
-        }
-        let odd = !finite.to_bitmask() & ((1 << LANES) - 1);
-        let radius = max(self.end_radius, F4::splat(RIBBON_RADIUS));
-        self.run_lanes.clear();
-        self.run_slots.clear();
-        for k in 0..most {
-            let slot = self.near_slots[k];
-            let c = slot.center;
-            let closest = V4::new(
-                c.x.max(lo.x).min(hi.x),
-                c.y.max(lo.y).min(hi.y),
-                c.z.max(lo.z).min(hi.z),
-            );
-            let away = closest - c;
-            let reach = slot.radius + radius;
-            // Not `<`, as the point's own test.
-            let outside = away.dot(away).simd_ge(reach * reach).to_bitmask();
-            let lanes = (!outside | odd) & slot.lanes;
-            self.run_lanes.push(lanes);
-            if lanes != 0 {
-                self.run_slots.push(k as u32);
-            }
-        }
-    }
-
-    /// Pushes point `i` of each lane out of the near balloons whose bounds
-    /// hold it, in their order: the run's slots (`cull_slots`) while the
-    /// point is where it fell; once a push moved it in a lane, every later
-    /// slot in that lane, as the point may have left the run's box.
-    fn push_point_out_of_balloons(&mut self, i: usize, most: usize, near: &NearInput) {
-        let movable = self.inv_mass[i].simd_gt(F4::ZERO).to_bitmask();
-        let radius = self.radius(i);
-        let mut moved = 0;
-        let mut s = 0;
-        while s < self.run_slots.len() {
-            let k = self.run_slots[s] as usize;
-            s += 1;
-            moved |= self.push_point_out_of_slot(i, k, self.run_lanes[k], movable, radius, near);
-            if moved != 0 {
-                for k in k + 1..most {
-                    let lanes = self.run_lanes[k] | moved;
-                    moved |= self.push_point_out_of_slot(i, k, lanes, movable, radius, near);
+        for i in 1..self.active {
+            let movable = self.inv_mass[i].simd_gt(F4::ZERO).to_bitmask();
+            let radius = self.radius(i);
+            for k in 0..most {
+                let slot = self.near_slots[k];
+                let away = self.points[i] - slot.center;
+                let reach = slot.radius + radius;
+                // Not `<`: a NaN point is taken as within, as it would be
+                // one ribbon at a time.
+                let outside = away.dot(away).simd_ge(reach * reach).to_bitmask();
+                let mut within = !outside & slot.lanes & movable;
+                while within != 0 {
+                    let l = within.trailing_zeros() as usize;
+                    within &= within - 1;
+                    self.push_point_out(l, i, k, near);
                 }
-                return;
             }
         }
-    }
-
-    /// Pushes point `i` of the lanes in `lanes` out of its `k`th near
-    /// balloon where its bound holds it; the lanes it moved.
-    #[inline]
-    fn push_point_out_of_slot(
-        &mut self,
-        i: usize,
-        k: usize,
-        lanes: u32,
-        movable: u32,
-        radius: F4,
-        near: &NearInput,
-    ) -> u32 {
-        let slot = self.near_slots[k];
-        let away = self.points[i] - slot.center;
-        let reach = slot.radius + radius;
-        // Not `<`: a NaN point is taken as within, as it would be
-        // one ribbon at a time.
-        let outside = away.dot(away).simd_ge(reach * reach).to_bitmask();
-        let mut within = !outside & slot.lanes & lanes & movable;
-        let mut moved = 0;
-        while within != 0 {
-            let l = within.trailing_zeros() as usize;
-            within &= within - 1;
-            if self.push_point_out(l, i, k, near) {
-                moved |= 1 << l;
-            }
-        }
-        moved
     }
 
     /// Pushes lane `l`'s point `i` out of its `k`th near balloon, whose bound
-    /// it is within; whether it moved.
-    fn push_point_out(&mut self, l: usize, i: usize, k: usize, near: &NearInput) -> bool {
+    /// it is within.
+    fn push_point_out(&mut self, l: usize, i: usize, k: usize, near: &NearInput) {
         let input = near.input;
         let radius = self.radius(i).as_array()[l];
         let (start, mut point) = (self.start[i].lane(l), self.points[i].lane(l));
@@ -198,7 +106,7 @@ impl LaneGroup {
         let mu = BALLOON_FRICTION;
         let moved = push_out_of_balloon(&mut point, start, radius, mu, b, tree);
         self.points[i].set_lane(l, point);
-        let Some(moved) = moved else { return false };
+        let Some(moved) = moved else { return };
         // The point's momentum change, the other way, where it touched.
         let mass = 1.0 / self.inv_mass[i].as_array()[l];
         lane.reactions
@@ -210,7 +118,6 @@ impl LaneGroup {
         }
         self.touch_normal[i].set_lane(l, moved.normalize_or_zero());
         self.touch_velocity[i].set_lane(l, b.moved / input.h);
-        true
     }
 
     /// Lane `l`'s near balloons: those of its candidates whose roots reach
