@@ -41,6 +41,9 @@ pub(crate) struct SleepRules {
     pub time_to_sleep: f32,
     /// m/s and rad/s under which a body is slow.
     pub linear_speed: f32,
+    /// The unit vector against gravity (zero without gravity): a hovering
+    /// balloon's creep is along it (`rest`).
+    pub up: Vec3,
     pub angular_speed: f32,
     /// m: the reach of a restless body (and of contacts that hold a group).
     pub speculative_distance: f32,

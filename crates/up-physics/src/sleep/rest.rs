@@ -70,6 +70,7 @@ pub(crate) fn update_sleep(
     let kept_awake = input.kept_awake;
     let (linear_speed, angular_speed) = (rules.linear_speed, rules.angular_speed);
     let hover_speed = linear_speed * HOVER_REST_SHARE;
+    let up = rules.up;
     let hovering = mark_hovering(input, n, &mut buffers.hovering);
     fill_chunks(&mut bodies.sleep_time, PLACE_CHUNK, |first, times| {
         for (k, time) in times.iter_mut().enumerate() {
@@ -77,12 +78,10 @@ pub(crate) fn update_sleep(
             if !awake[i] {
                 continue;
             }
-            let limit = if hovering[i] {
-                hover_speed
-            } else {
-                linear_speed
-            };
-            let slow = linear_velocity[i].norm() < limit
+            let v = linear_velocity[i];
+            let creep = if hovering[i] { v.dot(up).abs() } else { 0.0 };
+            let slow = v.norm() < linear_speed
+                && creep < hover_speed
                 && angular_velocity[i].norm() < angular_speed
                 && !kept_awake.get(i).copied().unwrap_or(false);
             if slow && grabbed != Some(i) {
