@@ -1,8 +1,8 @@
 //! Sleeping: a settled group of touching balloons stops costing anything.
 //!
 //! A body is rested once it has been slow for `time_to_sleep` (a balloon
-//! hovering on its ribbon, touching nothing, once slow by a finer measure:
-//! it may be creeping down, `rest`). Each step the
+//! hovering on its ribbon, touching nothing, once slow by a finer measure
+//! along gravity: it may be creeping down, `rest`). Each step the
 //! rested bodies that no restless body reaches fall asleep, in groups of
 //! touching or joined ones (union-find over contacts and joints); those a
 //! restless body reaches or is joined to stay awake between it and the
