@@ -194,3 +194,56 @@ fn a_thrown_balloon_wakes_what_it_will_reach_this_step() {
         );
     }
 }
+
+/// Steps until `id` sleeps (at most `limit`); the steps taken.
+fn steps_to_sleep(world: &mut up_physics::World, id: up_physics::BodyId, limit: usize) -> usize {
+    (1..=limit)
+        .find(|_| {
+            world.step();
+            world.is_awake(id) == Some(false)
+        })
+        .unwrap_or(limit + 1)
+}
+
+#[test]
+fn a_hovering_balloon_rests_from_a_swing_but_not_from_a_creep_down() {
+    // A balloon hovering on a heavy ribbon lying partly on the floor (11 g
+    // of lift, 10 g/m): set swinging across at 4 mm/s (under the sleep
+    // speed), it rests as any slow body does; set moving down at the same
+    // speed, as a balloon creeps down its ribbon when its gas has gone, it
+    // does not rest until it has stopped (the finer hover speed along
+    // gravity: asleep mid-creep, it would come down a segment late).
+    use up_physics::ribbon::RibbonDef;
+    let def = WorldDef {
+        room: Some(room(6.0, 6.0, 3.0, None)),
+        ..WorldDef::default()
+    };
+    let (mut world, shape) = world_with(def);
+    let id = add(&mut world, shape, Vec3::new(0.0, 1.0, 0.0), Quat::IDENTITY);
+    let knot = Vec3::new(0.0, -0.2, 0.0);
+    world
+        .add_ribbon(&RibbonDef {
+            mass_per_length: 0.010,
+            ..RibbonDef::new(id, knot, 2.0, 16)
+        })
+        .unwrap();
+    let settled = steps_to_sleep(&mut world, id, 60 * 60);
+    assert!(settled <= 60 * 60, "never slept settling");
+    let sleep = world.def().time_to_sleep;
+    let rest_steps = (sleep / world.def().dt).ceil() as usize;
+    let mut kick = |v: Vec3| {
+        world.set_velocity(id, v, Vec3::ZERO).unwrap();
+        steps_to_sleep(&mut world, id, 60 * 60)
+    };
+    let across = kick(Vec3::new(0.004, 0.0, 0.0));
+    let down = kick(Vec3::new(0.0, -0.004, 0.0));
+    println!("asleep {across} steps after a swing across, {down} after a push down");
+    assert!(
+        across <= rest_steps + 2,
+        "swinging at 4 mm/s: asleep after {across} steps"
+    );
+    assert!(
+        down > 2 * rest_steps,
+        "moving down at 4 mm/s: asleep after {down} steps"
+    );
+}

@@ -1,8 +1,8 @@
 //! Sleeping: a settled group of touching balloons stops costing anything.
 //!
 //! A body is rested once it has been slow for `time_to_sleep` (a balloon
-//! hovering on its ribbon, touching nothing, once slow by a finer measure:
-//! it may be creeping down, `rest`). Each step the
+//! hovering on its ribbon, touching nothing, once slow by a finer measure
+//! along gravity: it may be creeping down, `rest`). Each step the
 //! rested bodies that no restless body reaches fall asleep, in groups of
 //! touching or joined ones (union-find over contacts and joints); those a
 //! restless body reaches or is joined to stay awake between it and the
@@ -41,6 +41,9 @@ pub(crate) struct SleepRules {
     pub time_to_sleep: f32,
     /// m/s and rad/s under which a body is slow.
     pub linear_speed: f32,
+    /// The unit vector against gravity (zero without gravity): a hovering
+    /// balloon's creep is along it (`rest`).
+    pub up: Vec3,
     pub angular_speed: f32,
     /// m: the reach of a restless body (and of contacts that hold a group).
     pub speculative_distance: f32,

@@ -11,12 +11,14 @@ use crate::threading::tasks::fill_chunks;
 use crate::world::{roots_within, PLACE_CHUNK};
 
 /// The share of the sleep speed under which a balloon hanging on its
-/// ribbon, touching nothing, is slow. Such a balloon whose lift has passed
-/// what its ribbon holds up starts down slowly: the floor's friction gives
-/// the lying points up over tens of seconds at 0.2–5 mm/s before the knot
-/// drops a segment. At the sleep speed it would rest in that creep and
-/// wake only once its gas has moved on by the wake threshold, to come down
-/// two segments at once; settled on its ribbon it is still to 0.1 mm/s.
+/// ribbon, touching nothing, must move along gravity to be slow (across it,
+/// the sleep speed). Such a balloon whose lift has passed what its ribbon
+/// holds up starts down slowly before the knot drops a segment: at the
+/// sleep speed it would rest in that creep and wake only once its gas has
+/// moved on by the wake threshold, to come down two segments at once. Its
+/// swing across the ribbon after a drop, a few mm/s and lightly damped,
+/// is no creep, and under the finer speed kept it awake for tens of
+/// seconds more a segment.
 pub(crate) const HOVER_REST_SHARE: f32 = 0.2;
 
 /// Marks in `hovering` (per body) the balloons whose ribbons were solved
@@ -49,7 +51,7 @@ fn mark_hovering<'a>(input: &SleepInput, n: usize, hovering: &'a mut Vec<bool>) 
 /// So a big pile in which a few balloons still shuffle sleeps everywhere
 /// else, where whole-island sleep would keep all of it awake. `grabbed`
 /// never rests; `warm` holds the impulses the step stored. A balloon
-/// hovering on its ribbon is slow only under a finer speed
+/// hovering on its ribbon is slow only under a finer speed along gravity
 /// (`HOVER_REST_SHARE`).
 pub(crate) fn update_sleep(
     input: &SleepInput,
@@ -70,6 +72,7 @@ pub(crate) fn update_sleep(
     let kept_awake = input.kept_awake;
     let (linear_speed, angular_speed) = (rules.linear_speed, rules.angular_speed);
     let hover_speed = linear_speed * HOVER_REST_SHARE;
+    let up = rules.up;
     let hovering = mark_hovering(input, n, &mut buffers.hovering);
     fill_chunks(&mut bodies.sleep_time, PLACE_CHUNK, |first, times| {
         for (k, time) in times.iter_mut().enumerate() {
@@ -77,12 +80,10 @@ pub(crate) fn update_sleep(
             if !awake[i] {
                 continue;
             }
-            let limit = if hovering[i] {
-                hover_speed
-            } else {
-                linear_speed
-            };
-            let slow = linear_velocity[i].norm() < limit
+            let v = linear_velocity[i];
+            let creep = if hovering[i] { v.dot(up).abs() } else { 0.0 };
+            let slow = v.norm() < linear_speed
+                && creep < hover_speed
                 && angular_velocity[i].norm() < angular_speed
                 && !kept_awake.get(i).copied().unwrap_or(false);
             if slow && grabbed != Some(i) {

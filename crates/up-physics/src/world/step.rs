@@ -300,6 +300,7 @@ impl World {
             dt: d.dt,
             time_to_sleep: d.time_to_sleep,
             linear_speed: d.sleep_linear_speed,
+            up: -d.gravity.normalize_or_zero(),
             angular_speed: d.sleep_angular_speed,
             speculative_distance: d.speculative_distance,
             restitution_threshold: d.restitution_threshold,
