@@ -35,7 +35,7 @@ use glam::Vec3;
 
 use crate::hash::mix64;
 use crate::threading::spare::{release_spare, release_spare_each, BUFFER_FLOOR};
-use crate::threading::tasks::{collect_in_order, fill_chunks, for_each_run, threads_here};
+use crate::threading::tasks::{collect_in_order, fill_chunks};
 
 /// Bodies whose neighbours one task looks up.
 const BODY_CHUNK: usize = 512;
@@ -45,19 +45,13 @@ pub(crate) struct BroadPhase {
     cell_of: Vec<[i32; 3]>,
     /// Bucket b holds `items[start[b]..start[b + 1]]`.
     start: Vec<u32>,
+    cursor: Vec<u32>,
     items: Vec<GridItem>,
     large: Vec<u32>,
     /// The cells' size and how far their bodies reach, as `update` left them.
     scale: GridScale,
     /// Each ordinary body's place in `items` (`u32::MAX` for a large one).
     slot_of: Vec<u32>,
-    /// Each body's bucket while the table is rebuilt (`LARGE` for a large one).
-    bucket_of: Vec<u32>,
-    /// Each rebuild run's count of its bodies in each bucket, then where
-    /// its next one goes (`rebuild`).
-    task_counts: Vec<Vec<u32>>,
-    /// Each body's change since the table was built (`refresh`).
-    change: Vec<Change>,
     /// The cell radius the table was built for (`f32::NAN`: none built).
     built_for: f32,
     /// Output: dense index pairs (a < b), at least one of them awake.
@@ -71,7 +65,6 @@ impl BroadPhase {
     pub fn release_spare(&mut self) {
         release_spare(&mut self.pairs, BUFFER_FLOOR);
         release_spare_each(&mut self.task_pairs);
-        release_spare_each(&mut self.task_counts);
     }
 
     /// Finds all pairs whose bounding spheres overlap.
@@ -179,195 +172,84 @@ impl BroadPhase {
         {
             return false;
         }
-        // What changed, body by body in tasks (reading the table only),
-        // then the changed entries written in tasks: each body's own slot.
-        let (inv_cell, cell_of, slot_of) = (self.scale.inv_cell, &self.cell_of, &self.slot_of);
-        let items = &self.items;
-        self.change.resize(n, Change::None);
-        fill_chunks(&mut self.change, BODY_CHUNK, |first, changes| {
-            for (k, change) in changes.iter_mut().enumerate() {
-                let i = first + k;
-                let item = &items[slot_of[i] as usize];
-                // Equal as numbers: a zero that changed sign moves nothing (the
-                // same cell, the same distances); a NaN is written again.
-                *change = if item.center == center[i]
-                    && item.radius == radius[i]
-                    && item.awake == awake[i]
-                {
-                    Change::None
-                } else if radius[i] > cell_radius || cell_coords(center[i], inv_cell) != cell_of[i]
-                {
-                    Change::Cell
-                } else {
-                    Change::InPlace
-                };
-            }
-        });
-        if self.change.contains(&Change::Cell) {
-            return false;
-        }
-        let place = SharedItems::new(&mut self.items);
-        let slot_of = &self.slot_of;
-        fill_chunks(&mut self.change, BODY_CHUNK, |first, changes| {
-            for (k, change) in changes.iter().enumerate() {
-                let i = first + k;
-                if *change == Change::InPlace {
-                    // SAFETY: each body has a slot of its own (`slot_of`),
-                    // which only its task writes.
-                    let item = unsafe { place.get(slot_of[i]) };
-                    item.center = center[i];
-                    item.radius = radius[i];
-                    item.awake = awake[i];
-                }
-            }
-        });
+        let inv_cell = self.scale.inv_cell;
         // A bound on the ordinary radii: lookups skip only the cells
         // farther than it reaches, so the pairs are those of the exact
         // largest (which the next rebuild takes again).
-        let grown = (0..n).filter(|&i| self.change[i] == Change::InPlace);
-        self.scale.item_radius = grown.fold(self.scale.item_radius, |r, i| r.max(radius[i]));
+        let mut item_radius = self.scale.item_radius;
+        for i in 0..n {
+            let item = &mut self.items[self.slot_of[i] as usize];
+            // Equal as numbers: a zero that changed sign moves nothing (the
+            // same cell, the same distances); a NaN is written again.
+            if item.center == center[i] && item.radius == radius[i] && item.awake == awake[i] {
+                continue;
+            }
+            if radius[i] > cell_radius || cell_coords(center[i], inv_cell) != self.cell_of[i] {
+                return false;
+            }
+            item.center = center[i];
+            item.radius = radius[i];
+            item.awake = awake[i];
+            item_radius = item_radius.max(radius[i]);
+        }
+        self.scale.item_radius = item_radius;
         true
     }
 
     /// Every ordinary body into its hashed bucket by a counting sort, in
-    /// body order; the large ones listed apart. The bodies are cut into one
-    /// run a thread: each run counts its bodies in each bucket, and then
-    /// writes them from where the runs before it end in that bucket, so the
-    /// table is the one a single pass in body order makes.
+    /// body order; the large ones listed apart.
     fn rebuild(&mut self, center: &[Vec3], radius: &[f32], awake: &[bool], cell_radius: f32) {
         let n = center.len();
+        self.large.clear();
         let inv_cell = 0.5 / cell_radius;
         let mask = (2 * n).next_power_of_two() - 1;
+        let mut item_radius = 0.0f32;
         self.cell_of.resize(n, [0; 3]);
-        self.bucket_of.resize(n, 0);
-        let parts = (&mut self.cell_of[..], &mut self.bucket_of[..]);
-        for_each_run(n, BODY_CHUNK, parts, |first, (cells, buckets)| {
-            for (k, (cell, bucket_of)) in cells.iter_mut().zip(buckets).enumerate() {
+        fill_chunks(&mut self.cell_of, BODY_CHUNK, |first, cells| {
+            for (k, cell) in cells.iter_mut().enumerate() {
                 *cell = cell_coords(center[first + k], inv_cell);
-                *bucket_of = if radius[first + k] > cell_radius {
-                    LARGE
-                } else {
-                    bucket(*cell, mask) as u32
-                };
             }
         });
-        self.large.clear();
-        self.large
-            .extend((0..n as u32).filter(|&i| self.bucket_of[i as usize] == LARGE));
-        let ordinary = (0..n).filter(|&i| self.bucket_of[i] != LARGE);
-        let item_radius = ordinary.fold(0.0f32, |r, i| r.max(radius[i]));
-
-        // Each run's count in each bucket.
-        let runs = threads_here().min(n.div_ceil(BODY_CHUNK)).max(1);
-        let run_of = |t: usize| n * t / runs..n * (t + 1) / runs;
-        self.task_counts.resize_with(runs, Vec::new);
-        let bucket_of = &self.bucket_of;
-        for_each_run(runs, 1, &mut self.task_counts[..runs], |first, counts| {
-            for (k, counts) in counts.iter_mut().enumerate() {
-                counts.clear();
-                counts.resize(mask + 1, 0);
-                for &b in &bucket_of[run_of(first + k)] {
-                    if b != LARGE {
-                        counts[b as usize] += 1;
-                    }
-                }
-            }
-        });
-        // Each bucket's start, and where each run's bodies go in it.
         self.start.clear();
         self.start.resize(mask + 2, 0);
-        let mut next = 0;
-        for b in 0..=mask {
-            self.start[b] = next;
-            for counts in &mut self.task_counts[..runs] {
-                (counts[b], next) = (next, next + counts[b]);
+        for i in 0..n {
+            if radius[i] > cell_radius {
+                self.large.push(i as u32);
+            } else {
+                self.start[bucket(self.cell_of[i], mask) + 1] += 1;
+                item_radius = item_radius.max(radius[i]);
             }
         }
-        self.start[mask + 1] = next;
-
+        for b in 1..self.start.len() {
+            self.start[b] += self.start[b - 1];
+        }
+        self.cursor.clear();
+        self.cursor.extend_from_slice(&self.start);
         self.items.clear();
-        self.items.resize(next as usize, GridItem::default());
+        self.items
+            .resize(self.start[mask + 1] as usize, GridItem::default());
         self.slot_of.clear();
         self.slot_of.resize(n, u32::MAX);
-        let place = SharedItems::new(&mut self.items);
-        let slots = SharedItems::new(&mut self.slot_of);
-        let cell_of = &self.cell_of;
-        let write_run = |t: usize, cursor: &mut Vec<u32>| {
-            for i in run_of(t) {
-                let b = bucket_of[i];
-                if b == LARGE {
-                    continue;
-                }
-                let slot = cursor[b as usize];
-                cursor[b as usize] += 1;
-                // SAFETY: each body has a slot of its own, past the runs
-                // before it in its bucket and before those after it; only
-                // its run writes it, and its `slot_of`.
-                unsafe {
-                    *place.get(slot) = GridItem {
-                        center: center[i],
-                        radius: radius[i],
-                        cell: cell_key(cell_of[i]),
-                        body: i as u32,
-                        awake: awake[i],
-                    };
-                    *slots.get(i as u32) = slot;
-                }
+        for i in 0..n {
+            if radius[i] <= cell_radius {
+                let b = bucket(self.cell_of[i], mask);
+                let slot = self.cursor[b];
+                self.items[slot as usize] = GridItem {
+                    center: center[i],
+                    radius: radius[i],
+                    cell: cell_key(self.cell_of[i]),
+                    body: i as u32,
+                    awake: awake[i],
+                };
+                self.slot_of[i] = slot;
+                self.cursor[b] += 1;
             }
-        };
-        for_each_run(runs, 1, &mut self.task_counts[..runs], |first, cursors| {
-            for (k, cursor) in cursors.iter_mut().enumerate() {
-                write_run(first + k, cursor);
-            }
-        });
+        }
         self.scale = GridScale {
             inv_cell,
             item_radius,
         };
         self.built_for = cell_radius;
-    }
-}
-
-/// What happened to a body since the table was built or refreshed.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-enum Change {
-    #[default]
-    None,
-    /// It moved or woke within its cell: its entry is written in place.
-    InPlace,
-    /// It left its cell or grew large: the table is rebuilt.
-    Cell,
-}
-
-/// A large body's bucket while the table is rebuilt: none.
-const LARGE: u32 = u32::MAX;
-
-/// A buffer whose elements tasks write at distinct indices.
-struct SharedItems<T> {
-    ptr: *mut T,
-    len: usize,
-}
-
-// SAFETY: tasks write only distinct elements (`get`'s contract); the buffer
-// outlives them (the passes are scoped).
-unsafe impl<T: Send> Send for SharedItems<T> {}
-unsafe impl<T: Send> Sync for SharedItems<T> {}
-
-impl<T> SharedItems<T> {
-    fn new(items: &mut [T]) -> Self {
-        SharedItems {
-            ptr: items.as_mut_ptr(),
-            len: items.len(),
-        }
-    }
-
-    /// # Safety
-    /// No other task may use element `i` at the same time.
-    #[allow(clippy::mut_from_ref)] // disjoint indices through a shared pointer
-    unsafe fn get(&self, i: u32) -> &mut T {
-        assert!((i as usize) < self.len);
-        // SAFETY: in bounds (asserted), and ours alone (the caller's contract).
-        unsafe { &mut *self.ptr.add(i as usize) }
     }
 }
 

@@ -28,12 +28,6 @@ pub(crate) fn threads_here() -> usize {
     }
 }
 
-/// Threads the passes may share: one without `parallel`.
-#[cfg(not(feature = "parallel"))]
-pub(crate) fn threads_here() -> usize {
-    1
-}
-
 /// Runs `work` on this thread with every pass in it run whole, as on a pool
 /// of one thread: for work too small to pay a hand-over between threads (a
 /// futex round trip, tens of microseconds on a virtual machine, per pass
