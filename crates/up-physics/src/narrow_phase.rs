@@ -28,7 +28,7 @@ use up_geom::{prune_shadowed, Contact, PlacedTree, RelativeMotion, TriMesh};
 use crate::body::{BodySize, ShapeData};
 use crate::contact::{pair_key, ContactFeature, ContactPoint, STATIC_BODY};
 use crate::threading::spare::{release_spare, BUFFER_FLOOR, TASK_LIST_FLOOR};
-use crate::threading::tasks::{append_in_order, collect_in_order, TaskList};
+use crate::threading::tasks::{collect_in_order, TaskList};
 
 /// Broadphase pairs whose knocks one task finds.
 #[cfg(feature = "parallel")]
@@ -305,20 +305,6 @@ impl TaskList for ContactList {
                 .map(|&(key, start, count)| (key, start + offset, count)),
         );
         self.max_penetration = self.max_penetration.max(other.max_penetration);
-    }
-
-    /// As `join` on each in turn; the contacts, the bulk, copied on rayon's
-    /// threads (`append_in_order`), the runs moved past them here.
-    fn join_all(&mut self, lists: &[ContactList]) {
-        let mut offset = self.contacts.len() as u32;
-        for other in lists {
-            let runs = other.runs.iter();
-            self.runs
-                .extend(runs.map(|&(key, start, count)| (key, start + offset, count)));
-            offset += other.contacts.len() as u32;
-            self.max_penetration = self.max_penetration.max(other.max_penetration);
-        }
-        append_in_order(&mut self.contacts, lists, |list| &list.contacts);
     }
 }
 

@@ -189,22 +189,14 @@ where
 /// A list a task pushes into, joined after the lists of the tasks before it.
 // Without `parallel` there are no tasks: only the list itself is used.
 #[cfg_attr(not(feature = "parallel"), allow(dead_code))]
-pub(crate) trait TaskList: Default + Send + Sync {
+pub(crate) trait TaskList: Default + Send {
     /// Empties the list, keeping its buffers.
     fn reset(&mut self);
     /// Appends `other` after what this list holds.
     fn join(&mut self, other: &Self);
-    /// Appends `lists` in order, as `join` on each in turn does; a list
-    /// whose items are long may copy them on rayon's threads
-    /// (`append_in_order`).
-    fn join_all(&mut self, lists: &[Self]) {
-        for list in lists {
-            self.join(list);
-        }
-    }
 }
 
-impl<T: Copy + Send + Sync> TaskList for Vec<T> {
+impl<T: Copy + Send> TaskList for Vec<T> {
     fn reset(&mut self) {
         self.clear();
     }
@@ -212,92 +204,6 @@ impl<T: Copy + Send + Sync> TaskList for Vec<T> {
     fn join(&mut self, other: &Self) {
         self.extend_from_slice(other);
     }
-
-    fn join_all(&mut self, lists: &[Self]) {
-        append_in_order(self, lists, Vec::as_slice);
-    }
-}
-
-/// Fewest bytes that `append_in_order` copies on rayon's threads: under it
-/// one thread copies them sooner than two can share them.
-#[cfg(feature = "parallel")]
-const SHARED_COPY_BYTES: usize = 64 * 1024;
-
-/// Appends `items(list)` of every list of `lists` to `out`, in order. The
-/// step's thread would otherwise copy what the tasks found (the contacts, a
-/// few megabytes in a crowded step) while the others wait for the next
-/// pass: on rayon's threads, each list is copied to its place, known from
-/// the lengths of those before it.
-#[cfg_attr(not(feature = "parallel"), allow(clippy::ptr_arg))]
-pub(crate) fn append_in_order<L, T>(
-    out: &mut Vec<T>,
-    lists: &[L],
-    items: impl Fn(&L) -> &[T] + Sync,
-) where
-    L: Sync,
-    T: Copy + Send + Sync,
-{
-    let total: usize = lists.iter().map(|list| items(list).len()).sum();
-    #[cfg(feature = "parallel")]
-    if total * std::mem::size_of::<T>() >= SHARED_COPY_BYTES
-        && lists.len() > 1
-        && threads_here() > 1
-    {
-        out.reserve(total);
-        let start = out.len();
-        let place = SendPtr(out.as_mut_ptr());
-        thread_times::pass(|| copy_in_halves(lists, &items, place, start));
-        // SAFETY: every slot from `start` to `start + total` was written
-        // above (each list to its own, `copy_in_halves`), within the
-        // capacity reserved; `T: Copy` has nothing to drop.
-        unsafe { out.set_len(start + total) };
-        return;
-    }
-    out.reserve(total);
-    for list in lists {
-        out.extend_from_slice(items(list));
-    }
-}
-
-/// A vector's buffer, written by tasks at disjoint places.
-#[cfg(feature = "parallel")]
-#[derive(Clone, Copy)]
-struct SendPtr<T>(*mut T);
-
-// SAFETY: the tasks that share it write disjoint slots (`copy_in_halves`).
-#[cfg(feature = "parallel")]
-unsafe impl<T: Send> Send for SendPtr<T> {}
-#[cfg(feature = "parallel")]
-unsafe impl<T: Send> Sync for SendPtr<T> {}
-
-/// Copies `lists`' items to `place` from slot `at` on, in order: the halves
-/// on rayon's threads, down to one list a task.
-#[cfg(feature = "parallel")]
-fn copy_in_halves<L, T>(
-    lists: &[L],
-    items: &(impl Fn(&L) -> &[T] + Sync),
-    place: SendPtr<T>,
-    at: usize,
-) where
-    L: Sync,
-    T: Copy + Send + Sync,
-{
-    if let [list] = lists {
-        let list = items(list);
-        // SAFETY: slots `at..at + list.len()` lie within the capacity the
-        // caller reserved, and no other task writes them (each half starts
-        // where the lists before it end).
-        thread_times::task(|| unsafe {
-            std::ptr::copy_nonoverlapping(list.as_ptr(), place.0.add(at), list.len());
-        });
-        return;
-    }
-    let (before, after) = lists.split_at(lists.len() / 2);
-    let after_at = at + before.iter().map(|list| items(list).len()).sum::<usize>();
-    rayon::join(
-        || copy_in_halves(before, items, place, at),
-        || copy_in_halves(after, items, place, after_at),
-    );
 }
 
 /// Appends to `out` what `collect(range, out)` pushes for `0..len`: split
@@ -333,7 +239,9 @@ pub(crate) fn collect_in_order<L, F>(
                     })
                 })
         });
-        out.join_all(&lists[..tasks]);
+        for list in &lists[..tasks] {
+            out.join(list);
+        }
         // Lists this step left idle hold nothing, so `spare` can free them.
         lists[tasks..].iter_mut().for_each(L::reset);
         return;
@@ -424,36 +332,6 @@ mod tests {
             assert_eq!(threads_here(), 4);
             assert!(worth_splitting(1000, 10));
         });
-    }
-
-    /// Lists of 0 to 4,999 items (some empty), joined on 1 to 4 threads after
-    /// what the output held: the items of each in order, as one list.
-    #[cfg(feature = "parallel")]
-    #[test]
-    fn lists_joined_on_threads_keep_their_order() {
-        let lengths = [0usize, 4_999, 17, 0, 3_000, 1, 2_048, 0, 911];
-        let mut next = 0u64;
-        let lists: Vec<Vec<u64>> = lengths
-            .iter()
-            .map(|&n| {
-                next += n as u64;
-                (next - n as u64..next).collect()
-            })
-            .collect();
-        let expected: Vec<u64> = (0..3).chain(3..3 + next).collect();
-        for threads in [1, 2, 3, 4] {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            let mut out: Vec<u64> = (0..3).collect();
-            let shifted: Vec<Vec<u64>> = lists
-                .iter()
-                .map(|l| l.iter().map(|x| x + 3).collect())
-                .collect();
-            pool.install(|| out.join_all(&shifted));
-            assert_eq!(out, expected, "{threads} threads");
-        }
     }
 
     /// A ragged buffer whose first item starts past 0 (a run's view) keeps
