@@ -6,9 +6,16 @@
 use serde::{Deserialize, Serialize};
 
 #[derive(Clone, Debug, Serialize, Deserialize)]
-struct Slot<T> {
+pub(crate) struct Slot<T> {
     generation: u32,
     item: Option<T>,
+}
+
+impl<T> Slot<T> {
+    /// Its item, if it holds one.
+    pub fn item_mut(&mut self) -> Option<&mut T> {
+        self.item.as_mut()
+    }
 }
 
 /// Items in slots reused through a free list.
@@ -64,6 +71,21 @@ impl<T> Slots<T> {
     }
 
     /// The item in slot `index`, whatever its generation.
+    pub fn slot(&self, index: u32) -> Option<&T> {
+        self.slots.get(index as usize)?.item.as_ref()
+    }
+
+    /// Every slot, live or free, by index: to be cut into runs of slots.
+    pub fn as_mut_slice(&mut self) -> &mut [Slot<T>] {
+        &mut self.slots
+    }
+
+    /// Slots live or free: one past the largest index.
+    pub fn slot_count(&self) -> usize {
+        self.slots.len()
+    }
+
+    /// The item in slot `index`, whatever its generation.
     pub fn slot_mut(&mut self, index: u32) -> Option<&mut T> {
         self.slots.get_mut(index as usize)?.item.as_mut()
     }
@@ -75,11 +97,6 @@ impl<T> Slots<T> {
                 .as_ref()
                 .map(|item| (index as u32, slot.generation, item))
         })
-    }
-
-    /// Every slot's item, in slot order, to change in place.
-    pub fn slots_mut(&mut self) -> impl Iterator<Item = Option<&mut T>> + '_ {
-        self.slots.iter_mut().map(|s| s.item.as_mut())
     }
 
     pub fn len(&self) -> usize {

@@ -5,8 +5,9 @@
 //! (`lane_substep`), with no branch on a ribbon and no allocation once the
 //! buffers have grown to the scene.
 //!
-//! Packed once a step, straight from the world's ribbons, as
-//! `World::prepare_ribbons` readies them (`RibbonLanes::add`), and their
+//! Packed once a step, straight from the world's ribbons, once
+//! `World::prepare_ribbons` has readied them (`RibbonLanes::assign`,
+//! `pack`), and their
 //! points handed back once a step in `World::finish_ribbons`
 //! (`RibbonLanes::take_out`). A
 //! group short of four ribbons fills its spare lanes with copies of its
@@ -32,9 +33,13 @@ use super::collide::{NearBalloon, NearTriangle};
 use super::lane_pushes::NearSlot;
 use super::lane_room::{RoomSlot, TriangleSlot};
 use super::solve::ActiveRibbon;
-use super::{Ribbon, MAX_SEGMENTS, RIBBON_RADIUS};
+use super::{Ribbon, Ribbons, MAX_SEGMENTS, RIBBON_RADIUS};
 use crate::solver::lanes::{set, F4, LANES, M4, V4};
+use crate::threading::tasks::for_each_run;
 use glam::{Mat3, Vec3};
+
+/// Lane groups one task packs (128 ribbons).
+const PACK_CHUNK: usize = 32;
 
 /// A ribbon's lane, what is not laid out across the lanes: its balloon, what
 /// it may touch, and what it did to them this substep.
@@ -153,6 +158,18 @@ pub(crate) struct Rest<'a> {
 }
 
 impl Rest<'_> {
+    /// How many of `ribbon`'s last points rest, together (`find`): the
+    /// tail held still in its lane.
+    pub fn tail(&self, ribbon: &Ribbon) -> usize {
+        let mut rests = [false; MAX_SEGMENTS as usize + 1];
+        self.find(ribbon, &mut rests);
+        rests[..ribbon.points.len()]
+            .iter()
+            .rev()
+            .take_while(|&&r| r)
+            .count()
+    }
+
     /// Which of `ribbon`'s points (not its knot) rest, into `rests`: those
     /// that, with the point before them and every point after, ended the
     /// last step exactly still, lie on a near triangle, and no near body's
@@ -231,14 +248,11 @@ impl LaneGroup {
         self.h = 0.0;
     }
 
-    /// Puts `r`, whose points are `ribbon`'s, in the next lane: an anchored
-    /// end where it is tied, still; a held point of no inverse mass; with
-    /// `rest`, a point that rests held too.
-    /// `from`: the first point of its resting tail (the point count if
-    /// none rests).
-    fn add(&mut self, r: &ActiveRibbon, ribbon: &Ribbon, from: usize) {
-        let l = self.live;
-        self.live += 1;
+    /// Puts `r`, whose points are `ribbon`'s, in lane `l` (one of the first
+    /// `live`): an anchored end where it is tied, still; a held point of no
+    /// inverse mass; a point of its resting tail, from point `from` (the
+    /// point count if none rests), held too.
+    fn add(&mut self, l: usize, r: &ActiveRibbon, ribbon: &Ribbon, from: usize) {
         let n = ribbon.points.len() - 1;
         self.rest_from[l] = from;
         for (i, (p, v)) in ribbon.points.iter().zip(&ribbon.velocities).enumerate() {
@@ -408,6 +422,9 @@ pub(crate) struct RibbonLanes {
     /// Per awake ribbon, in the solver's order: its group and lane (pulls
     /// are applied in this order, whatever the grouping).
     pub order: Vec<(u32, u32)>,
+    /// Per group in use, the awake ribbon (its place in `order`) in each
+    /// of its live lanes.
+    members: Vec<[u32; LANES]>,
     /// Per segment count, and whether more than half rests: the group being
     /// filled (`u32::MAX`: none).
     filling: Vec<u32>,
@@ -430,17 +447,10 @@ impl RibbonLanes {
             .resize(2 * (MAX_SEGMENTS as usize + 1), u32::MAX);
     }
 
-    /// Lays out the next awake ribbon `r`, whose points are `ribbon`'s: in
-    /// the latest group of its segment count with a free lane; with `rest`,
-    /// its points lying still rest (`Rest`).
-    pub fn add(&mut self, r: &ActiveRibbon, ribbon: &Ribbon, rest: Option<Rest>) {
-        let segments = ribbon.points.len() - 1;
-        let mut rests = [false; MAX_SEGMENTS as usize + 1];
-        if let Some(rest) = rest {
-            rest.find(ribbon, &mut rests);
-        }
-        // A tail: from the last point that does not rest on, none is held.
-        let tail = rests[..=segments].iter().rev().take_while(|&&r| r).count();
+    /// Chooses the next awake ribbon's lane, one of `segments` segments
+    /// whose last `tail` points rest: in the latest group of its segment
+    /// count with a free lane (`pack` fills it).
+    pub fn assign(&mut self, segments: usize, tail: usize) {
         // Ribbons resting over more than half their points share groups,
         // whose substeps then stop early, apart from the others.
         let key = segments * 2 + usize::from(2 * tail > segments);
@@ -449,21 +459,37 @@ impl RibbonLanes {
             g = self.used as u32;
             if self.groups.len() == self.used {
                 self.groups.push(LaneGroup::default());
+                self.members.push([0; LANES]);
             }
             self.used += 1;
             self.groups[g as usize].begin(segments);
             self.filling[key] = g;
         }
         let group = &mut self.groups[g as usize];
+        self.members[g as usize][group.live] = self.order.len() as u32;
         self.order.push((g, group.live as u32));
-        group.add(r, ribbon, segments + 1 - tail);
+        group.live += 1;
     }
 
-    /// Pads the groups once every awake ribbon is added.
-    pub fn finish_packing(&mut self) {
-        for group in &mut self.groups[..self.used] {
-            group.pad();
-        }
+    /// Packs the awake ribbons (`active`, in the order assigned; their
+    /// points those of the world's `ribbons`) into their lanes and pads
+    /// the groups: groups side by side in tasks.
+    pub fn pack(&mut self, active: &[ActiveRibbon], ribbons: &Ribbons) {
+        let used = self.used;
+        let parts = (&mut self.groups[..used], &mut self.members[..used]);
+        for_each_run(used, PACK_CHUNK, parts, |_, (groups, members)| {
+            for (group, members) in groups.iter_mut().zip(members.iter()) {
+                for (l, &k) in members[..group.live].iter().enumerate() {
+                    let r = &active[k as usize];
+                    // An awake ribbon's slot holds it.
+                    if let Some(ribbon) = ribbons.slot(r.slot) {
+                        let from = ribbon.points.len() - r.rest_tail as usize;
+                        group.add(l, r, ribbon, from);
+                    }
+                }
+                group.pad();
+            }
+        });
     }
 
     /// Hands the `k`th awake ribbon's points back to `ribbon` (as added),

@@ -246,13 +246,23 @@ impl Ribbons {
             .map(|(index, generation, ribbon)| (RibbonId { index, generation }, ribbon))
     }
 
-    pub fn slot_mut(&mut self, index: u32) -> Option<&mut Ribbon> {
-        self.slots.slot_mut(index)
+    /// The ribbon in slot `index`, whatever its generation.
+    pub fn slot(&self, index: u32) -> Option<&Ribbon> {
+        self.slots.slot(index)
     }
 
-    /// Every slot's ribbon, in slot order, for the solve to change in place.
-    pub fn slots_mut(&mut self) -> impl Iterator<Item = Option<&mut Ribbon>> + '_ {
-        self.slots.slots_mut()
+    /// Every slot, live or free, by index (`Slots::as_mut_slice`).
+    pub fn as_mut_slice(&mut self) -> &mut [crate::slots::Slot<Ribbon>] {
+        self.slots.as_mut_slice()
+    }
+
+    /// Slots live or free: one past the largest index.
+    pub fn slot_count(&self) -> usize {
+        self.slots.slot_count()
+    }
+
+    pub fn slot_mut(&mut self, index: u32) -> Option<&mut Ribbon> {
+        self.slots.slot_mut(index)
     }
 
     pub fn len(&self) -> usize {

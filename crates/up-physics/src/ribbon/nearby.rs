@@ -9,8 +9,35 @@
 mod near_lists;
 mod sphere_grid;
 
-pub(crate) use near_lists::{NearLists, Spheres};
+pub(crate) use near_lists::{NearFinder, NearLists, RibbonList, Spheres};
 pub(crate) use sphere_grid::{sphere_meets_box, SphereGrid};
+
+use crate::ribbon::collide::NearTriangle;
+use crate::threading::tasks::TaskList;
+
+/// The balloons and room triangles near the step's awake ribbons, each
+/// ribbon's back to back (`ActiveRibbon::bodies`, `triangles`), and how
+/// many ribbons' lists were found again for them.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct NearFound {
+    pub bodies: Vec<u32>,
+    pub triangles: Vec<NearTriangle>,
+    pub found: u64,
+}
+
+impl TaskList for NearFound {
+    fn reset(&mut self) {
+        self.bodies.clear();
+        self.triangles.clear();
+        self.found = 0;
+    }
+
+    fn join(&mut self, other: &Self) {
+        self.bodies.extend_from_slice(&other.bodies);
+        self.triangles.extend_from_slice(&other.triangles);
+        self.found += other.found;
+    }
+}
 
 /// The ribbons' neighbour search, kept between steps.
 #[derive(Clone, Debug, Default)]

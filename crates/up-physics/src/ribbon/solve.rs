@@ -41,7 +41,7 @@ use up_geom::Aabb;
 use super::collide::NearTriangle;
 use super::lane_group::RibbonLanes;
 use super::lane_pushes::NearInput;
-use super::nearby::NearbyBodies;
+use super::nearby::{NearFound, NearbyBodies};
 use super::touch::RibbonTouch;
 use super::{
     Ribbon, AIR_VISCOSITY, NORMAL_DRAG_COEFFICIENT, RIBBON_WIDTH, TANGENT_DRAG_COEFFICIENT,
@@ -109,6 +109,13 @@ pub(crate) struct ActiveRibbon {
     pub segment_length: f32,
     /// The fastest air at any of its points this step, m/s (0 in still air).
     pub air_speed: f32,
+    /// Its last points that rest this step (`lane_group::Rest::tail`).
+    pub rest_tail: u32,
+    /// As the step left it: moving as a whole (its balloon may not sleep
+    /// yet), its points all finite, and its stretch (`World::finish_ribbons`).
+    pub moving: bool,
+    pub finite: bool,
+    pub stretch: f32,
 }
 
 /// Point `i`'s drag factors (`ActiveRibbon::drag_mid`) in air of `air_density`.
@@ -205,12 +212,15 @@ pub(crate) struct RibbonStage {
     /// for the steps in which more are awake (no allocation a step).
     pub active: Vec<ActiveRibbon>,
     pub awake: usize,
-    /// The awake ribbons laid out for the substeps (`RibbonLanes::add`,
+    /// The awake ribbons laid out for the substeps (`RibbonLanes::pack`,
     /// `take_out`).
     pub lanes: RibbonLanes,
-    /// Room triangles and balloons near each active ribbon, back to back.
-    pub triangles: Vec<NearTriangle>,
-    pub bodies: Vec<u32>,
+    /// Their slots, in slot order (as `active`).
+    pub awake_slots: Vec<u32>,
+    /// Room triangles and balloons near each active ribbon, back to back,
+    /// and the lists they are found in, one a task.
+    pub near: NearFound,
+    pub near_tasks: Vec<NearFound>,
     pub nearby: NearbyBodies,
     /// The spheres hashed in `nearby`: per body, or per awake body
     /// (`awake_bodies` says which) when waking.
@@ -254,7 +264,7 @@ impl PointBoxes {
 
 /// The awake ribbons as the solver's `ribbons` part of each substep.
 pub(crate) struct RibbonSubsteps<'a> {
-    /// Packed in lane groups (`RibbonLanes::add`).
+    /// Packed in lane groups (`RibbonLanes::pack`).
     pub active: &'a mut RibbonLanes,
     /// The step's pairs of segments that may touch (`touch`).
     pub touch: &'a mut RibbonTouch,

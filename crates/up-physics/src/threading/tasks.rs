@@ -251,6 +251,80 @@ pub(crate) fn collect_in_order<L, F>(
     collect(0..len, out);
 }
 
+/// A run's own list, among the tasks' lists: split with the run's items
+/// (at a multiple of the chunk, as `split_runs` splits), so each run gets
+/// the list of its task.
+#[cfg(feature = "parallel")]
+struct TaskLists<'a, L> {
+    lists: &'a mut [L],
+    chunk: usize,
+}
+
+#[cfg(feature = "parallel")]
+impl<L: Send> Runs for TaskLists<'_, L> {
+    fn split_at(self, mid: usize) -> (Self, Self) {
+        let (before, after) = self.lists.split_at_mut(mid / self.chunk);
+        let chunk = self.chunk;
+        (
+            TaskLists {
+                lists: before,
+                chunk,
+            },
+            TaskLists {
+                lists: after,
+                chunk,
+            },
+        )
+    }
+}
+
+/// `for_each_run` that also collects: `run(first, parts, list)` changes
+/// its run of `parts` in place and pushes into a list of its own (from
+/// `lists`, kept for their buffers), the lists joined into `out` in order,
+/// so `out` ends the same as with one run over everything.
+// Without `parallel` (the wasm build) `lists` is only reset, never grown.
+#[cfg_attr(not(feature = "parallel"), allow(clippy::ptr_arg))]
+pub(crate) fn for_each_run_collect<P, L, F>(
+    len: usize,
+    chunk: usize,
+    parts: P,
+    lists: &mut Vec<L>,
+    out: &mut L,
+    run: F,
+) where
+    P: Runs,
+    L: TaskList,
+    F: Fn(usize, P, &mut L) + Sync,
+{
+    debug_assert!(chunk > 0, "runs of no items");
+    #[cfg(feature = "parallel")]
+    if worth_splitting(len, chunk) {
+        let tasks = len.div_ceil(chunk);
+        if lists.len() < tasks {
+            lists.resize_with(tasks, L::default);
+        }
+        let own = TaskLists {
+            lists: &mut lists[..tasks],
+            chunk,
+        };
+        thread_times::pass(|| {
+            split_runs(0, len, chunk, (parts, own), &|first, (parts, own)| {
+                let list = &mut own.lists[0];
+                list.reset();
+                run(first, parts, list);
+            })
+        });
+        for list in &lists[..tasks] {
+            out.join(list);
+        }
+        lists[tasks..].iter_mut().for_each(L::reset);
+        return;
+    }
+    lists.iter_mut().for_each(L::reset);
+    let _ = (len, chunk);
+    run(0, parts, out);
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -332,6 +406,47 @@ mod tests {
             assert_eq!(threads_here(), 4);
             assert!(worth_splitting(1000, 10));
         });
+    }
+
+    /// Runs of every size on 1 to 4 threads each double their items in
+    /// place and push them, doubled, into their own lists: the items and
+    /// the joined list come out as from one run over everything.
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn runs_that_collect_join_their_lists_in_order() {
+        for threads in [1, 2, 3, 4] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            for chunk in [1, 7, 64, 999, 1000, 4096] {
+                let mut items: Vec<u32> = (0..1000).collect();
+                let (mut lists, mut out) = (Vec::<Vec<u32>>::new(), vec![7]);
+                pool.install(|| {
+                    let parts = &mut items[..];
+                    for_each_run_collect(
+                        1000,
+                        chunk,
+                        parts,
+                        &mut lists,
+                        &mut out,
+                        |first, run, list| {
+                            for (k, item) in run.iter_mut().enumerate() {
+                                assert_eq!(*item, (first + k) as u32);
+                                *item *= 2;
+                                list.extend([*item, *item]);
+                            }
+                        },
+                    );
+                });
+                assert!(items.iter().enumerate().all(|(k, &v)| v == 2 * k as u32));
+                let want: Vec<u32> = [7]
+                    .into_iter()
+                    .chain((0..1000).flat_map(|k| [2 * k, 2 * k]))
+                    .collect();
+                assert_eq!(out, want, "{threads} threads, chunk {chunk}");
+            }
+        }
     }
 
     /// A ragged buffer whose first item starts past 0 (a run's view) keeps

@@ -73,7 +73,7 @@ pub(crate) struct Spheres<'a> {
 
 /// One ribbon's candidates, found for `reach`.
 #[derive(Clone, Debug)]
-struct RibbonList {
+pub(crate) struct RibbonList {
     /// The anchoring the lists were found in (0: none yet).
     epoch: u32,
     /// In the anchors' frame (the drift taken off).
@@ -230,35 +230,65 @@ impl NearLists {
         self.anchor_count += 1;
     }
 
-    /// Appends to `bodies` every body whose sphere meets `aabb` (ribbon
-    /// `slot`'s box this step), ascending, and to `triangles` every room
-    /// triangle (but degenerate ones) whose box meets it, in the room's tree
-    /// order; finds the ribbon's list again first if `aabb` left its reach.
-    /// After `begin_step`, with the same spheres.
+    /// What this step's lists are found from, and every slot's list (at
+    /// least `slots` of them): a ribbon's list is its own, the rest is
+    /// read alone, so ribbons may be listed side by side.
+    /// After `begin_step`.
+    pub fn split(&mut self, slots: usize) -> (NearFinder<'_>, &mut [RibbonList]) {
+        if self.lists.len() < slots {
+            self.lists.resize_with(slots, RibbonList::default);
+        }
+        let finder = NearFinder {
+            anchor_center: &self.anchor_center,
+            anchor_radius: &self.anchor_radius,
+            grid: &self.grid,
+            drift: self.drift,
+            epoch: self.epoch,
+            loose: &self.loose,
+            loose_radius: self.loose_radius,
+        };
+        (finder, &mut self.lists)
+    }
+}
+
+/// The anchors, the drift and the loose bodies of a step, which every
+/// ribbon's list is kept or found again from (`NearLists::split`).
+pub(crate) struct NearFinder<'a> {
+    anchor_center: &'a [Vec3],
+    anchor_radius: &'a [f32],
+    grid: &'a SphereGrid,
+    drift: Vec3,
+    epoch: u32,
+    loose: &'a [(f32, u32)],
+    loose_radius: f32,
+}
+
+impl NearFinder<'_> {
+    /// Appends to `bodies` every body whose sphere meets `aabb` (the box of
+    /// the ribbon whose list is `list` this step), ascending, and to
+    /// `triangles` every room triangle (but degenerate ones) whose box
+    /// meets it, in the room's tree order; finds the list again first if
+    /// `aabb` left its reach, and then says so.
     pub fn near(
-        &mut self,
-        slot: usize,
+        &self,
+        list: &mut RibbonList,
         aabb: &Aabb,
         spheres: Spheres,
         room: Option<&TriMesh>,
         bodies: &mut Vec<u32>,
         triangles: &mut Vec<NearTriangle>,
-    ) {
-        if self.lists.len() <= slot {
-            self.lists.resize_with(slot + 1, RibbonList::default);
-        }
-        let list = &mut self.lists[slot];
+    ) -> bool {
         let fresh = list.epoch != self.epoch;
         list.epoch = self.epoch;
         let shifted = Aabb::new(aabb.min - self.drift, aabb.max - self.drift);
-        if fresh || !within(&shifted, &list.reach) {
+        let found = fresh || !within(&shifted, &list.reach);
+        if found {
             list.reach = shifted.expanded(MARGIN);
             list.bodies.clear();
-            let (centers, radii) = (&self.anchor_center, &self.anchor_radius);
+            let (centers, radii) = (self.anchor_center, self.anchor_radius);
             self.grid
                 .query(&list.reach, centers, radii, &mut list.bodies);
             list.bodies.sort_unstable();
-            self.found_count += 1;
         }
         if fresh || !within(aabb, &list.room_reach) {
             list.room_reach = aabb.expanded(ROOM_MARGIN);
@@ -294,6 +324,7 @@ impl NearLists {
                 }
             }
         }
+        found
     }
 }
 
@@ -385,19 +416,13 @@ mod tests {
                 let aabb = aabb.expanded(0.02 * random(1.0).x);
                 bodies.clear();
                 triangles.clear();
-                let before = lists.found_count;
-                lists.near(
-                    slot,
-                    &aabb,
-                    spheres,
-                    Some(&room),
-                    &mut bodies,
-                    &mut triangles,
-                );
-                if lists.found_count == before {
-                    kept += 1;
-                } else {
+                let (finder, slots) = lists.split(ribbons);
+                let list = &mut slots[slot];
+                let near_room = Some(&room);
+                if finder.near(list, &aabb, spheres, near_room, &mut bodies, &mut triangles) {
                     found += 1;
+                } else {
+                    kept += 1;
                 }
                 let want: Vec<u32> = (0..n as u32)
                     .filter(|&i| sphere_meets_box(centers[i as usize], radii[i as usize], &aabb))

@@ -17,9 +17,6 @@ pub(crate) struct SphereGrid {
     ranges: Vec<[[i32; 3]; 2]>,
     /// Each bucket's next free place while filling.
     next: Vec<u32>,
-    /// Per sphere: the last query that found it (each is reported once).
-    seen: Vec<u32>,
-    query: u32,
 }
 
 fn bucket(ix: i32, iy: i32, iz: i32, mask: u32) -> u32 {
@@ -40,9 +37,6 @@ impl SphereGrid {
         self.start.resize(buckets + 1, 0);
         self.ranges.clear();
         let inv = 1.0 / self.cell;
-        self.seen.clear();
-        self.seen.resize(centers.len(), 0);
-        self.query = 0;
         for (c, &r) in centers.iter().zip(radii) {
             let lo = ((*c - r) * inv).floor().as_ivec3().to_array();
             let hi = ((*c + r) * inv).floor().as_ivec3().to_array();
@@ -77,12 +71,13 @@ impl SphereGrid {
     }
 
     /// Appends to `out` each sphere's index whose sphere overlaps `aabb`,
-    /// once, in the order the grid holds them.
-    pub fn query(&mut self, aabb: &Aabb, centers: &[Vec3], radii: &[f32], out: &mut Vec<u32>) {
+    /// once (in the first cell, by each axis, that both it and the box
+    /// cover: not in another cell its bucket shares); reads the grid alone,
+    /// so queries may run side by side.
+    pub fn query(&self, aabb: &Aabb, centers: &[Vec3], radii: &[f32], out: &mut Vec<u32>) {
         if self.start.is_empty() {
             return;
         }
-        self.query += 1;
         let inv = 1.0 / self.cell;
         let lo = (aabb.min * inv).floor().as_ivec3();
         let hi = (aabb.max * inv).floor().as_ivec3();
@@ -95,18 +90,25 @@ impl SphereGrid {
             }));
             return;
         }
-        for ix in lo.x..=hi.x {
-            for iy in lo.y..=hi.y {
-                for iz in lo.z..=hi.z {
+        let lo = lo.to_array();
+        for ix in lo[0]..=hi.x {
+            for iy in lo[1]..=hi.y {
+                for iz in lo[2]..=hi.z {
                     let b = bucket(ix, iy, iz, self.mask) as usize;
+                    // A sphere whose cells share a bucket is in it once a
+                    // cell, back to back (it is filled a sphere at a time).
+                    let mut last = u32::MAX;
                     for &i in &self.bodies[self.start[b] as usize..self.start[b + 1] as usize] {
-                        let seen = &mut self.seen[i as usize];
-                        if *seen != self.query
+                        let first = self.ranges[i as usize][0];
+                        let cell = [ix, iy, iz];
+                        let first_shared = (0..3).all(|a| cell[a] == first[a].max(lo[a]));
+                        if i != last
+                            && first_shared
                             && sphere_meets_box(centers[i as usize], radii[i as usize], aabb)
                         {
-                            *seen = self.query;
                             out.push(i);
                         }
+                        last = i;
                     }
                 }
             }
@@ -123,25 +125,33 @@ pub(crate) fn sphere_meets_box(center: Vec3, radius: f32, aabb: &Aabb) -> bool {
 mod tests {
     use super::*;
 
+    /// Many spheres, and a few in a grid of few buckets (so that a
+    /// sphere's own cells share buckets): each query lists exactly the
+    /// spheres that meet its box, each once.
     #[test]
-    fn finds_exactly_the_spheres_that_meet_the_box() {
+    fn finds_exactly_the_spheres_that_meet_the_box_once() {
         let mut next = crate::hash::uniform(7);
-        let centers: Vec<Vec3> = (0..500)
-            .map(|_| Vec3::new(next(), next(), next()) * 8.0)
-            .collect();
-        let radii: Vec<f32> = (0..500).map(|_| 0.05 + 0.2 * next()).collect();
-        let mut grid = SphereGrid::default();
-        grid.build(&centers, &radii);
-        for k in 0..50 {
-            let lo = Vec3::new(next(), next(), next()) * 7.0;
-            let aabb = Aabb::new(lo, lo + Vec3::splat(0.1 + 0.05 * k as f32));
-            let mut found = Vec::new();
-            grid.query(&aabb, &centers, &radii, &mut found);
-            found.sort_unstable();
-            let expected: Vec<u32> = (0..500u32)
-                .filter(|&i| sphere_meets_box(centers[i as usize], radii[i as usize], &aabb))
+        for count in [500u32, 5] {
+            let centers: Vec<Vec3> = (0..count)
+                .map(|_| Vec3::new(next(), next(), next()) * 8.0)
                 .collect();
-            assert_eq!(found, expected);
+            let radii: Vec<f32> = (0..count).map(|_| 0.05 + 0.2 * next()).collect();
+            let mut grid = SphereGrid::default();
+            grid.build(&centers, &radii);
+            for k in 0..200 {
+                let lo = Vec3::new(next(), next(), next()) * 7.0;
+                let aabb = Aabb::new(lo, lo + Vec3::splat(0.1 + 0.01 * k as f32));
+                let mut found = Vec::new();
+                grid.query(&aabb, &centers, &radii, &mut found);
+                let listed = found.len();
+                found.sort_unstable();
+                found.dedup();
+                assert_eq!(found.len(), listed, "a sphere listed twice");
+                let expected: Vec<u32> = (0..count)
+                    .filter(|&i| sphere_meets_box(centers[i as usize], radii[i as usize], &aabb))
+                    .collect();
+                assert_eq!(found, expected);
+            }
         }
     }
 }
