@@ -34,7 +34,7 @@ use super::lane_pushes::NearSlot;
 use super::lane_room::{RoomSlot, TriangleSlot};
 use super::solve::ActiveRibbon;
 use super::{Ribbon, Ribbons, MAX_SEGMENTS, RIBBON_RADIUS};
-use crate::solver::lanes::{set, F4, LANES, M4, V4};
+use crate::solver::lanes::{select, set, F4, LANES, M4, V4};
 use crate::threading::tasks::for_each_run;
 use glam::{Mat3, Vec3};
 
@@ -303,30 +303,18 @@ impl LaneGroup {
         for l in live..LANES {
             self.rest_from[l] = self.rest_from[0];
         }
-        for x in &mut self.free_inv_mass {
-            for l in live..LANES {
-                set(x, l, x.as_array()[0]);
-            }
-        }
+        // Lanes kept, each a lane of all bits set; the others take the first's.
+        let mut kept = [0.0f32; LANES];
+        kept[..live].fill(f32::from_bits(!0));
+        let kept = F4::new(kept);
+        let fill = |x: &mut F4| *x = select(kept, *x, F4::splat(x.as_array()[0]));
+        self.free_inv_mass.iter_mut().for_each(fill);
         self.set_active();
         if live == LANES {
             self.live_mask = all;
             return;
         }
-        let first = |x: F4| F4::splat(x.as_array()[0]);
-        let keep = |x: F4, spare: F4| {
-            let mut out = x;
-            for l in live..LANES {
-                set(&mut out, l, spare.as_array()[l]);
-            }
-            out
-        };
-        let fill = |x: &mut F4| *x = keep(*x, first(*x));
-        let fill_v = |v: &mut V4| {
-            fill(&mut v.x);
-            fill(&mut v.y);
-            fill(&mut v.z);
-        };
+        let fill_v = |v: &mut V4| *v = V4::select(kept, *v, V4::splat(v.lane(0)));
         for v in self.points.iter_mut().chain(&mut self.velocities) {
             fill_v(v);
         }
@@ -337,7 +325,7 @@ impl LaneGroup {
             .chain(&mut self.drag_end)
             .for_each(fill);
         fill(&mut self.end_radius);
-        self.live_mask = keep(all, F4::ZERO);
+        self.live_mask = kept;
         for lane in &mut self.lanes[self.live..] {
             lane.grab = None;
             lane.reactions.clear();

@@ -53,6 +53,12 @@ impl V4 {
         }
     }
 
+    /// `v` in every lane.
+    #[inline]
+    pub fn splat(v: Vec3) -> V4 {
+        V4::new(F4::splat(v.x), F4::splat(v.y), F4::splat(v.z))
+    }
+
     #[inline]
     pub fn lane(&self, i: usize) -> Vec3 {
         Vec3::new(
