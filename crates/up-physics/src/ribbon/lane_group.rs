@@ -401,6 +401,16 @@ pub(crate) fn set_matrix(m4: &mut M4, l: usize, m: &Mat3) {
     m4.z_axis.set_lane(l, m.z_axis);
 }
 
+/// A lane group as `RibbonLanes::assign` chose it: its ribbons' segment
+/// count, and the awake ribbon (its place in `order`) in each of its first
+/// `live` lanes.
+#[derive(Clone, Copy, Debug, Default)]
+struct Members {
+    segments: usize,
+    live: usize,
+    ribbons: [u32; LANES],
+}
+
 /// The awake ribbons in lane groups, with the buffers kept between steps.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct RibbonLanes {
@@ -410,9 +420,8 @@ pub(crate) struct RibbonLanes {
     /// Per awake ribbon, in the solver's order: its group and lane (pulls
     /// are applied in this order, whatever the grouping).
     pub order: Vec<(u32, u32)>,
-    /// Per group in use, the awake ribbon (its place in `order`) in each
-    /// of its live lanes.
-    members: Vec<[u32; LANES]>,
+    /// Per group in use, what `assign` chose for it (`pack` lays it out).
+    members: Vec<Members>,
     /// Per segment count, and whether more than half rests: the group being
     /// filled (`u32::MAX`: none).
     filling: Vec<u32>,
@@ -443,20 +452,23 @@ impl RibbonLanes {
         // whose substeps then stop early, apart from the others.
         let key = segments * 2 + usize::from(2 * tail > segments);
         let mut g = self.filling[key];
-        if g == u32::MAX || self.groups[g as usize].live == LANES {
+        if g == u32::MAX || self.members[g as usize].live == LANES {
             g = self.used as u32;
             if self.groups.len() == self.used {
                 self.groups.push(LaneGroup::default());
-                self.members.push([0; LANES]);
+                self.members.push(Members::default());
             }
             self.used += 1;
-            self.groups[g as usize].begin(segments);
+            self.members[g as usize] = Members {
+                segments,
+                ..Members::default()
+            };
             self.filling[key] = g;
         }
-        let group = &mut self.groups[g as usize];
-        self.members[g as usize][group.live] = self.order.len() as u32;
-        self.order.push((g, group.live as u32));
-        group.live += 1;
+        let members = &mut self.members[g as usize];
+        members.ribbons[members.live] = self.order.len() as u32;
+        self.order.push((g, members.live as u32));
+        members.live += 1;
     }
 
     /// Packs the awake ribbons (`active`, in the order assigned; their
@@ -467,7 +479,9 @@ impl RibbonLanes {
         let parts = (&mut self.groups[..used], &mut self.members[..used]);
         for_each_run(used, PACK_CHUNK, parts, |_, (groups, members)| {
             for (group, members) in groups.iter_mut().zip(members.iter()) {
-                for (l, &k) in members[..group.live].iter().enumerate() {
+                group.begin(members.segments);
+                group.live = members.live;
+                for (l, &k) in members.ribbons[..members.live].iter().enumerate() {
                     let r = &active[k as usize];
                     // An awake ribbon's slot holds it.
                     if let Some(ribbon) = ribbons.slot(r.slot) {
