@@ -329,6 +329,23 @@ pub(crate) fn for_each_run_collect<P, L, F>(
 mod tests {
     use super::*;
 
+    /// Run lengths the splitting tests cut 1000 items into: one item, odd,
+    /// a power of two, one short, all and more than all.
+    #[cfg(feature = "parallel")]
+    const CHUNKS: [usize; 6] = [1, 7, 64, 999, 1000, 4096];
+
+    /// Pools of 1 to 4 threads, with their sizes.
+    #[cfg(feature = "parallel")]
+    fn pools() -> impl Iterator<Item = (usize, rayon::ThreadPool)> {
+        (1..=4).map(|threads| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            (threads, pool)
+        })
+    }
+
     /// Items of lengths 0 to 4 (item k holds k % 5 slots), cut into runs of
     /// every size on 1 to 4 threads: each item is handed out once, whole,
     /// with its own index, alongside its element of a plain slice.
@@ -344,12 +361,8 @@ mod tests {
             })
             .collect();
         let slots = (0..len).map(|k| k % 5).sum::<u32>() as usize;
-        for threads in [1, 2, 3, 4] {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            for chunk in [1, 7, 64, 999, 1000, 4096] {
+        for (threads, pool) in pools() {
+            for chunk in CHUNKS {
                 let mut owner = vec![u32::MAX; slots];
                 let mut index = vec![u32::MAX; len as usize];
                 pool.install(|| {
@@ -414,12 +427,8 @@ mod tests {
     #[cfg(feature = "parallel")]
     #[test]
     fn runs_that_collect_join_their_lists_in_order() {
-        for threads in [1, 2, 3, 4] {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            for chunk in [1, 7, 64, 999, 1000, 4096] {
+        for (threads, pool) in pools() {
+            for chunk in CHUNKS {
                 let mut items: Vec<u32> = (0..1000).collect();
                 let (mut lists, mut out) = (Vec::<Vec<u32>>::new(), vec![7]);
                 pool.install(|| {
