@@ -483,7 +483,8 @@ function printTable(runs, modes, cost) {
   const widths = rows[0].map((_, c) => Math.max(...rows.map((row) => (row[c] ?? "").length)));
   for (const row of rows) console.error(row.map((cell, c) => (cell ?? "").padEnd(widths[c])).join("  ").trimEnd());
   for (const m of modes) {
-    for (const [t, s] of Object.entries(m.speedup_mean)) {
+    // No 1-thread run beside them (`--threads 2`): no ratio to print.
+    for (const [t, s] of Object.entries(m.speedup_mean ?? {})) {
       console.error(
         `${t} threads over 1, ${m.ribbons ? "with" : "without"} ribbons, ${m.pool}: ${s}× by the mean (rounds ${m.speedup_mean_rounds[t].join(", ")}), ${m.speedup_median[t]}× by the median; while drawing ${m.speedup_mean_while_drawing[t]}× by the mean (rounds ${m.speedup_mean_while_drawing_rounds[t].join(", ")}), ${m.speedup_median_while_drawing[t]}× by the median`,
       );
