@@ -1,11 +1,16 @@
-//! The bodies' bounding spheres (their trees' roots) at a substep's pose, as
-//! the ribbons' pushes see them: every body's, or, with few ribbons among
-//! many bodies, only the ribbons' candidates'. A point within a bound is
-//! tested against the balloon's leaves in its own frame (`collide`), so no
-//! leaf is placed here.
+//! The bodies as the ribbons' pushes see them at a substep's pose: each
+//! one's bounding sphere (its tree's root), centre, turn, move over the
+//! substep and shape (`NearBalloon`), for every body, or, with few ribbons
+//! among many bodies, only the ribbons' candidates. Placed once a substep
+//! for all the ribbons: a body near several ribbons is read from here by
+//! each, not placed again by each. A point within a bound is tested against
+//! the balloon's leaves in its own frame (`collide`), so no leaf is placed
+//! here.
 
-use glam::Vec3;
+use glam::{Quat, Vec3};
+use up_geom::Sphere;
 
+use super::collide::NearBalloon;
 use super::solve::SubstepInput;
 use crate::solver::body_state::BodyState;
 use crate::threading::tasks::fill_chunks;
@@ -13,46 +18,59 @@ use crate::threading::tasks::fill_chunks;
 /// Bodies one task places.
 const BODY_CHUNK: usize = 1024;
 
-/// A body's bounding sphere (its tree's root) at this substep's pose.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct Bound {
-    pub center: Vec3,
-    pub radius: f32,
-}
+/// What a body not placed this substep holds (no ribbon reads it).
+const UNPLACED: NearBalloon = NearBalloon {
+    state: u32::MAX,
+    bound: Sphere {
+        center: Vec3::ZERO,
+        radius: 0.0,
+    },
+    moved: Vec3::ZERO,
+    center: Vec3::ZERO,
+    rotation: Quat::IDENTITY,
+    tree: 0,
+    scale: 0.0,
+};
 
-/// The bodies' bounds at this substep's pose.
+/// The bodies at this substep's pose.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct BodySpheres {
     /// Per body (dense).
-    pub bounds: Vec<Bound>,
+    pub placed: Vec<NearBalloon>,
 }
 
 impl BodySpheres {
-    /// Places the bounds of the bodies the ribbons may touch (every body's,
-    /// or only those in `input.bodies` when they are few) at `states`' poses.
+    /// Places the bodies the ribbons may touch (every body, or only those
+    /// in `input.bodies` when they are few) at `states`' poses.
     pub fn place(&mut self, input: &SubstepInput, states: &[BodyState]) {
         // The bodies (the states may hold more: the solver keeps its buffers).
         let n = input.centers.len();
-        self.bounds.resize(n, Bound::default());
+        self.placed.resize(n, UNPLACED);
         let bound = |b: usize| {
             let s = &states[b];
             let center = input.centers[b] + s.dp;
-            let tree = &input.shapes[input.shape_of[b] as usize].tree;
-            let (root, scale) = (tree.root(), input.size[b].scale);
-            Bound {
-                center: center + s.q * (root.center * scale),
-                radius: root.radius * scale,
+            let tree = input.shape_of[b];
+            let root = input.shapes[tree as usize].tree.root();
+            let scale = input.size[b].scale;
+            NearBalloon {
+                state: b as u32,
+                bound: Sphere::new(center + s.q * (root.center * scale), root.radius * scale),
+                moved: s.v * input.h,
+                center,
+                rotation: s.q,
+                tree,
+                scale,
             }
         };
         if 2 * input.bodies.len() < n {
             // Only the ribbons' candidates are read: a few ribbons among
             // many bodies (a lone balloon awake in a time-lapse) place few.
             for &b in input.bodies {
-                self.bounds[b as usize] = bound(b as usize);
+                self.placed[b as usize] = bound(b as usize);
             }
             return;
         }
-        fill_chunks(&mut self.bounds, BODY_CHUNK, |first, run| {
+        fill_chunks(&mut self.placed, BODY_CHUNK, |first, run| {
             for (k, out) in run.iter_mut().enumerate() {
                 *out = bound(first + k);
             }

@@ -7,8 +7,8 @@
 use glam::Vec3;
 use up_geom::Sphere;
 
-use super::body_spheres::{BodySpheres, Bound};
-use super::collide::{push_out_of_balloon, NearBalloon, NearTriangle};
+use super::body_spheres::BodySpheres;
+use super::collide::{push_out_of_balloon, NearTriangle};
 use super::lane_group::LaneGroup;
 use super::solve::SubstepInput;
 use super::{BALLOON_FRICTION, RIBBON_RADIUS};
@@ -124,37 +124,21 @@ impl LaneGroup {
     /// its points' box `(lo, hi)` (the knot's left out), at this substep's
     /// poses.
     fn find_near(&mut self, l: usize, (lo, hi): (Vec3, Vec3), near: &NearInput) {
-        let NearInput {
-            input,
-            states,
-            bodies: spheres,
-        } = *near;
         let lane = &mut self.lanes[l];
         lane.near.clear();
-        let bodies = &input.bodies[lane.bodies.start as usize..lane.bodies.end as usize];
+        let bodies = &near.input.bodies[lane.bodies.start as usize..lane.bodies.end as usize];
         if bodies.is_empty() {
             return;
         }
         let reach = RIBBON_RADIUS.max(self.end_radius.as_array()[l]);
         for &b in bodies {
-            let Bound {
-                center: root_center,
-                radius: root_radius,
-            } = spheres.bounds[b as usize];
-            let closest = root_center.clamp(lo, hi);
-            if closest.distance_squared(root_center) > (root_radius + reach).powi(2) {
+            let placed = &near.bodies.placed[b as usize];
+            let Sphere { center, radius } = placed.bound;
+            let closest = center.clamp(lo, hi);
+            if closest.distance_squared(center) > (radius + reach).powi(2) {
                 continue;
             }
-            let s = &states[b as usize];
-            lane.near.push(NearBalloon {
-                state: b,
-                bound: Sphere::new(root_center, root_radius),
-                moved: s.v * input.h,
-                center: input.centers[b as usize] + s.dp,
-                rotation: s.q,
-                tree: input.shape_of[b as usize],
-                scale: input.size[b as usize].scale,
-            });
+            lane.near.push(*placed);
         }
     }
 
