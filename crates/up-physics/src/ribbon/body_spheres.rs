@@ -46,7 +46,7 @@ impl BodySpheres {
         // The bodies (the states may hold more: the solver keeps its buffers).
         let n = input.centers.len();
         self.placed.resize(n, UNPLACED);
-        let bound = |b: usize| {
+        let place_body = |b: usize| {
             let s = &states[b];
             let center = input.centers[b] + s.dp;
             let tree = input.shape_of[b];
@@ -66,13 +66,13 @@ impl BodySpheres {
             // Only the ribbons' candidates are read: a few ribbons among
             // many bodies (a lone balloon awake in a time-lapse) place few.
             for &b in input.bodies {
-                self.placed[b as usize] = bound(b as usize);
+                self.placed[b as usize] = place_body(b as usize);
             }
             return;
         }
         fill_chunks(&mut self.placed, BODY_CHUNK, |first, run| {
             for (k, out) in run.iter_mut().enumerate() {
-                *out = bound(first + k);
+                *out = place_body(first + k);
             }
         });
     }
