@@ -20,6 +20,7 @@ use glam::Vec3;
 
 use super::closest_point_triangle::closest_point_triangle;
 use super::contact_sphere_triangle::triangle_unit_normal;
+use super::toi_sphere_triangle::BOUNDARY_SLACK;
 use crate::Sphere;
 
 /// Uniform steps of the unbounded scan in `toi_bisect`.
@@ -103,8 +104,9 @@ pub fn toi_sphere_sphere_bisect(
 
 /// `toi_sphere_triangle` by bisection: the signed distance from the sphere
 /// to the one-sided triangle, counted only while the centre is in front of
-/// (or on) its plane; behind it, the distance to the plane stands in, so the
-/// scan stays conservative until the centre comes round to the front.
+/// (or on, within `BOUNDARY_SLACK`) its plane; behind it, the distance to
+/// the plane shifted back by that slack stands in, so the scan stays
+/// conservative until the centre comes round to the front.
 pub fn toi_sphere_triangle_bisect(
     s: Sphere,
     v: Vec3,
@@ -117,8 +119,8 @@ pub fn toi_sphere_triangle_bisect(
         let center = s.center + v * t;
         if let Some(n) = normal {
             let height = (center - a).dot(n);
-            if height < 0.0 {
-                return -height + f32::MIN_POSITIVE;
+            if height < -BOUNDARY_SLACK {
+                return -height - BOUNDARY_SLACK + f32::MIN_POSITIVE;
             }
         }
         let (closest, _) = closest_point_triangle(center, a, b, c);
