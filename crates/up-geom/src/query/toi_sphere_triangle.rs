@@ -13,8 +13,9 @@
 //!   lies between p0 and p1;
 //! - a vertex: a moving sphere against a point.
 //!
-//! Contacts whose centre is behind the plane are ignored (one-sided). A
-//! zero-area triangle has no face and no back: only edges and vertices.
+//! Contacts whose centre is behind the plane (by more than `BOUNDARY_SLACK`)
+//! are ignored (one-sided). A zero-area triangle has no face and no back:
+//! only edges and vertices.
 
 use crate::norm::{try_unit, unit_or_zero, Norm};
 use glam::Vec3;
@@ -285,8 +286,14 @@ mod tests {
         let v = (a + (b - a) * 0.72160244 - s.center) * 1.8758303;
         let (ta, _) = toi_sphere_triangle(s, v, &tri).unwrap();
         let tb = toi_sphere_triangle_bisect(s, v, &tri, 1e-6).unwrap();
-        assert!((ta - tb).abs() > 1e-4, "the case no longer shows the rounding: {ta} {tb}");
-        assert!((ta - tb).abs() <= time_tolerance(s, v, &tri), "analytic {ta} bisect {tb}");
+        assert!(
+            (ta - tb).abs() > 1e-4,
+            "the case no longer shows the rounding: {ta} {tb}"
+        );
+        assert!(
+            (ta - tb).abs() <= time_tolerance(s, v, &tri),
+            "analytic {ta} bisect {tb}"
+        );
     }
 
     /// A path in the plane (within rounding) towards an edge: in front all
@@ -301,7 +308,10 @@ mod tests {
         let v = (a + (b - a) * 1.0261985 - s.center) * 1.612525;
         let (ta, region) = toi_sphere_triangle(s, v, &tri).unwrap();
         let tb = toi_sphere_triangle_bisect(s, v, &tri, 1e-6).unwrap();
-        assert!(matches!(region, TriangleRegion::Edge(_) | TriangleRegion::Vertex(_)), "{region:?}");
+        assert!(
+            matches!(region, TriangleRegion::Edge(_) | TriangleRegion::Vertex(_)),
+            "{region:?}"
+        );
         assert!((ta - tb).abs() <= 1e-4, "analytic {ta} bisect {tb}");
     }
 
