@@ -233,14 +233,15 @@ fn slide(drape: Drape, seconds: f32) -> (f32, f32) {
     (start - end(&world), settled - end(&world))
 }
 
-/// Held: the long end went down less than `SETTLED` in all (the drape
+/// Held: the long end moved less than `SETTLED` in all (the drape
 /// tightening onto what it hangs over) and less than `HELD` once settled,
-/// m.
+/// m, up or down: a drape that creeps toward its short side is no more
+/// held than one that slides off.
 const SETTLED: f32 = 0.03;
 const HELD: f32 = 0.005;
 
 fn held((all, settled): (f32, f32)) -> bool {
-    all < SETTLED && settled < HELD
+    all.abs() < SETTLED && settled.abs() < HELD
 }
 
 /// The drape over the taut ribbon, the long side 1.15 times the short (its
@@ -250,7 +251,7 @@ fn held((all, settled): (f32, f32)) -> bool {
 /// once settled; without, it slides off, the long end down by more than
 /// 30 cm.
 #[test]
-#[ignore = "fails: with μ = 0.4 the drape slides off as with μ = 0 (the long end down 1.39 m in 5 s; 0.39 m in 4 s once settled even at 1.10 times, where the two sides' tensions are equal): the contact passes, always in one order, walk the draped ribbon toward its free end, and each pass grips within μ times its own push, a fraction of the normal force the linked solve gives; summing the solve's pushes into the budget and alternating the order makes it hang (2.5 mm in 4 s) but lets 500 released ribbons cross 28 times (ribbon_crossings allows 26); see docs/perf-log.md"]
+#[ignore = "fails: with μ = 0.4 the drape slides off as with μ = 0 (the long end down 1.39 m in 5 s; 0.39 m in 4 s once settled even at 1.10 times, where the two sides' tensions are equal): the contact passes, always in one order, walk the draped ribbon toward its free end, and each pass grips within μ times its own push, a fraction of the normal force the linked solve gives; summing the solve's pushes into the budget and alternating the order made it hang (2.5 mm in 4 s) in one form but lets 500 released ribbons cross 28 times (ribbon_crossings allows 26); friction rows in the linked solve hold it (9.6 mm, −0.17 mm once settled) but keep a ribbon dropped across another from coming to rest (ribbon_touch); see docs/perf-log.md"]
 fn a_ribbon_draped_over_a_taut_one_hangs_by_friction_and_slides_off_without() {
     let drape = |friction| Drape {
         over: Over::TautRibbon,
@@ -266,10 +267,7 @@ fn a_ribbon_draped_over_a_taut_one_hangs_by_friction_and_slides_off_without() {
         gripped.1 * 1e3,
         free.0 * 1e3
     );
-    assert!(
-        held(gripped) && gripped.1.abs() < HELD,
-        "slid {gripped:?} m with friction"
-    );
+    assert!(held(gripped), "slid {gripped:?} m with friction");
     assert!(free.0 > 0.3, "held {free:?} m without friction");
 }
 
