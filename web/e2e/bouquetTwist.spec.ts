@@ -115,9 +115,9 @@ async function photo(page: Page, testInfo: TestInfo, name: string): Promise<void
 // others (a link of 1 for a few tenths of a second, three times in the two
 // turns) and slips off each time; after the release every link is 0. The
 // engine's mirror of this gesture on the bouquet's first balloon
-// (up-wasm `ribbon_links` tests) keeps its wrap; the page carries the
-// outermost one. Ribbons wound round each other under a pull pass through
-// (docs/physics.md, ribbons touching ribbons: limits as built).
+// (up-wasm `ribbon_links` tests, ignored) fails the same way. Ribbons wound
+// round each other under a pull pass through (docs/physics.md, ribbons
+// touching ribbons: limits as built).
 test.fixme("a balloon carried twice round the bouquet leaves its ribbon wrapped round another", async ({ page }, testInfo) => {
   test.setTimeout(400_000);
   const glue = await engineGlue();

@@ -124,10 +124,10 @@ fn ribbons_now(state: &mut State) -> Vec<Vec<Vec3>> {
 /// by its top from above (a level drag plane) and carried twice round the
 /// weights' middle, 0.25 m out (within its ribbon's reach, so that its
 /// weight stays on the floor), a turn in 4 s, then let go: wrapped every
-/// half second for two seconds after.
-/// The carried ribbon catches on another and, solved with the contacts
-/// that hold it (`touch::held`), is not pulled back through it.
+/// half second for two seconds after, and no ribbon passed through another
+/// on the way (a link made by passing through is no wrap).
 #[test]
+#[ignore = "the carried ribbon catches on another (a link of −1 for half a second), is pulled through it while they touch (ribbons wound round each other under a pull pass through: docs/physics.md) and is left unwrapped; it passed before only by a link that 7 crossings made"]
 fn a_balloon_carried_twice_round_the_bouquet_leaves_its_ribbon_wrapped() {
     const RADIUS: f32 = 0.25;
     const TURN_S: f32 = 4.0;
@@ -172,7 +172,7 @@ fn a_balloon_carried_twice_round_the_bouquet_leaves_its_ribbon_wrapped() {
     }
     println!("links every half second after the release: {after:?}; {crossed} crossings");
     assert!(
-        after.iter().all(|links| links.iter().any(|&l| l != 0)),
+        after.iter().all(|links| links.iter().any(|&l| l != 0)) && crossed == 0,
         "links every half second after {after:?}; ribbons passed through each other {crossed} times"
     );
 }
