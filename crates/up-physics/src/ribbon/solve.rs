@@ -309,7 +309,8 @@ fn substep(
                 g.substep_before_solve(&near);
             }
         });
-        touch.project(groups, f32::MAX);
+        touch.grip_slide = super::touch::GRIP_SLIDE_SPEED * input.h;
+        touch.project(groups, f32::MAX, false);
         fill_chunks(groups, GROUP_CHUNK, |_, groups| {
             for g in groups {
                 g.substep_solve(&near);
@@ -317,7 +318,7 @@ fn substep(
         });
         touch.solve_held(groups);
         for _ in 1..super::touch::SOLVES {
-            touch.project(groups, f32::MAX);
+            touch.project(groups, f32::MAX, true);
             fill_chunks(groups, GROUP_CHUNK, |_, groups| {
                 for g in groups {
                     g.substep_solve_again();
@@ -325,7 +326,7 @@ fn substep(
             });
             touch.solve_held(groups);
         }
-        touch.project(groups, super::touch::LAST_PASS_MOST);
+        touch.project(groups, super::touch::LAST_PASS_MOST, false);
         fill_chunks(groups, GROUP_CHUNK, |_, groups| {
             for g in groups {
                 g.substep_finish(&near);

@@ -97,23 +97,31 @@ pub(super) fn begin(pair: &mut Touching, groups: &[LaneGroup], push_out: f32) {
 }
 
 impl RibbonTouch {
-    /// Projects every pair once, in order, on the groups' points as the
-    /// substep's fall and pushes left them, each by at most `most` m.
-    pub(crate) fn project(&mut self, groups: &mut [LaneGroup], most: f32) {
+    /// Projects every pair once, in order (backward if `reverse`), on the
+    /// groups' points as the substep's fall and pushes left them, each by
+    /// at most `most` m. Each push and grip moves the point that the next
+    /// pair along a ribbon shares, which that pair takes for a slide: in
+    /// one order only, the passes walk a draped ribbon toward its free end.
+    pub(crate) fn project(&mut self, groups: &mut [LaneGroup], most: f32, reverse: bool) {
         for g in groups.iter_mut() {
             g.held_lanes = 0;
         }
         self.held.rows.clear();
-        for k in 0..self.pairs.len() {
+        let n = self.pairs.len();
+        for j in 0..n {
+            let k = if reverse { n - 1 - j } else { j };
             let mut pair = self.pairs[k];
-            if let Some((normal, s, t)) = project_pair(&mut pair, groups, self.friction, most) {
+            if let Some((normal, s, t, slide)) =
+                project_pair(&mut pair, groups, self.friction, most)
+            {
                 let side = |seg: Segment, at: f32| super::held::Side {
                     group: seg.group,
                     lane: seg.lane,
                     segment: seg.index,
                     at,
                 };
-                self.hold(groups, side(pair.a, s), side(pair.b, t), normal);
+                let grip = slide < self.grip_slide;
+                self.hold(groups, side(pair.a, s), side(pair.b, t), normal, grip);
             }
             self.pairs[k] = pair;
         }
@@ -181,14 +189,15 @@ fn apart(a: &Ends, b: &Ends) -> bool {
 }
 
 /// `pair` pushed apart, if its capsules overlap or have passed through each
-/// other, with friction. Returns, for a pair pushed, its normal and its
-/// closest points' parameters: a row of the solve that follows (`held`).
+/// other, with friction. Returns, for a pair pushed, its normal, its
+/// closest points' parameters (a row of the solve that follows, `held`)
+/// and how far they slid past each other this substep, m.
 fn project_pair(
     pair: &mut Touching,
     groups: &mut [LaneGroup],
     friction: f32,
     most: f32,
-) -> Option<(Vec3, f32, f32)> {
+) -> Option<(Vec3, f32, f32, f32)> {
     let (a, b) = (ends(groups, pair.a), ends(groups, pair.b));
     if apart(&a, &b) {
         return None;
@@ -227,7 +236,7 @@ fn project_pair(
     let impulse = push + grip;
     shift(groups, pair.a, -wa[0] * impulse, -wa[1] * impulse);
     shift(groups, pair.b, wb[0] * impulse, wb[1] * impulse);
-    Some((normal, s, t))
+    Some((normal, s, t, slide))
 }
 
 /// Where two ribbons touch at a step's end, for drawing (`World::ribbon_contacts`).

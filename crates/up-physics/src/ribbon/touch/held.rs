@@ -12,11 +12,20 @@
 //! such rows are solved as one system, `[A B; Bᵀ C]·[λ_d; λ_c] = [r_d; r_c]`,
 //! `A` block diagonal of each chain's tridiagonal (`chain`), through the
 //! contacts' Schur complement `(C − Bᵀ·A⁻¹·B)·λ_c = r_c − Bᵀ·A⁻¹·r_d` (two
-//! tridiagonal solves a contact and a small dense one), a contact that
+//! tridiagonal solves a row and a small dense one), a contact that
 //! would pull (λ_c < 0) left out and the rest solved again; linearised
 //! about the points and repeated until the lengths hold, as the chain's
 //! own solve is. On one thread in the rows' order; the other lanes run the
 //! four-lane solve as before.
+//!
+//! With friction, each contact brings two more rows, its grips: along two
+//! directions across its normal, `t·(p_b − p_a)` is held where it was when
+//! the substep began (static friction, at position level as in Müller et
+//! al. 2020), both left out where their λ together would exceed μ times
+//! the push's (the contact slides; the passes' own friction then takes its
+//! slide). In the solve the grips see the normal force the chains' tension
+//! gives the contact, which a pass's grip, within μ times its own push,
+//! does not: a ribbon draped over a taut one hangs only with them.
 
 use glam::{Mat3, Vec3};
 
@@ -25,14 +34,16 @@ use super::super::lane_group::LaneGroup;
 use super::super::solve::{CHAIN_ITERATIONS, CHAIN_TOLERANCE};
 use super::RibbonTouch;
 
-/// The most rows one linked set of ribbons takes, the first pushed (the
-/// rest are left to the passes): a caught segment has a few; in a pile of
+/// The most contacts one linked set of ribbons takes (each a push row and,
+/// with friction, two grips), the first pushed (the rest are left to the
+/// passes): a caught segment has a few; in a pile of
 /// ribbons laid across each other more held at once let more through (500
 /// released together: 23 crossings with 4 a set, 28 with 16, 38 with 32),
 /// and the dense solve grows as their cube.
 const MOST_ROWS: usize = 4;
 
-/// Rounds of leaving out the contacts that pull.
+/// Rounds of leaving out the contacts that pull and the grips that slip,
+/// each followed by a solve of the rows left.
 const ROUNDS: usize = 3;
 
 /// Added to a contact's own entry of the Schur complement, a fraction of
@@ -67,8 +78,21 @@ pub(crate) struct HeldRow {
     pub b: Side,
     /// Unit, from `a` toward `b`.
     pub normal: Vec3,
-    /// The least `normal·(p_b − p_a)` may be, m.
+    /// The least `normal·(p_b − p_a)` may be, m (a grip: what it must be).
     pub floor: f32,
+    /// A contact's push, or one of its two friction rows.
+    pub kind: RowKind,
+}
+
+/// What a row holds.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) enum RowKind {
+    /// The contact's push: may push, not pull.
+    #[default]
+    Push,
+    /// No slide along `normal` since the substep began, within the friction
+    /// cone of the push row at this index in `rows`.
+    Grip(u32),
 }
 
 /// A ribbon in the solve: its lane, where its points and distance rows
@@ -142,12 +166,25 @@ pub(crate) struct HeldSolve {
     right: Vec<f32>,
     lambda: Vec<f32>,
     active: Vec<bool>,
+    /// Per row of the set: the set position of its contact's push row.
+    push_at: Vec<u32>,
+    /// Per row: taken into its set.
+    taken: Vec<u32>,
+    friction: f32,
 }
 
 impl RibbonTouch {
     /// Adds a row: the closest points `a` and `b` of a pair just pushed
-    /// apart may not come closer along `normal` than they now are.
-    pub(super) fn hold(&mut self, groups: &mut [LaneGroup], a: Side, b: Side, normal: Vec3) {
+    /// apart may not come closer along `normal` than they now are; and,
+    /// with friction, its two grips if `grip` (not sliding).
+    pub(super) fn hold(
+        &mut self,
+        groups: &mut [LaneGroup],
+        a: Side,
+        b: Side,
+        normal: Vec3,
+        grip: bool,
+    ) {
         if a.segment == 0 || b.segment == 0 {
             return; // a knot's segment: the balloon holds it
         }
@@ -156,23 +193,44 @@ impl RibbonTouch {
             let (l, i) = (s.lane as usize, s.segment as usize);
             g.points[i].lane(l) * (1.0 - s.at) + g.points[i + 1].lane(l) * s.at
         };
+        let started = |g: &[LaneGroup], s: Side| {
+            let g = &g[s.group as usize];
+            let (l, i) = (s.lane as usize, s.segment as usize);
+            g.start[i].lane(l) * (1.0 - s.at) + g.start[i + 1].lane(l) * s.at
+        };
         let floor = normal.dot(at(groups, b) - at(groups, a));
         for s in [a, b] {
             groups[s.group as usize].held_lanes |= 1 << s.lane;
         }
+        let push = self.held.rows.len() as u32;
         self.held.rows.push(HeldRow {
             a,
             b,
             normal,
             floor,
+            kind: RowKind::Push,
         });
+        if grip && self.friction > 0.0 {
+            let began = started(groups, b) - started(groups, a);
+            let t1 = normal.any_orthonormal_vector();
+            for t in [t1, normal.cross(t1)] {
+                self.held.rows.push(HeldRow {
+                    a,
+                    b,
+                    normal: t,
+                    floor: t.dot(began),
+                    kind: RowKind::Grip(push),
+                });
+            }
+        }
     }
 
     /// Solves the chains the last pass's rows link, with those rows, and
     /// lets the rows go.
     pub(crate) fn solve_held(&mut self, groups: &mut [LaneGroup]) {
         if !self.held.rows.is_empty() {
-            self.held.solve(groups);
+            let friction = self.friction;
+            self.held.solve(groups, friction);
         }
         self.held.rows.clear();
     }
@@ -214,7 +272,8 @@ impl HeldSolve {
         (self.chains.len() - 1) as u32
     }
 
-    fn solve(&mut self, groups: &mut [LaneGroup]) {
+    fn solve(&mut self, groups: &mut [LaneGroup], friction: f32) {
+        self.friction = friction;
         self.chains.clear();
         self.parent.clear();
         self.row_chains.clear();
@@ -239,9 +298,27 @@ impl HeldSolve {
                 }
             }
             self.set_rows.clear();
+            self.push_at.clear();
+            self.taken.clear();
+            self.taken.resize(self.rows.len(), u32::MAX);
+            let mut pushes = 0;
             for r in 0..self.rows.len() {
-                if self.find(self.row_chains[r].0) == c && self.set_rows.len() < MOST_ROWS {
-                    self.set_rows.push(r as u32);
+                if self.find(self.row_chains[r].0) != c {
+                    continue;
+                }
+                let at = self.set_rows.len() as u32;
+                match self.rows[r].kind {
+                    RowKind::Push if pushes < MOST_ROWS => {
+                        pushes += 1;
+                        self.taken[r] = at;
+                        self.set_rows.push(r as u32);
+                        self.push_at.push(at);
+                    }
+                    RowKind::Grip(push) if self.taken[push as usize] != u32::MAX => {
+                        self.set_rows.push(r as u32);
+                        self.push_at.push(self.taken[push as usize]);
+                    }
+                    _ => {}
                 }
             }
             self.solve_set(groups);
@@ -414,16 +491,9 @@ impl HeldSolve {
         }
         self.active.clear();
         self.active.resize(k, true);
-        for _ in 0..ROUNDS {
+        for round in 0..=ROUNDS {
             self.schur_solve();
-            let mut dropped = false;
-            for r in 0..k {
-                if self.active[r] && self.lambda[r] < 0.0 {
-                    self.active[r] = false;
-                    dropped = true;
-                }
-            }
-            if !dropped {
+            if round == ROUNDS || !self.leave_out() {
                 break;
             }
         }
@@ -469,6 +539,41 @@ impl HeldSolve {
             }
         }
         false
+    }
+
+    /// Leaves out the pushes that would pull (and their grips) and the
+    /// grips beyond their push's friction cone; true if any.
+    fn leave_out(&mut self) -> bool {
+        let k = self.set_rows.len();
+        let mut dropped = false;
+        for r in 0..k {
+            let push = self.push_at[r] as usize;
+            if push == r && self.active[r] && self.lambda[r] < 0.0 {
+                self.active[r] = false;
+                dropped = true;
+            }
+        }
+        for r in 0..k {
+            let push = self.push_at[r] as usize;
+            if push == r || !self.active[r] {
+                continue;
+            }
+            // Both grips of the push: their λ summed in quadrature.
+            let grip: f32 = (0..k)
+                .filter(|&c| c != push && self.push_at[c] as usize == push)
+                .map(|c| self.lambda[c] * self.lambda[c])
+                .sum::<f32>()
+                .sqrt();
+            if !self.active[push] || grip > self.friction * self.lambda[push] {
+                for c in 0..k {
+                    if c != push && self.push_at[c] as usize == push {
+                        self.active[c] = false;
+                    }
+                }
+                dropped = true;
+            }
+        }
+        dropped
     }
 
     /// Row `r`'s column of `B` into `column`: distance row j of a chain
@@ -525,7 +630,7 @@ impl HeldSolve {
                         for m in 0..2 {
                             for o in 0..2 {
                                 if p[m] == q[o] {
-                                    shares |= c != r;
+                                    shares |= self.push_at[c] != self.push_at[r];
                                     cc += self.w[p[m]]
                                         * sign
                                         * w[m]

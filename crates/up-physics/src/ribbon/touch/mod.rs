@@ -13,8 +13,9 @@
 //! segment swept fast across another is caught in the substep it would
 //! cross.
 //!
-//! In each substep the pairs are projected in their fixed order
-//! (`contact`), taking turns with the chains' direct solve: between the
+//! In each substep the pairs are projected in their fixed order (the
+//! second pass backward, so that the passes do not walk a draped ribbon
+//! toward one end: `contact`), taking turns with the chains' direct solve: between the
 //! points' fall and pushes and the solve (`LaneGroup::substep_before_solve`,
 //! `substep_solve`), so that the solve starts from ribbons apart; after it,
 //! followed by a second solve of the groups a contact moved
@@ -44,7 +45,9 @@
 //! (`held`): the ribbons those link are solved together, the contacts rows
 //! of the same solve that may push but not pull, so that a segment caught
 //! on another, dragged by a carried end or a taut pull, is not pulled back
-//! through it by a solve that does not see it.
+//! through it by a solve that does not see it; with friction, each with two
+//! rows that hold it from sliding within the friction cone of the push the
+//! solve gives it.
 //!
 //! The pass and the linked ribbons' solve run on one thread in a fixed
 //! order, so the result is the same
@@ -68,6 +71,13 @@ use up_geom::Aabb;
 /// guess (film on film is quoted at 0.3–0.5; curling ribbon, ribbed and
 /// often crimped, grips at least as well).
 pub const RIBBON_ON_RIBBON_FRICTION: f32 = 0.4;
+
+/// Below this speed past each other over a substep, m/s, two ribbons'
+/// touching points are gripped in the linked solve (`held`), within the
+/// friction cone; faster, they slide and only the passes' friction acts.
+/// Gripping every contact, a ribbon swept across a taut one at 10 m/s
+/// passed through it; from 0.12 m/s up a drape hangs (docs/perf-log.md).
+pub const GRIP_SLIDE_SPEED: f32 = 0.25;
 
 /// Fastest two capsules that begin a step overlapping are pushed apart, m/s
 /// (laid out on one spot, as a bouquet's weights are): at once, they would
@@ -150,6 +160,9 @@ pub(crate) struct RibbonTouch {
     /// How much of a pair's overlap at the step's start is taken out in the
     /// step, m.
     pub push_out: f32,
+    /// Below this slide over the substep a contact is gripped (its speed
+    /// `GRIP_SLIDE_SPEED` times the substep), m.
+    pub grip_slide: f32,
     /// The step's pairs, in the order they are projected.
     pub pairs: Vec<Touching>,
     /// The pairs touching at the step's end (`keep_touching`), for drawing.
@@ -169,6 +182,7 @@ impl Default for RibbonTouch {
             enabled: false,
             friction: RIBBON_ON_RIBBON_FRICTION,
             push_out: 0.0,
+            grip_slide: 0.0,
             pairs: Vec::new(),
             touching: Vec::new(),
             ribbons: Vec::new(),
