@@ -309,7 +309,7 @@ fn substep(
                 g.substep_before_solve(&near);
             }
         });
-        touch.grip_slide = super::touch::GRIP_SLIDE_SPEED * input.h;
+        touch.begin_substep(groups, input.h);
         touch.project(groups, f32::MAX, false);
         fill_chunks(groups, GROUP_CHUNK, |_, groups| {
             for g in groups {

@@ -102,29 +102,42 @@ impl RibbonTouch {
     /// at most `most` m. Each push and grip moves the point that the next
     /// pair along a ribbon shares, which that pair takes for a slide: in
     /// one order only, the passes walk a draped ribbon toward its free end.
+    /// A pair that cannot touch yet is passed over unread (`pass_skip`).
     pub(crate) fn project(&mut self, groups: &mut [LaneGroup], most: f32, reverse: bool) {
         for g in groups.iter_mut() {
             g.held_lanes = 0;
         }
         self.held.rows.clear();
+        self.skip.begin_pass(groups);
         let n = self.pairs.len();
         for j in 0..n {
             let k = if reverse { n - 1 - j } else { j };
             let mut pair = self.pairs[k];
-            if let Some((normal, s, t, slide)) =
-                project_pair(&mut pair, groups, self.friction, most)
-            {
+            if self.skip.passes_over(k, pair.a, pair.b) {
+                continue;
+            }
+            let (a, b) = (ends(groups, pair.a), ends(groups, pair.b));
+            let gap = gap(&a, &b);
+            self.skip.note_gap(k, gap);
+            if gap > 0.0 {
+                continue;
+            }
+            if let Some(pushed) = project_pair(&mut pair, groups, &a, &b, self.friction, most) {
                 let side = |seg: Segment, at: f32| super::held::Side {
                     group: seg.group,
                     lane: seg.lane,
                     segment: seg.index,
                     at,
                 };
-                let grip = slide < self.grip_slide;
-                self.hold(groups, side(pair.a, s), side(pair.b, t), normal, grip);
+                self.skip.note_push(pair.a, pushed.a[0], pushed.a[1]);
+                self.skip.note_push(pair.b, pushed.b[0], pushed.b[1]);
+                let grip = pushed.slide < self.grip_slide;
+                let (a, b) = (side(pair.a, pushed.s), side(pair.b, pushed.t));
+                self.hold(groups, a, b, pushed.normal, grip);
             }
             self.pairs[k] = pair;
         }
+        self.skip.end_pass();
     }
 }
 
@@ -169,12 +182,14 @@ fn side(pair: &Touching, a: &Ends, b: &Ends, s: f32, t: f32) -> (Vec3, f32) {
     }
 }
 
-/// Whether the two segments' boxes, grown by the most their radii can be,
-/// do not meet: their capsules cannot touch, and the pair is passed over
-/// without the closest points (most of a step's pairs, found for the
-/// step's whole sweep, are apart at any one pass). Its side stays as last
-/// set, which is how a pair found apart keeps the side it was found on.
-fn apart(a: &Ends, b: &Ends) -> bool {
+/// How far apart the two segments' boxes, grown by the most their radii
+/// can be, are along the axis they are furthest apart on, m: where
+/// positive they do not meet, their capsules cannot touch, and the pair is
+/// passed over without the closest points (most of a step's pairs, found
+/// for the step's whole sweep, are apart at any one pass). Its side stays
+/// as last set, which is how a pair found apart keeps the side it was found
+/// on.
+fn gap(a: &Ends, b: &Ends) -> f32 {
     let bound = |e: &Ends| {
         if e.last {
             e.end_radius.max(RIBBON_RADIUS)
@@ -185,26 +200,34 @@ fn apart(a: &Ends, b: &Ends) -> bool {
     let reach = Vec3::splat(bound(a) + bound(b));
     let (a_low, a_high) = (a.p[0].min(a.p[1]), a.p[0].max(a.p[1]));
     let (b_low, b_high) = (b.p[0].min(b.p[1]), b.p[0].max(b.p[1]));
-    (a_low - b_high).cmpgt(reach).any() || (b_low - a_high).cmpgt(reach).any()
+    ((a_low - b_high).max(b_low - a_high) - reach).max_element()
 }
 
-/// `pair` pushed apart, if its capsules overlap or have passed through each
-/// other, with friction. Returns, for a pair pushed, its normal, its
-/// closest points' parameters (a row of the solve that follows, `held`)
-/// and how far they slid past each other this substep, m.
+/// A pair's projection: its normal, its closest points' parameters (a row
+/// of the solve that follows, `held`), how far they slid past each other
+/// this substep, m, and the moves of each segment's two points.
+struct Pushed {
+    normal: Vec3,
+    s: f32,
+    t: f32,
+    slide: f32,
+    a: [Vec3; 2],
+    b: [Vec3; 2],
+}
+
+/// `pair`, of segments as `a` and `b` stand, pushed apart if its capsules
+/// overlap or have passed through each other, with friction.
 fn project_pair(
     pair: &mut Touching,
     groups: &mut [LaneGroup],
+    a: &Ends,
+    b: &Ends,
     friction: f32,
     most: f32,
-) -> Option<(Vec3, f32, f32, f32)> {
-    let (a, b) = (ends(groups, pair.a), ends(groups, pair.b));
-    if apart(&a, &b) {
-        return None;
-    }
-    let (s, t) = parameters(pair, &a, &b);
-    let reach = radius(&a, s, pair.end_a) + radius(&b, t, pair.end_b);
-    let (normal, distance) = side(pair, &a, &b, s, t);
+) -> Option<Pushed> {
+    let (s, t) = parameters(pair, a, b);
+    let reach = radius(a, s, pair.end_a) + radius(b, t, pair.end_b);
+    let (normal, distance) = side(pair, a, b, s, t);
     pair.normal = normal;
     let depth = (reach - pair.allowed - distance).min(most);
     if depth <= 0.0 {
@@ -234,9 +257,17 @@ fn project_pair(
     };
     let grip = -slid * (held / w);
     let impulse = push + grip;
-    shift(groups, pair.a, -wa[0] * impulse, -wa[1] * impulse);
-    shift(groups, pair.b, wb[0] * impulse, wb[1] * impulse);
-    Some((normal, s, t, slide))
+    let moves = Pushed {
+        normal,
+        s,
+        t,
+        slide,
+        a: [-wa[0] * impulse, -wa[1] * impulse],
+        b: [wb[0] * impulse, wb[1] * impulse],
+    };
+    shift(groups, pair.a, moves.a[0], moves.a[1]);
+    shift(groups, pair.b, moves.b[0], moves.b[1]);
+    Some(moves)
 }
 
 /// Where two ribbons touch at a step's end, for drawing (`World::ribbon_contacts`).

@@ -38,7 +38,9 @@
 //! that passed through is pushed back to the side it came from. A pass
 //! skips a pair whose segments' boxes, grown by their radii, do not meet
 //! (most of the pairs, found for the step's whole sweep, at any one pass):
-//! it keeps the side it last had. The lengths the last push changed are
+//! it keeps the side it last had; the substep's later passes pass over,
+//! unread, a pair whose boxes were further apart in its first pass than
+//! its points have moved since (`pass_skip`). The lengths the last push changed are
 //! the next substep's solve's to restore.
 //!
 //! The chains' solves that follow a pass see the contacts it pushed apart
@@ -59,6 +61,7 @@ mod broad;
 mod closest;
 mod contact;
 pub(crate) mod held;
+mod pass_skip;
 pub use contact::RibbonContact;
 
 pub mod crossings;
@@ -66,6 +69,8 @@ pub mod linking;
 
 use glam::Vec3;
 use up_geom::Aabb;
+
+use super::lane_group::LaneGroup;
 
 /// Friction of a ribbon on a ribbon, polypropylene on polypropylene: a
 /// guess (film on film is quoted at 0.3–0.5; curling ribbon, ribbed and
@@ -174,6 +179,8 @@ pub(crate) struct RibbonTouch {
     near_b: Vec<u32>,
     /// The last pass's contacts as rows of the chains' solve that follows.
     held: held::HeldSolve,
+    /// What lets a substep's later passes pass over pairs unread.
+    skip: pass_skip::PassSkip,
 }
 
 impl Default for RibbonTouch {
@@ -191,6 +198,7 @@ impl Default for RibbonTouch {
             near_a: Vec::new(),
             near_b: Vec::new(),
             held: held::HeldSolve::default(),
+            skip: pass_skip::PassSkip::default(),
         }
     }
 }
@@ -199,5 +207,11 @@ impl RibbonTouch {
     /// No pair this step: the substeps run without the pass.
     pub fn is_empty(&self) -> bool {
         self.pairs.is_empty()
+    }
+
+    /// Readies a substep of `h` s over `groups`, before its first pass.
+    pub(crate) fn begin_substep(&mut self, groups: &[LaneGroup], h: f32) {
+        self.grip_slide = GRIP_SLIDE_SPEED * h;
+        self.skip.begin_substep(groups, self.pairs.len());
     }
 }
