@@ -1,7 +1,8 @@
-//! A projection of the ribbons' contacts, twice a substep (`RibbonTouch::project`):
-//! each pair's closest points pushed apart to the sum of their radii, on the
-//! side the pair keeps, with Coulomb friction on their slide over the
-//! substep, in the pairs' order.
+//! A projection of the ribbons' contacts, three times a substep
+//! (`RibbonTouch::project`): each pair's closest points pushed apart to the
+//! sum of their radii, on the side the pair keeps, with Coulomb friction on
+//! their slide over the substep, in the pairs' order (the second pass
+//! backward).
 
 use glam::Vec3;
 
@@ -41,15 +42,18 @@ fn starts(groups: &[LaneGroup], s: Segment) -> ([Vec3; 2], [f32; 2]) {
     )
 }
 
-/// Moves segment `s`'s points by `d0` and `d1`.
-fn shift(groups: &mut [LaneGroup], s: Segment, d0: Vec3, d1: Vec3) {
+/// Moves segment `s`'s points by `d0` and `d1`; returns how far each
+/// moved as stored (rounded, a little more or less than asked).
+fn shift(groups: &mut [LaneGroup], s: Segment, d0: Vec3, d1: Vec3) -> [Vec3; 2] {
     let g = &mut groups[s.group as usize];
     g.pushed = true;
     let (l, i) = (s.lane as usize, s.index as usize);
     let p0: Vec3 = g.points[i].lane(l);
     let p1: Vec3 = g.points[i + 1].lane(l);
-    g.points[i].set_lane(l, p0 + d0);
-    g.points[i + 1].set_lane(l, p1 + d1);
+    let (q0, q1) = (p0 + d0, p1 + d1);
+    g.points[i].set_lane(l, q0);
+    g.points[i + 1].set_lane(l, q1);
+    [q0 - p0, q1 - p1]
 }
 
 /// The closest points' parameters on `a` and `b` for `pair`.
@@ -205,7 +209,7 @@ fn gap(a: &Ends, b: &Ends) -> f32 {
 
 /// A pair's projection: its normal, its closest points' parameters (a row
 /// of the solve that follows, `held`), how far they slid past each other
-/// this substep, m, and the moves of each segment's two points.
+/// this substep, m, and the moves of each segment's two points as stored.
 struct Pushed {
     normal: Vec3,
     s: f32,
@@ -257,17 +261,14 @@ fn project_pair(
     };
     let grip = -slid * (held / w);
     let impulse = push + grip;
-    let moves = Pushed {
+    Some(Pushed {
         normal,
         s,
         t,
         slide,
-        a: [-wa[0] * impulse, -wa[1] * impulse],
-        b: [wb[0] * impulse, wb[1] * impulse],
-    };
-    shift(groups, pair.a, moves.a[0], moves.a[1]);
-    shift(groups, pair.b, moves.b[0], moves.b[1]);
-    Some(moves)
+        a: shift(groups, pair.a, -wa[0] * impulse, -wa[1] * impulse),
+        b: shift(groups, pair.b, wb[0] * impulse, wb[1] * impulse),
+    })
 }
 
 /// Where two ribbons touch at a step's end, for drawing (`World::ribbon_contacts`).

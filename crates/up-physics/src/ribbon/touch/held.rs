@@ -36,11 +36,11 @@ use super::RibbonTouch;
 
 /// The most contacts one linked set of ribbons takes (each a push row and,
 /// with friction, two grips), the first pushed (the rest are left to the
-/// passes): a caught segment has a few; in a pile of
-/// ribbons laid across each other more held at once let more through (500
-/// released together: 23 crossings with 4 a set, 28 with 16, 38 with 32),
-/// and the dense solve grows as their cube.
-const MOST_ROWS: usize = 4;
+/// passes): a caught segment has a few; in a pile of ribbons laid across
+/// each other more held at once let more through (500 released together,
+/// push rows only: 23 crossings with 4 a set, 28 with 16, 38 with 32), and
+/// the dense solve grows as the cube of its rows.
+const MOST_CONTACTS: usize = 4;
 
 /// Rounds of leaving out the contacts that pull and the grips that slip,
 /// each followed by a solve of the rows left.
@@ -55,9 +55,9 @@ const REGULAR: f32 = 1e-2;
 /// ribbon's point pinched between two segments of the other, or one
 /// contact seen from both segments either side of a point): their rows
 /// are nearly dependent there, and held as stiffly as the rest they trade
-/// large opposite pushes that keep both ribbons trembling (a ribbon lying
-/// over a taut one kept that one's points at 2 cm/s for as long as it lay
-/// there; from 5 % up, they rest).
+/// large opposite pushes that keep both ribbons trembling (at 1 %, a taut
+/// ribbon under a draped one keeps its points at 2 cm/s; from 5 % both
+/// rest).
 const SHARED_REGULAR: f32 = 0.1;
 
 /// One side of a contact row: a point along a segment of a ribbon.
@@ -168,7 +168,8 @@ pub(crate) struct HeldSolve {
     active: Vec<bool>,
     /// Per row of the set: the set position of its contact's push row.
     push_at: Vec<u32>,
-    /// Per row: taken into its set.
+    /// Per row: where a push taken into its set stands there (`u32::MAX`:
+    /// not taken).
     taken: Vec<u32>,
     friction: f32,
 }
@@ -308,7 +309,7 @@ impl HeldSolve {
                 }
                 let at = self.set_rows.len() as u32;
                 match self.rows[r].kind {
-                    RowKind::Push if pushes < MOST_ROWS => {
+                    RowKind::Push if pushes < MOST_CONTACTS => {
                         pushes += 1;
                         self.taken[r] = at;
                         self.set_rows.push(r as u32);
@@ -491,9 +492,11 @@ impl HeldSolve {
         }
         self.active.clear();
         self.active.resize(k, true);
+        // After the last round's solve, what it would still leave out is
+        // only zeroed (below), as a pull or a slip is not applied.
         for round in 0..=ROUNDS {
             self.schur_solve();
-            if round == ROUNDS || !self.leave_out() {
+            if !self.leave_out() || round == ROUNDS {
                 break;
             }
         }

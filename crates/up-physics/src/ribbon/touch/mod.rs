@@ -80,8 +80,8 @@ pub const RIBBON_ON_RIBBON_FRICTION: f32 = 0.4;
 /// Below this speed past each other over a substep, m/s, two ribbons'
 /// touching points are gripped in the linked solve (`held`), within the
 /// friction cone; faster, they slide and only the passes' friction acts.
-/// Gripping every contact, a ribbon swept across a taut one at 10 m/s
-/// passed through it; from 0.12 m/s up a drape hangs (docs/perf-log.md).
+/// Gripping every contact lets a ribbon swept across a taut one at 10 m/s
+/// through it; from 0.12 m/s up a drape hangs (docs/perf-log.md).
 pub const GRIP_SLIDE_SPEED: f32 = 0.25;
 
 /// Fastest two capsules that begin a step overlapping are pushed apart, m/s

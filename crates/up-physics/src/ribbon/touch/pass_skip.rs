@@ -19,8 +19,11 @@ use super::super::lane_group::LaneGroup;
 use super::Segment;
 use crate::solver::lanes::{LANES, V4};
 
-/// A bound a little over the sum of the moves, for rounding.
+/// A bound a little over the sum of the moves, for the rounding of the
+/// moves' lengths and of the gaps: relative, and absolute (m; a point near
+/// 2 m is stored to 1.2e-7 m).
 const SAFETY: f32 = 1.001;
+const SAFETY_M: f32 = 1e-6;
 
 /// What the substep's later passes read to pass over a pair.
 #[derive(Clone, Debug, Default)]
@@ -28,14 +31,14 @@ pub(crate) struct PassSkip {
     /// Whether the substep's first pass is under way (or yet to come).
     first: bool,
     /// Per pair: how far apart its grown boxes were in the first pass, m
-    /// (negative, or −∞ if not measured: they met).
+    /// (positive: apart; negative: they met; −∞ until measured).
     gap: Vec<f32>,
     /// The groups' points as the first pass began, group after group, and
     /// where each group's start.
     began: Vec<V4>,
     offsets: Vec<u32>,
-    /// Per point (as in `began`), per lane: the pushes since the first
-    /// pass began, summed, m.
+    /// Per point (as in `began`), per lane: its moves by the passes' pushes
+    /// since the first pass began (as stored), their lengths summed, m.
     pushed: Vec<[f32; LANES]>,
     /// Per point, per lane: how far it has moved since the first pass
     /// began, as the current pass began, m.
@@ -86,7 +89,7 @@ impl PassSkip {
     /// unread: a later pass, and the pair further apart in the first pass
     /// than both its segments can have moved since.
     pub fn passes_over(&self, k: usize, a: Segment, b: Segment) -> bool {
-        !self.first && self.gap[k] > SAFETY * (self.bound(a) + self.bound(b))
+        !self.first && self.gap[k] > SAFETY * (self.bound(a) + self.bound(b)) + SAFETY_M
     }
 
     /// The most segment `s`'s points can have moved since the first pass
@@ -109,7 +112,7 @@ impl PassSkip {
         }
     }
 
-    /// A push of segment `s`'s points by `d0` and `d1`.
+    /// A push of segment `s`'s points by `d0` and `d1`, as stored.
     pub fn note_push(&mut self, s: Segment, d0: Vec3, d1: Vec3) {
         let (i, l) = (self.point(s), s.lane as usize);
         self.pushed[i][l] += d0.length();
