@@ -310,7 +310,7 @@ fn substep(
             }
         });
         touch.begin_substep(groups, input.h);
-        touch.project(groups, f32::MAX, false);
+        touch.project(groups, f32::MAX);
         fill_chunks(groups, GROUP_CHUNK, |_, groups| {
             for g in groups {
                 g.substep_solve(&near);
@@ -318,7 +318,7 @@ fn substep(
         });
         touch.solve_held(groups);
         for _ in 1..super::touch::SOLVES {
-            touch.project(groups, f32::MAX, true);
+            touch.project(groups, f32::MAX);
             fill_chunks(groups, GROUP_CHUNK, |_, groups| {
                 for g in groups {
                     g.substep_solve_again();
@@ -326,7 +326,7 @@ fn substep(
             });
             touch.solve_held(groups);
         }
-        touch.project(groups, super::touch::LAST_PASS_MOST, false);
+        touch.project(groups, super::touch::LAST_PASS_MOST);
         fill_chunks(groups, GROUP_CHUNK, |_, groups| {
             for g in groups {
                 g.substep_finish(&near);

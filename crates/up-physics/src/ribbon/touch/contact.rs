@@ -1,8 +1,7 @@
 //! A projection of the ribbons' contacts, three times a substep
 //! (`RibbonTouch::project`): each pair's closest points pushed apart to the
 //! sum of their radii, on the side the pair keeps, with Coulomb friction on
-//! their slide over the substep, in the pairs' order (the second pass
-//! backward).
+//! their slide over the substep, in the pairs' order.
 
 use glam::Vec3;
 
@@ -101,21 +100,17 @@ pub(super) fn begin(pair: &mut Touching, groups: &[LaneGroup], push_out: f32) {
 }
 
 impl RibbonTouch {
-    /// Projects every pair once, in order (backward if `reverse`), on the
-    /// groups' points as the substep's fall and pushes left them, each by
-    /// at most `most` m. Each push and grip moves the point that the next
-    /// pair along a ribbon shares, which that pair takes for a slide: in
-    /// one order only, the passes walk a draped ribbon toward its free end.
-    /// A pair that cannot touch yet is passed over unread (`pass_skip`).
-    pub(crate) fn project(&mut self, groups: &mut [LaneGroup], most: f32, reverse: bool) {
+    /// Projects every pair once, in order, on the groups' points as the
+    /// substep's fall and pushes left them, each by at most `most` m. A
+    /// pair that cannot touch yet is passed over unread (`pass_skip`).
+    pub(crate) fn project(&mut self, groups: &mut [LaneGroup], most: f32) {
         for g in groups.iter_mut() {
             g.held_lanes = 0;
         }
         self.held.rows.clear();
         self.skip.begin_pass(groups);
-        let n = self.pairs.len();
-        for j in 0..n {
-            let k = if reverse { n - 1 - j } else { j };
+        self.pass_began.take(groups);
+        for k in 0..self.pairs.len() {
             let mut pair = self.pairs[k];
             if self.skip.passes_over(k, pair.a, pair.b) {
                 continue;
@@ -126,7 +121,12 @@ impl RibbonTouch {
             if gap > 0.0 {
                 continue;
             }
-            if let Some(pushed) = project_pair(&mut pair, groups, &a, &b, self.friction, most) {
+            let began = [
+                self.pass_began.segment(pair.a),
+                self.pass_began.segment(pair.b),
+            ];
+            let friction = self.friction;
+            if let Some(pushed) = project_pair(&mut pair, groups, &a, &b, began, friction, most) {
                 let side = |seg: Segment, at: f32| super::held::Side {
                     group: seg.group,
                     lane: seg.lane,
@@ -220,12 +220,18 @@ struct Pushed {
 }
 
 /// `pair`, of segments as `a` and `b` stand, pushed apart if its capsules
-/// overlap or have passed through each other, with friction.
+/// overlap or have passed through each other, with friction on the slide
+/// from the substep's start to where the segments stood as the pass began
+/// (`began`): the moves of this pass's earlier pairs, which it has not yet
+/// seen through, are not slides of this pair (taken for one, each push
+/// dragged the next pair's points along the ribbon, and the passes walked
+/// a draped ribbon toward one end).
 fn project_pair(
     pair: &mut Touching,
     groups: &mut [LaneGroup],
     a: &Ends,
     b: &Ends,
+    began: [[Vec3; 2]; 2],
     friction: f32,
     most: f32,
 ) -> Option<Pushed> {
@@ -250,7 +256,8 @@ fn project_pair(
     // Friction on what the closest points slid past each other this
     // substep, taken out whole while the push could hold it, else by
     // the push times the coefficient.
-    let slid = (at(b.p, t) - at(b_start, t)) - (at(a.p, s) - at(a_start, s));
+    let [a_began, b_began] = began;
+    let slid = (at(b_began, t) - at(b_start, t)) - (at(a_began, s) - at(a_start, s));
     let slid = slid - slid.dot(normal) * normal;
     let slide = slid.length();
     let limit = friction * depth;

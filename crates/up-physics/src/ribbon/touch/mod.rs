@@ -13,9 +13,8 @@
 //! segment swept fast across another is caught in the substep it would
 //! cross.
 //!
-//! In each substep the pairs are projected in their fixed order (the
-//! second pass backward, so that the passes do not walk a draped ribbon
-//! toward one end: `contact`), taking turns with the chains' direct solve: between the
+//! In each substep the pairs are projected in their fixed order
+//! (`contact`), taking turns with the chains' direct solve: between the
 //! points' fall and pushes and the solve (`LaneGroup::substep_before_solve`,
 //! `substep_solve`), so that the solve starts from ribbons apart; after it,
 //! followed by a second solve of the groups a contact moved
@@ -27,7 +26,8 @@
 //! of the two segments as they now are apart to the sum of their radii,
 //! each segment's two points by their share and inverse mass (so each
 //! ribbon pushes the other), with position-level Coulomb friction on what
-//! the closest points slid past each other over the substep (Müller et al.,
+//! the closest points slid past each other from the substep's start to the
+//! pass's (the pass's own earlier pushes are no slide; Müller et al.,
 //! "Detailed rigid body simulation with extended position based dynamics",
 //! 2020). A pair keeps the side it was found on (`contact::side`): where
 //! its closest points lie inside both segments and these cross at an
@@ -62,6 +62,7 @@ mod closest;
 mod contact;
 pub(crate) mod held;
 mod pass_skip;
+mod points_then;
 pub use contact::RibbonContact;
 
 pub mod crossings;
@@ -181,6 +182,9 @@ pub(crate) struct RibbonTouch {
     held: held::HeldSolve,
     /// What lets a substep's later passes pass over pairs unread.
     skip: pass_skip::PassSkip,
+    /// The points as the current pass began: where its pairs' slides are
+    /// measured to.
+    pass_began: points_then::PointsThen,
 }
 
 impl Default for RibbonTouch {
@@ -199,6 +203,7 @@ impl Default for RibbonTouch {
             near_b: Vec::new(),
             held: held::HeldSolve::default(),
             skip: pass_skip::PassSkip::default(),
+            pass_began: points_then::PointsThen::default(),
         }
     }
 }

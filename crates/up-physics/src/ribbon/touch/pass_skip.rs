@@ -16,8 +16,9 @@
 use glam::Vec3;
 
 use super::super::lane_group::LaneGroup;
+use super::points_then::PointsThen;
 use super::Segment;
-use crate::solver::lanes::{LANES, V4};
+use crate::solver::lanes::LANES;
 
 /// A bound a little over the sum of the moves, for the rounding of the
 /// moves' lengths and of the gaps: relative, and absolute (m; a point near
@@ -33,10 +34,8 @@ pub(crate) struct PassSkip {
     /// Per pair: how far apart its grown boxes were in the first pass, m
     /// (positive: apart; negative: they met; −∞ until measured).
     gap: Vec<f32>,
-    /// The groups' points as the first pass began, group after group, and
-    /// where each group's start.
-    began: Vec<V4>,
-    offsets: Vec<u32>,
+    /// The groups' points as the first pass began.
+    began: PointsThen,
     /// Per point (as in `began`), per lane: its moves by the passes' pushes
     /// since the first pass began (as stored), their lengths summed, m.
     pushed: Vec<[f32; LANES]>,
@@ -51,12 +50,7 @@ impl PassSkip {
         self.first = true;
         self.gap.clear();
         self.gap.resize(pairs, f32::NEG_INFINITY);
-        self.began.clear();
-        self.offsets.clear();
-        for g in groups {
-            self.offsets.push(self.began.len() as u32);
-            self.began.extend_from_slice(&g.points);
-        }
+        self.began.take(groups);
         self.pushed.clear();
         self.pushed.resize(self.began.len(), [0.0; LANES]);
         self.moved.clear();
@@ -69,10 +63,12 @@ impl PassSkip {
         if self.first {
             return;
         }
+        let mut first = 0;
         for (k, g) in groups.iter().enumerate() {
-            let first = self.offsets[k] as usize;
-            let began = &self.began[first..][..g.points.len()];
-            let moved = &mut self.moved[first..][..g.points.len()];
+            let n = g.points.len();
+            let began = self.began.of_group(k, n);
+            let moved = &mut self.moved[first..][..n];
+            first += n;
             for ((now, then), moved) in g.points.iter().zip(began).zip(moved) {
                 let d = *now - *then;
                 *moved = d.dot(d).to_array().map(f32::sqrt);
@@ -95,14 +91,9 @@ impl PassSkip {
     /// The most segment `s`'s points can have moved since the first pass
     /// came to a pair of it.
     fn bound(&self, s: Segment) -> f32 {
-        let (i, l) = (self.point(s), s.lane as usize);
+        let (i, l) = (self.began.index(s), s.lane as usize);
         let most = |v: &[[f32; LANES]]| v[i][l].max(v[i + 1][l]);
         most(&self.moved) + most(&self.pushed)
-    }
-
-    /// Where segment `s`'s first point is in `began`.
-    fn point(&self, s: Segment) -> usize {
-        self.offsets[s.group as usize] as usize + s.index as usize
     }
 
     /// In the first pass, how far apart pair `k`'s grown boxes are.
@@ -114,7 +105,7 @@ impl PassSkip {
 
     /// A push of segment `s`'s points by `d0` and `d1`, as stored.
     pub fn note_push(&mut self, s: Segment, d0: Vec3, d1: Vec3) {
-        let (i, l) = (self.point(s), s.lane as usize);
+        let (i, l) = (self.began.index(s), s.lane as usize);
         self.pushed[i][l] += d0.length();
         self.pushed[i + 1][l] += d1.length();
     }
