@@ -222,10 +222,10 @@ struct Pushed {
 /// `pair`, of segments as `a` and `b` stand, pushed apart if its capsules
 /// overlap or have passed through each other, with friction on the slide
 /// from the substep's start to where the segments stood as the pass began
-/// (`began`): the moves of this pass's earlier pairs, which it has not yet
-/// seen through, are not slides of this pair (taken for one, each push
-/// dragged the next pair's points along the ribbon, and the passes walked
-/// a draped ribbon toward one end).
+/// (`began`): the moves of this pass's earlier pairs are not slides of
+/// this pair (taken for one, each push would drag the next pair's points
+/// back along the ribbon, and the passes would walk a draped ribbon toward
+/// one end).
 fn project_pair(
     pair: &mut Touching,
     groups: &mut [LaneGroup],
