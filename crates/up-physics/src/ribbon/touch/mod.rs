@@ -40,8 +40,8 @@
 //! (most of the pairs, found for the step's whole sweep, at any one pass):
 //! it keeps the side it last had; the substep's later passes pass over,
 //! unread, a pair whose boxes were further apart in its first pass than
-//! its points have moved since (`pass_skip`). The lengths the last push changed are
-//! the next substep's solve's to restore.
+//! its points have moved since (`pass_skip`). The lengths the last push
+//! changed are the next substep's solve's to restore.
 //!
 //! The chains' solves that follow a pass see the contacts it pushed apart
 //! (`held`): the ribbons those link are solved together, the contacts rows

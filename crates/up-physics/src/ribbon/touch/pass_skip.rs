@@ -9,9 +9,9 @@
 //! points can have moved since: how far each point now is from where it
 //! was as the first pass began, plus every push of it by the passes since
 //! (which bounds both how far it had moved when the first pass came to the
-//! pair and how far this pass has moved it so far). A pair passed over is one whose boxes would
-//! still not meet, which a pass leaves as it is: the results are the same,
-//! bit for bit.
+//! pair and how far this pass has moved it so far). A pair passed over is
+//! one whose boxes would still not meet, which a pass leaves as it is: the
+//! results are the same, bit for bit.
 
 use glam::Vec3;
 
