@@ -127,7 +127,7 @@ fn ribbons_now(state: &mut State) -> Vec<Vec<Vec3>> {
 /// half second for two seconds after, and no ribbon passed through another
 /// on the way (a link made by passing through is no wrap).
 #[test]
-#[ignore = "the carried ribbon catches on another (a link for half a second) and is pulled through it while they touch (ribbons wound round each other under a pull pass through: docs/physics.md): unwrapped after the release, 2 crossings"]
+#[ignore = "the carried ribbon catches on another (a link for half a second) and is pulled through it while they touch (ribbons wound round each other under a pull pass through: docs/physics.md): unwrapped after the release, with ribbons passing through each other on the way"]
 fn a_balloon_carried_twice_round_the_bouquet_leaves_its_ribbon_wrapped() {
     const RADIUS: f32 = 0.25;
     const TURN_S: f32 = 4.0;
