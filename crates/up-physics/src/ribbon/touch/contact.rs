@@ -109,7 +109,9 @@ impl RibbonTouch {
         }
         self.held.rows.clear();
         self.skip.begin_pass(groups);
-        self.pass_began.take(groups);
+        if !self.skip.in_first_pass() {
+            self.pass_began.take(groups);
+        }
         for k in 0..self.pairs.len() {
             let mut pair = self.pairs[k];
             if self.skip.passes_over(k, pair.a, pair.b) {
@@ -121,10 +123,13 @@ impl RibbonTouch {
             if gap > 0.0 {
                 continue;
             }
-            let began = [
-                self.pass_began.segment(pair.a),
-                self.pass_began.segment(pair.b),
-            ];
+            // The first pass begins where the skip's copy was taken.
+            let then = if self.skip.in_first_pass() {
+                self.skip.began()
+            } else {
+                &self.pass_began
+            };
+            let began = [then.segment(pair.a), then.segment(pair.b)];
             let friction = self.friction;
             if let Some(pushed) = project_pair(&mut pair, groups, &a, &b, began, friction, most) {
                 let side = |seg: Segment, at: f32| super::held::Side {

@@ -168,7 +168,7 @@ pub(crate) struct RibbonTouch {
     pub push_out: f32,
     /// Below this slide over the substep a contact is gripped (its speed
     /// `GRIP_SLIDE_SPEED` times the substep), m.
-    pub grip_slide: f32,
+    grip_slide: f32,
     /// The step's pairs, in the order they are projected.
     pub pairs: Vec<Touching>,
     /// The pairs touching at the step's end (`keep_touching`), for drawing.
@@ -182,8 +182,8 @@ pub(crate) struct RibbonTouch {
     held: held::HeldSolve,
     /// What lets a substep's later passes pass over pairs unread.
     skip: pass_skip::PassSkip,
-    /// The points as the current pass began: where its pairs' slides are
-    /// measured to.
+    /// The points as the current pass began, after the first (whose are
+    /// `skip`'s): where its pairs' slides are measured to.
     pass_began: points_then::PointsThen,
 }
 

@@ -76,6 +76,16 @@ impl PassSkip {
         }
     }
 
+    /// Whether the substep's first pass is the one under way.
+    pub fn in_first_pass(&self) -> bool {
+        self.first
+    }
+
+    /// The points as the substep's first pass began.
+    pub fn began(&self) -> &PointsThen {
+        &self.began
+    }
+
     /// At a pass's end: the first is over.
     pub fn end_pass(&mut self) {
         self.first = false;
