@@ -323,7 +323,7 @@ fn holding_ratio(over: Over, mu: f32, short: f32) -> f32 {
 /// holds up to the capstan law's ratio within 20 %, for μ = 0.2 and the
 /// ribbons' 0.4.
 #[test]
-#[ignore = "misses: held up to 1.23 short sides for μ = 0.2 and 1.73 for μ = 0.4 (the capstan law with the arc's weight 2.15 and 4.18, e^{μπ} alone 1.87 and 3.51), 43 % and 59 % under; the arc wraps the weight with about nine contacts, the linked solve holds four of them with their friction rows, and the passes grip the rest within μ times each pass's own push; see docs/perf-log.md"]
+#[ignore = "misses: held up to 1.69 short sides for μ = 0.2 and 3.24 for μ = 0.4 (the capstan law with the arc's weight 2.15 and 4.18, e^{μπ} alone 1.87 and 3.51), 22 % and 23 % under; the passes' friction, within μ times each pass's push, falls short at the default 4 substeps and nears the law with shorter ones (8 substeps a step: 20 % and 11 % under); see docs/perf-log.md"]
 fn the_holding_ratio_over_a_tied_weight_follows_the_capstan_law() {
     let short = 0.18;
     let radius = RIBBON_RADIUS + WEIGHT_RADIUS;

@@ -141,8 +141,15 @@ impl RibbonTouch {
                 self.skip.note_push(pair.a, pushed.a[0], pushed.a[1]);
                 self.skip.note_push(pair.b, pushed.b[0], pushed.b[1]);
                 let grip = pushed.slide < self.grip_slide;
-                let (a, b) = (side(pair.a, pushed.s), side(pair.b, pushed.t));
-                self.hold(groups, a, b, pushed.normal, grip);
+                // A contact at rest is left to the passes (`HOLD_DEPTH`).
+                if !grip
+                    || pushed.depth > super::HOLD_DEPTH
+                    || moves_a_weight(groups, pair.a)
+                    || moves_a_weight(groups, pair.b)
+                {
+                    let (a, b) = (side(pair.a, pushed.s), side(pair.b, pushed.t));
+                    self.hold(groups, a, b, pushed.normal, grip);
+                }
             }
             self.pairs[k] = pair;
         }
@@ -212,10 +219,12 @@ fn gap(a: &Ends, b: &Ends) -> f32 {
     ((a_low - b_high).max(b_low - a_high) - reach).max_element()
 }
 
-/// A pair's projection: its normal, its closest points' parameters (a row
-/// of the solve that follows, `held`), how far they slid past each other
-/// this substep, m, and the moves of each segment's two points as stored.
+/// A pair's projection: how far it was pushed apart, m, its normal, its
+/// closest points' parameters (a row of the solve that follows, `held`),
+/// how far they slid past each other this substep, m, and the moves of
+/// each segment's two points as stored.
 struct Pushed {
+    depth: f32,
     normal: Vec3,
     s: f32,
     t: f32,
@@ -274,6 +283,7 @@ fn project_pair(
     let grip = -slid * (held / w);
     let impulse = push + grip;
     Some(Pushed {
+        depth,
         normal,
         s,
         t,
@@ -314,4 +324,16 @@ impl RibbonTouch {
             }
         }
     }
+}
+
+/// Whether segment `s` ends at its ribbon's weight, free to move: a pass's
+/// push moves the light ribbon against it, not the weight, and the chain's
+/// tension pulls the ribbon back through it in a solve that does not see
+/// the contact.
+fn moves_a_weight(groups: &[LaneGroup], s: Segment) -> bool {
+    let g = &groups[s.group as usize];
+    let (l, last) = (s.lane as usize, g.points.len() - 1);
+    s.index as usize + 1 == last
+        && g.end_radius.as_array()[l] > RIBBON_RADIUS
+        && g.inv_mass[last].as_array()[l] > 0.0
 }

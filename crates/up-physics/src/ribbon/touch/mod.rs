@@ -44,12 +44,15 @@
 //! changed are the next substep's solve's to restore.
 //!
 //! The chains' solves that follow a pass see the contacts it pushed apart
-//! (`held`): the ribbons those link are solved together, the contacts rows
-//! of the same solve that may push but not pull, so that a segment caught
-//! on another, dragged by a carried end or a taut pull, is not pulled back
-//! through it by a solve that does not see it; with friction, each with two
+//! that slide fast, that it pushed far or that touch a weight
+//! (`HOLD_DEPTH`) (`held`): the
+//! ribbons those link are solved together, the contacts rows of the same
+//! solve that may push but not pull, so that a segment caught on another,
+//! dragged by a carried end or a taut pull, is not pulled back through it
+//! by a solve that does not see it; with friction, each slow one with two
 //! rows that hold it from sliding within the friction cone of the push the
-//! solve gives it.
+//! solve gives it. Contacts at rest are left to the passes, whose friction
+//! follows each pass's push.
 //!
 //! The pass and the linked ribbons' solve run on one thread in a fixed
 //! order, so the result is the same
@@ -80,10 +83,22 @@ pub const RIBBON_ON_RIBBON_FRICTION: f32 = 0.4;
 
 /// Below this speed past each other over a substep, m/s, two ribbons'
 /// touching points are gripped in the linked solve (`held`), within the
-/// friction cone; faster, they slide and only the passes' friction acts.
-/// Gripping every contact lets a ribbon swept across a taut one at 10 m/s
-/// through it; from 0.12 m/s up a drape hangs (docs/perf-log.md).
+/// friction cone, if they are held there at all (`HOLD_DEPTH`); faster,
+/// they slide and only the passes' friction acts. Gripping every contact
+/// lets a ribbon swept across a taut one at 10 m/s through it; from 0.12
+/// m/s up a drape hangs (docs/perf-log.md).
 pub const GRIP_SLIDE_SPEED: f32 = 0.25;
+
+/// A contact that slides slower than `GRIP_SLIDE_SPEED` is held in the
+/// linked solve (`held`) only where a pass pushed it apart by more than
+/// this, m (a solve pulling a strand nearly a ribbon's radius into
+/// another), or where it touches a weight free to move: a contact at rest
+/// is left to the passes, whose friction follows each pass's push. Held, a
+/// resting contact's push row takes the chains' tension off the passes'
+/// pushes, and so off their friction: the drape over the tied weight held
+/// 43–59 % under the capstan law with all held, 22–23 % with these left
+/// out (docs/perf-log.md).
+pub const HOLD_DEPTH: f32 = 2e-3;
 
 /// Fastest two capsules that begin a step overlapping are pushed apart, m/s
 /// (laid out on one spot, as a bouquet's weights are): at once, they would

@@ -6,7 +6,8 @@
 //! tangle, or a segment dragged by a carried end, the passes do not
 //! converge before the strands pass through.
 //!
-//! Each contact the last pass pushed apart is a row
+//! Each contact the last pass pushed apart, of those that slide fast, that
+//! it pushed far or that touch a weight (`touch::HOLD_DEPTH`), is a row
 //! `n·(p_b − p_a) ≥ floor` (as the push left them) between the closest points
 //! `p = (1 − s)·x_q + s·x_{q+1}` of its two segments. The ribbons linked by
 //! such rows are solved as one system, `[A B; Bᵀ C]·[λ_d; λ_c] = [r_d; r_c]`,
@@ -18,14 +19,14 @@
 //! own solve is. On one thread in the rows' order; the other lanes run the
 //! four-lane solve as before.
 //!
-//! With friction, each contact brings two more rows, its grips: along two
+//! With friction, each slow contact held brings two more rows, its grips: along two
 //! directions across its normal, `t·(p_b − p_a)` is held where it was when
 //! the substep began (static friction, at position level as in Müller et
 //! al. 2020), both left out where their λ together would exceed μ times
 //! the push's (the contact slides; the passes' own friction then takes its
 //! slide). In the solve the grips see the normal force the chains' tension
 //! gives the contact, which a pass's grip, within μ times its own push,
-//! does not: a ribbon draped over a taut one hangs only with them.
+//! does not.
 //!
 //! Here the rows, the linked sets and the chains gathered and put back;
 //! the solve of a set's system in `schur`.
