@@ -326,10 +326,12 @@ impl RibbonTouch {
     }
 }
 
-/// Whether segment `s` ends at its ribbon's weight, free to move: a pass's
-/// push moves the light ribbon against it, not the weight, and the chain's
-/// tension pulls the ribbon back through it in a solve that does not see
-/// the contact.
+/// Whether segment `s` ends at its ribbon's weight, free to move (not tied,
+/// grabbed or resting): a pass's push moves the light ribbon against it
+/// more than the weight, and the chain's tension pulls the ribbon back
+/// through it in a solve that does not see the contact (a settled
+/// bouquet's ribbons cross). A fixed weight's contacts at rest are the
+/// passes' as any others (a drape over one holds by their friction).
 fn moves_a_weight(groups: &[LaneGroup], s: Segment) -> bool {
     let g = &groups[s.group as usize];
     let (l, last) = (s.lane as usize, g.points.len() - 1);

@@ -44,15 +44,14 @@
 //! changed are the next substep's solve's to restore.
 //!
 //! The chains' solves that follow a pass see the contacts it pushed apart
-//! that slide fast, that it pushed far or that touch a weight
-//! (`HOLD_DEPTH`) (`held`): the
-//! ribbons those link are solved together, the contacts rows of the same
-//! solve that may push but not pull, so that a segment caught on another,
-//! dragged by a carried end or a taut pull, is not pulled back through it
-//! by a solve that does not see it; with friction, each slow one with two
-//! rows that hold it from sliding within the friction cone of the push the
-//! solve gives it. Contacts at rest are left to the passes, whose friction
-//! follows each pass's push.
+//! that slide fast, that it pushed far or that touch a movable weight
+//! (`HOLD_DEPTH`; `held`): the ribbons those link are solved together, the
+//! contacts rows of the same solve that may push but not pull, so that a
+//! segment caught on another, dragged by a carried end or a taut pull, is
+//! not pulled back through it by a solve that does not see it; with
+//! friction, each slow one with two rows that hold it from sliding within
+//! the friction cone of the push the solve gives it. Contacts at rest are
+//! left to the passes, whose friction follows each pass's push.
 //!
 //! The pass and the linked ribbons' solve run on one thread in a fixed
 //! order, so the result is the same
@@ -85,8 +84,7 @@ pub const RIBBON_ON_RIBBON_FRICTION: f32 = 0.4;
 /// touching points are gripped in the linked solve (`held`), within the
 /// friction cone, if they are held there at all (`HOLD_DEPTH`); faster,
 /// they slide and only the passes' friction acts. Gripping every contact
-/// lets a ribbon swept across a taut one at 10 m/s through it; from 0.12
-/// m/s up a drape hangs (docs/perf-log.md).
+/// lets a ribbon swept across a taut one at 10 m/s through it.
 pub const GRIP_SLIDE_SPEED: f32 = 0.25;
 
 /// A contact that slides slower than `GRIP_SLIDE_SPEED` is held in the

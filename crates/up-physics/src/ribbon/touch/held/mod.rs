@@ -24,9 +24,9 @@
 //! the substep began (static friction, at position level as in Müller et
 //! al. 2020), both left out where their λ together would exceed μ times
 //! the push's (the contact slides; the passes' own friction then takes its
-//! slide). In the solve the grips see the normal force the chains' tension
-//! gives the contact, which a pass's grip, within μ times its own push,
-//! does not.
+//! slide). They stand in for the passes' friction on the contacts held:
+//! there the solve, not the next pass, takes the push the chains' tension
+//! asks, and a pass's friction is within μ times its own push.
 //!
 //! Here the rows, the linked sets and the chains gathered and put back;
 //! the solve of a set's system in `schur`.
