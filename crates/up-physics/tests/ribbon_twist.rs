@@ -222,7 +222,7 @@ fn assert_twist_held(on: &Pulled, off: &Pulled) {
 
 /// At the world's 4 substeps a step (`WorldDef::default`).
 #[test]
-#[ignore = "fails at 4 substeps a step: the linking number goes from −3 to 0 in the 10th step (0.17 s): the strands' Y opening above the turns has run them together near the weight (75–135° of twist a 4.7 cm segment), and there the chains' solves pull the strands through each other faster than the passes push them back (the linked solve, `touch::held`, holding 4 rows of the 30 or so pairs touching and not converging in its 8 iterations, took all three turns in one solve; with no contact in the linked solve they go in the same step); with the balloons' rise held to 0.1 or 0.02 m/s, the ribbons not yet taut, it goes at 0.47 or 0.73 s; at 32–64 substeps it holds (the test below); see docs/perf-log.md"]
+#[ignore = "fails at 4 substeps a step: the linking number goes from −3 to −1 in the 10th step (0.17 s) and to 0 in the 12th: as the balloons draw apart the strands spin round each other, the side of a pair of segments 0.7–0.9 m up (read from the line between their closest points, the segments nearly parallel) turning 5–20° at every pass, and there they pass through each other (the linked solve, `touch::held`, not converging in its 8 iterations; with no contact in it they go in the same step); with the balloons' rise held to 0.1 or 0.02 m/s, the ribbons not yet taut, it goes at 0.47 or 0.73 s; at 32–64 substeps it holds (the test below); see docs/perf-log.md"]
 fn ribbons_twisted_three_turns_stay_twisted_under_a_pull() {
     let (on, off) = pulled_on_and_off(WorldDef::default().substeps);
     assert_twist_held(&on, &off);
