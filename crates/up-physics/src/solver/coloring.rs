@@ -33,10 +33,6 @@ use crate::threading::spare::{release_spare, BUFFER_FLOOR};
 #[cfg(feature = "parallel")]
 use crate::threading::staged::Stages;
 
-/// Marks a slot that holds no constraint.
-#[cfg(feature = "parallel")]
-pub(crate) const EMPTY_LANE: u32 = u32::MAX;
-
 /// Colours a body can carry (bits of a `u64`).
 const COLORS: usize = 64;
 
@@ -175,9 +171,6 @@ pub(crate) struct Coloring {
     pub ranges: Vec<ColourRun>,
     /// For each constraint in the narrowphase's order, its slot: group · `LANES` + lane.
     pub slot: Vec<u32>,
-    /// For each slot, its constraint (`EMPTY_LANE` if none): `slot` inverted.
-    #[cfg(feature = "parallel")]
-    constraint_at: Vec<u32>,
     /// Groups in all.
     pub groups: usize,
     /// The runs cut into blocks for rayon's threads.
@@ -295,8 +288,6 @@ impl Coloring {
         release_spare(&mut self.zone_counts, BUFFER_FLOOR);
         release_spare(&mut self.slot, BUFFER_FLOOR);
         #[cfg(feature = "parallel")]
-        release_spare(&mut self.constraint_at, BUFFER_FLOOR);
-        #[cfg(feature = "parallel")]
         self.blocks.release_spare();
         #[cfg(feature = "parallel")]
         release_spare(&mut self.pieces, BUFFER_FLOOR);
@@ -321,10 +312,6 @@ impl Coloring {
         self.used.resize(states.len(), 0);
         self.next_level.clear();
         self.color.clear();
-        // Filled only when the groups are assembled in tasks; empty otherwise,
-        // so that its length is this step's use (`spare`).
-        #[cfg(feature = "parallel")]
-        self.constraint_at.clear();
         // Zero but where the last call used them, which it cleared.
         let zone_size = (SERIAL + 1) * 3 * zone_count;
         if self.zone_counts.len() != zone_size {
@@ -499,17 +486,6 @@ impl Coloring {
             .pieces
             .iter_mut()
             .for_each(|p| p.moving = Moving::Both);
-    }
-
-    /// For each slot, its constraint (`EMPTY_LANE` if none): `slot` inverted.
-    #[cfg(feature = "parallel")]
-    pub fn constraint_at(&mut self) -> &[u32] {
-        self.constraint_at.clear();
-        self.constraint_at.resize(self.groups * LANES, EMPTY_LANE);
-        for (i, &slot) in self.slot.iter().enumerate() {
-            self.constraint_at[slot as usize] = i as u32;
-        }
-        &self.constraint_at
     }
 }
 

@@ -47,18 +47,6 @@ pub(crate) struct PreparedContact {
     pub feature: ContactFeature,
 }
 
-impl PreparedContact {
-    /// An empty lane: the static room on both sides, nothing else.
-    #[cfg(feature = "parallel")]
-    pub fn empty(room: u32) -> PreparedContact {
-        PreparedContact {
-            a: room,
-            b: room,
-            ..PreparedContact::default()
-        }
-    }
-}
-
 /// Four contact constraints, field by field (structure of arrays): what the
 /// velocity passes read, kept apart from the anchors (`GroupAnchors`) and
 /// the step's records (`GroupRecords`) so that a pass streams no more memory
@@ -143,35 +131,52 @@ pub(crate) fn set_lane(
     records.feature[i] = c.feature;
 }
 
-/// A group's three parts from its four lanes' prepared contacts, as
-/// `set_lane` on an empty group would leave them (an empty lane is
-/// `PreparedContact::empty`).
+/// `set_lane` through pointers to a group's three parts, for tasks that
+/// fill other lanes of the same groups at the same time: it writes lane
+/// `i`'s bytes and no others (a reference to the whole group would claim
+/// them all).
+///
+/// # Safety
+/// The pointers are valid for writes, and while this runs no other task
+/// reads the parts or writes their lane `i`.
 #[cfg(feature = "parallel")]
-pub(crate) fn assemble(c: [&PreparedContact; LANES]) -> (ContactGroup, GroupAnchors, GroupRecords) {
-    let v = |f: fn(&PreparedContact) -> Vec3| V4::from_lanes([f(c[0]), f(c[1]), f(c[2]), f(c[3])]);
-    let s = |f: fn(&PreparedContact) -> f32| F4::new([f(c[0]), f(c[1]), f(c[2]), f(c[3])]);
-    let group = ContactGroup {
-        a: [c[0].a, c[1].a, c[2].a, c[3].a],
-        b: [c[0].b, c[1].b, c[2].b, c[3].b],
-        normal: v(|c| c.normal),
-        tangent: v(|c| c.tangent[0]),
-        normal_impulse: s(|c| c.normal_impulse),
-        tangent_impulse: [s(|c| c.tangent_impulse[0]), s(|c| c.tangent_impulse[1])],
-        ..ContactGroup::default()
-    };
-    let anchors = GroupAnchors {
-        r_a: v(|c| c.r_a),
-        r_b: v(|c| c.r_b),
-        radius_a: s(|c| c.radius_a),
-        radius_b: s(|c| c.radius_b),
-        center_offset: v(|c| c.center_offset),
-        adjusted_separation: s(|c| c.adjusted_separation),
-        ..GroupAnchors::default()
-    };
-    let records = GroupRecords {
-        feature: [c[0].feature, c[1].feature, c[2].feature, c[3].feature],
-    };
-    (group, anchors, records)
+pub(crate) unsafe fn set_lane_shared(
+    (g, anchors, records): (*mut ContactGroup, *mut GroupAnchors, *mut GroupRecords),
+    i: usize,
+    c: &PreparedContact,
+) {
+    use std::ptr::addr_of_mut;
+    assert!(i < LANES);
+    // SAFETY: every pointer below is to a field of a valid part (the
+    // caller's contract), lane `i` within it (asserted), `F4` four `f32`s
+    // in lane order.
+    unsafe {
+        let put = |x: *mut F4, v: f32| x.cast::<f32>().add(i).write(v);
+        let put_v = |x: *mut V4, v: Vec3| {
+            put(addr_of_mut!((*x).x), v.x);
+            put(addr_of_mut!((*x).y), v.y);
+            put(addr_of_mut!((*x).z), v.z);
+        };
+        addr_of_mut!((*g).a).cast::<u32>().add(i).write(c.a);
+        addr_of_mut!((*g).b).cast::<u32>().add(i).write(c.b);
+        put_v(addr_of_mut!((*g).normal), c.normal);
+        put_v(addr_of_mut!((*g).tangent), c.tangent[0]);
+        put(addr_of_mut!((*g).normal_impulse), c.normal_impulse);
+        let tangent_impulse = addr_of_mut!((*g).tangent_impulse).cast::<F4>();
+        put(tangent_impulse, c.tangent_impulse[0]);
+        put(tangent_impulse.add(1), c.tangent_impulse[1]);
+        put_v(addr_of_mut!((*anchors).r_a), c.r_a);
+        put_v(addr_of_mut!((*anchors).r_b), c.r_b);
+        put(addr_of_mut!((*anchors).radius_a), c.radius_a);
+        put(addr_of_mut!((*anchors).radius_b), c.radius_b);
+        put_v(addr_of_mut!((*anchors).center_offset), c.center_offset);
+        put(
+            addr_of_mut!((*anchors).adjusted_separation),
+            c.adjusted_separation,
+        );
+        let feature = addr_of_mut!((*records).feature).cast::<ContactFeature>();
+        feature.add(i).write(c.feature);
+    }
 }
 
 impl ContactGroup {

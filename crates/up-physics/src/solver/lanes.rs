@@ -43,7 +43,7 @@ impl V4 {
         V4 { x, y, z }
     }
 
-    #[cfg(any(test, feature = "parallel"))]
+    #[cfg(test)]
     #[inline]
     pub fn from_lanes(v: [Vec3; LANES]) -> V4 {
         V4 {

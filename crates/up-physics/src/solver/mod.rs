@@ -33,6 +33,8 @@ mod overflow_tests;
 pub(crate) mod parallel;
 pub(crate) mod position_skips;
 pub(crate) mod probe;
+#[cfg(all(test, feature = "parallel"))]
+mod scatter_tests;
 pub(crate) mod softness;
 #[cfg(test)]
 mod stabilize_tests;
@@ -326,19 +328,25 @@ impl Solver {
         self.groups.resize(n, ContactGroup::default());
         self.anchors.resize(n, GroupAnchors::default());
         self.records.resize(n, GroupRecords::default());
-        let constraint_at = self.coloring.constraint_at();
-        let empty = PreparedContact::empty(room);
-        parallel::fill_groups(
-            (&mut self.groups, &mut self.anchors, &mut self.records),
-            |g, (group, anchors, records)| {
-                let lane = |k: usize| match constraint_at[g * LANES + k] {
-                    coloring::EMPTY_LANE => &empty,
-                    i => &prepared[i as usize],
-                };
-                (*group, *anchors, *records) =
-                    contact_constraint::assemble([lane(0), lane(1), lane(2), lane(3)]);
-            },
+        let empty = (
+            ContactGroup::empty(room),
+            GroupAnchors::default(),
+            GroupRecords::default(),
         );
+        let parts = (
+            &mut self.groups[..],
+            &mut self.anchors[..],
+            &mut self.records[..],
+        );
+        parallel::fill_groups(parts, |_, (group, anchors, records)| {
+            (*group, *anchors, *records) = empty;
+        });
+        let parts = (
+            &mut self.groups[..],
+            &mut self.anchors[..],
+            &mut self.records[..],
+        );
+        parallel::scatter_lanes(parts, &self.coloring.slot, prepared);
     }
 
     /// What every constraint hands to the next step, in the narrowphase's

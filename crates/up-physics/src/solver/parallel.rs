@@ -12,9 +12,11 @@ use super::body_state::BodyState;
 #[cfg(feature = "parallel")]
 use super::coloring::ColourBlocks;
 use super::coloring::{Coloring, Moving};
+#[cfg(feature = "parallel")]
+use super::contact_constraint;
 use super::contact_constraint::ContactGroup;
 #[cfg(feature = "parallel")]
-use super::contact_constraint::{GroupAnchors, GroupRecords};
+use super::contact_constraint::{GroupAnchors, GroupRecords, PreparedContact};
 use super::lanes::LANES;
 #[cfg(feature = "parallel")]
 use crate::threading::staged::run_in_stages;
@@ -67,6 +69,14 @@ impl<T> SharedSlice<T> {
         assert!((i as usize) < self.len);
         // SAFETY: in bounds (asserted), and ours alone (the caller's contract).
         unsafe { &mut *self.ptr.add(i as usize) }
+    }
+
+    /// A pointer to element `i`, for tasks that write parts of one element
+    /// at the same time (what they may touch is theirs to keep apart).
+    #[cfg(feature = "parallel")]
+    fn ptr(&self, i: u32) -> *mut T {
+        assert!((i as usize) < self.len);
+        self.ptr.wrapping_add(i as usize)
     }
 
     /// # Safety
@@ -252,6 +262,45 @@ type GroupParts<'a> = (
     &'a mut [GroupAnchors],
     &'a mut [GroupRecords],
 );
+
+/// Prepared contacts handed to one task of `scatter_lanes`.
+#[cfg(feature = "parallel")]
+const SCATTER_CHUNK: usize = 1024;
+
+/// Writes each prepared contact into its lane of the groups (`slots[i]`:
+/// group · `LANES` + lane, each slot one constraint's), runs of contacts on
+/// rayon's threads: read in order and written where they go, where
+/// gathering each group's lanes from wherever they lie in `prepared` would
+/// wait on every read.
+#[cfg(feature = "parallel")]
+pub(crate) fn scatter_lanes(
+    (groups, anchors, records): GroupParts,
+    slots: &[u32],
+    prepared: &[PreparedContact],
+) {
+    assert!(groups.len() == anchors.len() && groups.len() == records.len());
+    assert_eq!(slots.len(), prepared.len());
+    let shared = (
+        SharedSlice::new(groups),
+        SharedSlice::new(anchors),
+        SharedSlice::new(records),
+    );
+    for_each_run(
+        prepared.len(),
+        SCATTER_CHUNK,
+        (prepared, slots),
+        |_, (prepared, slots)| {
+            for (c, &slot) in prepared.iter().zip(slots) {
+                let (g, lane) = (slot / LANES as u32, slot as usize % LANES);
+                let parts = (shared.0.ptr(g), shared.1.ptr(g), shared.2.ptr(g));
+                // SAFETY: the slots are distinct (the colouring gives each
+                // constraint its own), so no other task writes this lane,
+                // and no task reads the groups until the pass is over.
+                unsafe { contact_constraint::set_lane_shared(parts, lane, c) };
+            }
+        },
+    );
+}
 
 /// Runs `fill` on every contact group's three parts, with the group's index.
 #[cfg(feature = "parallel")]

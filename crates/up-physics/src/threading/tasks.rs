@@ -81,6 +81,12 @@ impl<T: Send> Runs for &mut [T] {
     }
 }
 
+impl<T: Sync> Runs for &[T] {
+    fn split_at(self, mid: usize) -> (Self, Self) {
+        <[T]>::split_at(self, mid)
+    }
+}
+
 macro_rules! runs_for_tuple {
     ($($part:ident),+) => {
         impl<$($part: Runs),+> Runs for ($($part,)+) {
