@@ -102,6 +102,14 @@ pub(crate) fn update_sleep(
     let restless = |i: usize| awake[i] && sleep_time[i] < time_to_sleep;
     let mut stays = std::mem::take(&mut buffers.stays_awake);
     stays.clear();
+    // With no body rested nothing falls asleep (in a rising crowd, most
+    // steps): the pairs, contacts and groups are not looked through.
+    if (0..n).all(|i| !awake[i] || restless(i)) {
+        stays.resize(n, false);
+        keep_impulses(input, warm, bodies, sleeping, &stays);
+        buffers.stays_awake = stays;
+        return;
+    }
     stays.extend((0..n).map(restless));
     // A rested body beside a restless one, or joined to it, stays awake.
     let mixed = |a: usize, b: usize| restless(a) != restless(b) && awake[a] && awake[b];
@@ -161,6 +169,19 @@ pub(crate) fn update_sleep(
         bodies.linear_velocity[i] = Vec3::ZERO;
         bodies.angular_velocity[i] = Vec3::ZERO;
     }
+    keep_impulses(input, warm, bodies, sleeping, &falls_asleep);
+    buffers.stays_awake = falls_asleep;
+}
+
+/// The sleeping pairs' impulses kept (`SleepingIslands::keep_impulses`),
+/// once the bodies that `falls_asleep` marks have fallen asleep.
+fn keep_impulses(
+    input: &SleepInput,
+    warm: &WarmStartCache,
+    bodies: &Bodies,
+    sleeping: &mut SleepingIslands,
+    falls_asleep: &[bool],
+) {
     let (handles, awake) = (input.handles, &bodies.awake);
     // The room (`STATIC_BODY`) has no dense index: asleep, never fallen asleep.
     sleeping.keep_impulses(
@@ -168,5 +189,4 @@ pub(crate) fn update_sleep(
         |handle| handle == STATIC_BODY || handles.dense_at(handle).is_some_and(|i| !awake[i]),
         |handle| handles.dense_at(handle).is_some_and(|i| falls_asleep[i]),
     );
-    buffers.stays_awake = falls_asleep;
 }
