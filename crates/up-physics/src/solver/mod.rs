@@ -311,9 +311,10 @@ impl Solver {
 
     /// `begin_constraints` and `set_constraint` for all the constraints at
     /// once: `prepare` fills `prepared` (on rayon's threads) while this
-    /// thread colours them, which needs only their pairs; then group by
-    /// group on rayon's threads, each group gathered from its lanes'
-    /// constraints and written whole by one task.
+    /// thread colours them, which needs only their pairs; then, on rayon's
+    /// threads, the groups emptied and each constraint written into its
+    /// lane, runs of them read in order (a group gathering its lanes from
+    /// wherever the colouring put them waits on every read).
     #[cfg(feature = "parallel")]
     pub fn set_constraints(
         &mut self,
@@ -324,7 +325,7 @@ impl Solver {
         // The colouring is serial (greedy, in order): off the critical path.
         let ((n, room), ()) = rayon::join(|| self.colour(pairs), || prepare(prepared));
         let prepared = &*prepared;
-        // Each group is written whole below: only the lengths matter here.
+        // Each group is emptied below: only the lengths matter here.
         self.groups.resize(n, ContactGroup::default());
         self.anchors.resize(n, GroupAnchors::default());
         self.records.resize(n, GroupRecords::default());

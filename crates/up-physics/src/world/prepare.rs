@@ -31,7 +31,7 @@ const PREPARE_CHUNK: usize = 1024;
 #[derive(Clone, Debug, Default)]
 pub(crate) struct SolverStage {
     pub solver: Solver,
-    /// The contacts prepared in tasks, before they are gathered into groups.
+    /// The contacts prepared in tasks, before they are written into their groups.
     #[cfg(feature = "parallel")]
     pub prepared: Vec<PreparedContact>,
 }
@@ -124,8 +124,8 @@ impl World {
 
     /// The contact constraints, each warm-started from its impulse last
     /// step. With several threads the contacts are prepared in tasks (in the
-    /// narrowphase's order, one lookup a pair), then gathered into their
-    /// groups in tasks; on one, each goes straight to its slot.
+    /// narrowphase's order, one lookup a pair), then written into their
+    /// groups' lanes in tasks; on one, each goes straight to its slot.
     pub(super) fn prepare_contacts(&mut self) {
         let found = &self.stages.narrow.found;
         let room_state = self.stages.solve.solver.room;
