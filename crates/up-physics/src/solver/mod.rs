@@ -313,8 +313,8 @@ impl Solver {
     /// once: `prepare` fills `prepared` (on rayon's threads) while this
     /// thread colours them, which needs only their pairs; then, on rayon's
     /// threads, the groups emptied and each constraint written into its
-    /// lane, runs of them read in order (a group gathering its lanes from
-    /// wherever the colouring put them waits on every read).
+    /// lane, runs of them read in order (reading each group's lanes from
+    /// their places in `prepared` would wait on every read).
     #[cfg(feature = "parallel")]
     pub fn set_constraints(
         &mut self,
@@ -347,7 +347,9 @@ impl Solver {
             &mut self.anchors[..],
             &mut self.records[..],
         );
-        parallel::scatter_lanes(parts, &self.coloring.slot, prepared);
+        // SAFETY: the colouring gives each constraint a slot of its own
+        // (`coloring_tests` checks it).
+        unsafe { parallel::scatter_lanes(parts, &self.coloring.slot, prepared) };
     }
 
     /// What every constraint hands to the next step, in the narrowphase's

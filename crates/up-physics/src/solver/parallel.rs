@@ -34,8 +34,9 @@ const GROUP_CHUNK: usize = 64;
 const BODY_CHUNK: usize = 256;
 
 /// A slice shared by the tasks of one pass, each touching only its own
-/// elements: the body states of a colour or a body pass, the groups of a
-/// pass's blocks.
+/// elements (the body states of a colour or a body pass, the groups of a
+/// pass's blocks), or its own bytes of an element others write too (a
+/// group's lanes, `ptr`).
 pub(super) struct SharedSlice<T> {
     ptr: *mut T,
     len: usize,
@@ -50,7 +51,8 @@ impl<T> Clone for SharedSlice<T> {
 impl<T> Copy for SharedSlice<T> {}
 
 // SAFETY: tasks only touch elements as the methods below allow (see their
-// contracts); the pointer outlives every task (the passes are scoped).
+// contracts, and for `ptr` its users'); the pointer outlives every task
+// (the passes are scoped).
 unsafe impl<T: Send> Send for SharedSlice<T> {}
 unsafe impl<T: Send> Sync for SharedSlice<T> {}
 
@@ -72,7 +74,8 @@ impl<T> SharedSlice<T> {
     }
 
     /// A pointer to element `i`, for tasks that write parts of one element
-    /// at the same time (what they may touch is theirs to keep apart).
+    /// at the same time: what each may touch is for the unsafe code that
+    /// writes through it to keep apart.
     #[cfg(feature = "parallel")]
     fn ptr(&self, i: u32) -> *mut T {
         assert!((i as usize) < self.len);
@@ -268,18 +271,29 @@ type GroupParts<'a> = (
 const SCATTER_CHUNK: usize = 1024;
 
 /// Writes each prepared contact into its lane of the groups (`slots[i]`:
-/// group · `LANES` + lane, each slot one constraint's), runs of contacts on
-/// rayon's threads: read in order and written where they go, where
-/// gathering each group's lanes from wherever they lie in `prepared` would
-/// wait on every read.
+/// group · `LANES` + lane), runs of contacts on rayon's threads: read in
+/// order and written where they go, since reading each group's lanes from
+/// their places in `prepared` would wait on every read.
+///
+/// # Safety
+/// No two of `slots` are equal (`Coloring::assign` gives each constraint a
+/// slot of its own): two tasks writing one lane would race.
 #[cfg(feature = "parallel")]
-pub(crate) fn scatter_lanes(
+pub(crate) unsafe fn scatter_lanes(
     (groups, anchors, records): GroupParts,
     slots: &[u32],
     prepared: &[PreparedContact],
 ) {
     assert!(groups.len() == anchors.len() && groups.len() == records.len());
     assert_eq!(slots.len(), prepared.len());
+    debug_assert!(
+        {
+            let mut sorted = slots.to_vec();
+            sorted.sort_unstable();
+            sorted.windows(2).all(|w| w[0] != w[1])
+        },
+        "two constraints share a slot"
+    );
     let shared = (
         SharedSlice::new(groups),
         SharedSlice::new(anchors),
@@ -293,9 +307,9 @@ pub(crate) fn scatter_lanes(
             for (c, &slot) in prepared.iter().zip(slots) {
                 let (g, lane) = (slot / LANES as u32, slot as usize % LANES);
                 let parts = (shared.0.ptr(g), shared.1.ptr(g), shared.2.ptr(g));
-                // SAFETY: the slots are distinct (the colouring gives each
-                // constraint its own), so no other task writes this lane,
-                // and no task reads the groups until the pass is over.
+                // SAFETY: the slots are distinct (the caller's contract), so
+                // no other task writes this lane, and no task reads the
+                // groups until the pass is over.
                 unsafe { contact_constraint::set_lane_shared(parts, lane, c) };
             }
         },

@@ -103,11 +103,9 @@ fn contacts_scattered_by_tasks_fill_their_groups_as_one_thread_does() {
             fill_groups((&mut tasks.0, &mut tasks.1, &mut tasks.2), |_, parts| {
                 (*parts.0, *parts.1, *parts.2) = empty;
             });
-            scatter_lanes(
-                (&mut tasks.0, &mut tasks.1, &mut tasks.2),
-                &slots,
-                &prepared,
-            );
+            let parts = (&mut tasks.0[..], &mut tasks.1[..], &mut tasks.2[..]);
+            // SAFETY: `slots` are distinct (a shuffle of distinct slots).
+            unsafe { scatter_lanes(parts, &slots, &prepared) };
         });
         // Debug prints every field, each float exactly enough to tell it apart.
         assert_eq!(format!("{serial:?}"), format!("{tasks:?}"), "seed {seed}");
