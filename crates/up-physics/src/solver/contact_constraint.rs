@@ -114,32 +114,18 @@ pub(crate) fn set_lane(
     i: usize,
     c: &PreparedContact,
 ) {
-    use super::lanes::set;
-    g.a[i] = c.a;
-    g.b[i] = c.b;
-    g.normal.set_lane(i, c.normal);
-    g.tangent.set_lane(i, c.tangent[0]);
-    set(&mut g.normal_impulse, i, c.normal_impulse);
-    set(&mut g.tangent_impulse[0], i, c.tangent_impulse[0]);
-    set(&mut g.tangent_impulse[1], i, c.tangent_impulse[1]);
-    anchors.r_a.set_lane(i, c.r_a);
-    anchors.r_b.set_lane(i, c.r_b);
-    set(&mut anchors.radius_a, i, c.radius_a);
-    set(&mut anchors.radius_b, i, c.radius_b);
-    anchors.center_offset.set_lane(i, c.center_offset);
-    set(&mut anchors.adjusted_separation, i, c.adjusted_separation);
-    records.feature[i] = c.feature;
+    // SAFETY: pointers from exclusive references: valid, and no one else's.
+    unsafe { set_lane_shared((g, anchors, records), i, c) }
 }
 
 /// `set_lane` through pointers to a group's three parts, for tasks that
 /// fill other lanes of the same groups at the same time: it writes lane
 /// `i`'s bytes and no others (a reference to the whole group would claim
-/// them all).
+/// them all). The one list of a lane's fields, for both.
 ///
 /// # Safety
 /// The pointers are valid for writes, and while this runs no other task
 /// reads the parts or writes their lane `i`.
-#[cfg(feature = "parallel")]
 pub(crate) unsafe fn set_lane_shared(
     (g, anchors, records): (*mut ContactGroup, *mut GroupAnchors, *mut GroupRecords),
     i: usize,
