@@ -7,11 +7,17 @@
 //! twice as long as the body count and filled by a counting sort, so nothing
 //! is allocated once the buffers have grown.
 //!
-//! The lookups are the cost, so the table is laid out for them: a column of
-//! cells along z hashes to consecutive buckets (one hash, three buckets side
-//! by side), and each bucket entry carries its body's cell, sphere and
-//! wakefulness, so a scan reads memory in order instead of jumping between
-//! the bodies' arrays. A lookup skips the cells (and whole columns) lying
+//! The lookups are the cost, so the table is laid out for them. Where the
+//! bodies' cells fill a box of not many more cells than bodies (a room's
+//! crowd), each cell of the box, with one more all round, has a bucket of its
+//! own, z fastest (`Buckets`): the cells around a body and their entries lie
+//! in a few runs of memory, which the lookups of the bodies beside it read
+//! again. Otherwise (bodies strewn far apart) a column of cells along z
+//! hashes to consecutive buckets (one hash, three buckets side by side).
+//! Either way the buckets are filled in body order and a lookup keeps a
+//! bucket's entries of its cell: the same pairs in the same order. Each
+//! bucket entry carries its body's cell, sphere and wakefulness, so a scan
+//! reads memory in order instead of jumping between the bodies' arrays. A lookup skips the cells (and whole columns) lying
 //! farther from the body's centre than its radius plus the largest radius in
 //! the grid: the cells are sized for a brisk ascent, a settling pile's bodies
 //! reach about half of the 27.
@@ -40,6 +46,11 @@ use crate::threading::tasks::{collect_in_order, fill_chunks};
 /// Bodies whose neighbours one task looks up.
 const BODY_CHUNK: usize = 512;
 
+/// Updates after a refresh of the kept table failed (a body changed cells)
+/// that rebuild it without trying one: a refresh that fails has read every
+/// body's entry for nothing, and the table rebuilt gives the same pairs.
+const REFRESH_SKIPS: u32 = 7;
+
 #[derive(Clone, Debug, Default)]
 pub(crate) struct BroadPhase {
     cell_of: Vec<[i32; 3]>,
@@ -50,10 +61,14 @@ pub(crate) struct BroadPhase {
     large: Vec<u32>,
     /// The cells' size and how far their bodies reach, as `update` left them.
     scale: GridScale,
+    /// Which bucket each cell's bodies are in.
+    buckets: Buckets,
     /// Each ordinary body's place in `items` (`u32::MAX` for a large one).
     slot_of: Vec<u32>,
     /// The cell radius the table was built for (`f32::NAN`: none built).
     built_for: f32,
+    /// Updates left that rebuild the table without trying to refresh it.
+    skip_refresh: u32,
     /// Output: dense index pairs (a < b), at least one of them awake.
     pub pairs: Vec<(u32, u32)>,
     /// Each task's pairs (kept between steps for their buffers).
@@ -80,18 +95,32 @@ impl BroadPhase {
             self.built_for = f32::NAN;
             return;
         }
-        if !self.refresh(center, radius, awake, cell_radius) {
+        // A crowd on the move changes cells every step: after a refresh
+        // that failed among bodies most of which moved, the next few
+        // updates rebuild without trying one.
+        if self.skip_refresh > 0 {
+            self.skip_refresh -= 1;
+            self.rebuild(center, radius, awake, cell_radius);
+        } else if let Refreshed::Failed { most_moved } =
+            self.refresh(center, radius, awake, cell_radius)
+        {
+            self.skip_refresh = if most_moved { REFRESH_SKIPS } else { 0 };
             self.rebuild(center, radius, awake, cell_radius);
         }
         let inv_cell = self.scale.inv_cell;
-        let mask = self.start.len() - 2;
 
         // Awake ordinary bodies: the 27 cells around each. A pair of awake
         // bodies is found from the lower index, an awake-asleep pair from
         // the awake one; two sleepers make no pair, so a sleeping pile costs
         // only its place in the grid.
         // In tasks of consecutive bodies, joined in body order.
-        let grid = Grid::of(&self.cell_of, &self.start, &self.items, self.scale);
+        let grid = Grid::of(
+            &self.cell_of,
+            &self.start,
+            &self.items,
+            self.scale,
+            self.buckets,
+        );
         collect_in_order(
             n,
             BODY_CHUNK,
@@ -123,7 +152,10 @@ impl BroadPhase {
                 for y in lo[1]..=hi[1] {
                     for z in lo[2]..=hi[2] {
                         let key = cell_key([x, y, z]);
-                        for item in grid.bucket(bucket([x, y, z], mask)) {
+                        let Some(b) = grid.buckets.of_cell([x, y, z]) else {
+                            continue;
+                        };
+                        for item in grid.bucket(b) {
                             if item.cell == key {
                                 consider(&mut self.pairs, l, item.body, center, radius, awake);
                             }
@@ -155,7 +187,7 @@ impl BroadPhase {
 impl BroadPhase {
     /// Brings the table kept from the last step up to `center`, `radius` and
     /// `awake` in place, where no body changed cells, none is or was large,
-    /// and the count and cell size are the same; returns false otherwise
+    /// and the count and cell size are the same; says it failed otherwise
     /// (the table then needs `rebuild`). Only the bodies whose entries
     /// changed are written: a sleeper's are as it fell asleep.
     fn refresh(
@@ -164,19 +196,20 @@ impl BroadPhase {
         radius: &[f32],
         awake: &[bool],
         cell_radius: f32,
-    ) -> bool {
+    ) -> Refreshed {
         let n = center.len();
         if self.built_for.to_bits() != cell_radius.to_bits()
             || self.slot_of.len() != n
             || !self.large.is_empty()
         {
-            return false;
+            return Refreshed::Failed { most_moved: false };
         }
         let inv_cell = self.scale.inv_cell;
         // A bound on the ordinary radii: lookups skip only the cells
         // farther than it reaches, so the pairs are those of the exact
         // largest (which the next rebuild takes again).
         let mut item_radius = self.scale.item_radius;
+        let mut moved = 0;
         for i in 0..n {
             let item = &mut self.items[self.slot_of[i] as usize];
             // Equal as numbers: a zero that changed sign moves nothing (the
@@ -185,15 +218,18 @@ impl BroadPhase {
                 continue;
             }
             if radius[i] > cell_radius || cell_coords(center[i], inv_cell) != self.cell_of[i] {
-                return false;
+                return Refreshed::Failed {
+                    most_moved: 2 * moved > i,
+                };
             }
+            moved += 1;
             item.center = center[i];
             item.radius = radius[i];
             item.awake = awake[i];
             item_radius = item_radius.max(radius[i]);
         }
         self.scale.item_radius = item_radius;
-        true
+        Refreshed::Kept
     }
 
     /// Every ordinary body into its hashed bucket by a counting sort, in
@@ -202,7 +238,6 @@ impl BroadPhase {
         let n = center.len();
         self.large.clear();
         let inv_cell = 0.5 / cell_radius;
-        let mask = (2 * n).next_power_of_two() - 1;
         let mut item_radius = 0.0f32;
         self.cell_of.resize(n, [0; 3]);
         fill_chunks(&mut self.cell_of, BODY_CHUNK, |first, cells| {
@@ -210,13 +245,15 @@ impl BroadPhase {
                 *cell = cell_coords(center[first + k], inv_cell);
             }
         });
+        let ordinary = (0..n).filter(|&i| radius[i] <= cell_radius);
+        let buckets = Buckets::for_cells(ordinary.map(|i| self.cell_of[i]), n);
         self.start.clear();
-        self.start.resize(mask + 2, 0);
+        self.start.resize(buckets.count() + 1, 0);
         for i in 0..n {
             if radius[i] > cell_radius {
                 self.large.push(i as u32);
             } else {
-                self.start[bucket(self.cell_of[i], mask) + 1] += 1;
+                self.start[buckets.of_ordinary(self.cell_of[i]) + 1] += 1;
                 item_radius = item_radius.max(radius[i]);
             }
         }
@@ -225,14 +262,15 @@ impl BroadPhase {
         }
         self.cursor.clear();
         self.cursor.extend_from_slice(&self.start);
-        self.items.clear();
-        self.items
-            .resize(self.start[mask + 1] as usize, GridItem::default());
-        self.slot_of.clear();
+        // Every entry and slot is written below: kept ones are not cleared first.
+        let items = *self.start.last().unwrap_or(&0) as usize;
+        self.items.resize(items, GridItem::default());
         self.slot_of.resize(n, u32::MAX);
         for i in 0..n {
-            if radius[i] <= cell_radius {
-                let b = bucket(self.cell_of[i], mask);
+            if radius[i] > cell_radius {
+                self.slot_of[i] = u32::MAX;
+            } else {
+                let b = buckets.of_ordinary(self.cell_of[i]);
                 let slot = self.cursor[b];
                 self.items[slot as usize] = GridItem {
                     center: center[i],
@@ -249,6 +287,7 @@ impl BroadPhase {
             inv_cell,
             item_radius,
         };
+        self.buckets = buckets;
         self.built_for = cell_radius;
     }
 }
@@ -270,7 +309,13 @@ impl BroadPhase {
         if !self.large.is_empty() {
             return false;
         }
-        let grid = Grid::of(&self.cell_of, &self.start, &self.items, self.scale);
+        let grid = Grid::of(
+            &self.cell_of,
+            &self.start,
+            &self.items,
+            self.scale,
+            self.buckets,
+        );
         for i in 0..center.len() {
             if !awake[i] || was_awake[i] {
                 continue;
@@ -285,6 +330,16 @@ impl BroadPhase {
         }
         true
     }
+}
+
+/// What `BroadPhase::refresh` did.
+enum Refreshed {
+    Kept,
+    /// A body changed cells or size: the table needs a rebuild. Whether
+    /// most of the bodies before it had moved.
+    Failed {
+        most_moved: bool,
+    },
 }
 
 /// An ordinary body in the grid's table, with what its neighbours' scans read.
@@ -320,7 +375,7 @@ struct Grid<'a> {
     cell_of: &'a [[i32; 3]],
     start: &'a [u32],
     items: &'a [GridItem],
-    mask: usize,
+    buckets: Buckets,
     scale: GridScale,
 }
 
@@ -331,12 +386,13 @@ impl<'a> Grid<'a> {
         start: &'a [u32],
         items: &'a [GridItem],
         scale: GridScale,
+        buckets: Buckets,
     ) -> Grid<'a> {
         Grid {
             cell_of,
             start,
             items,
-            mask: start.len().saturating_sub(2),
+            buckets,
             scale,
         }
     }
@@ -366,13 +422,13 @@ impl<'a> Grid<'a> {
                 if gap_xy > reach_sq {
                     continue;
                 }
-                let column = column_hash(x + dx, y + dy);
+                let column = self.buckets.column(x + dx, y + dy);
                 for dz in -1..=1 {
                     if gap_xy + gaps[2][(dz + 1) as usize] > reach_sq {
                         continue;
                     }
                     let target = cell_key([x + dx, y + dy, z + dz]);
-                    for item in self.bucket(in_column(column, z + dz, self.mask)) {
+                    for item in self.bucket(self.buckets.in_column(column, z + dz)) {
                         if item.cell == target {
                             visit(item);
                         }
@@ -457,16 +513,113 @@ fn column_hash(x: i32, y: i32) -> u64 {
     mix64((x as u32 as u64) | ((y as u32 as u64) << 32))
 }
 
-/// Bucket of cell z of a column: consecutive along z, so that the three
-/// cells a lookup needs in a column sit side by side in the table.
-#[inline]
-fn in_column(column: u64, z: i32, mask: usize) -> usize {
-    column.wrapping_add(z as i64 as u64) as usize & mask
+/// Most cells a table gives a bucket each, per body: past that, hashed
+/// buckets (twice the bodies, rounded up to a power of two) are fewer.
+const DENSE_CELLS_PER_BODY: u64 = 4;
+/// A table of fewer cells than this is laid out cell by cell whatever the
+/// body count (a few balloons in a room).
+const DENSE_CELLS_ANYWAY: u64 = 4096;
+
+/// Which bucket of the table holds a cell's bodies: cell by cell over the
+/// box of the ordinary bodies' cells, one cell wider all round (so that the
+/// 27 cells around any of them are in it), z fastest; or, where that box
+/// holds too many cells, hashed by column. Either way the cells of a column
+/// along z have consecutive buckets, and a cell is found as its column's
+/// number plus its z.
+#[derive(Clone, Copy, Debug)]
+struct Buckets {
+    /// Hashed: the bucket count less one (a power of two less one); dense:
+    /// every bit set, the column number plus z being the bucket itself.
+    mask: usize,
+    /// Dense: the box's lowest cell and its cells along each axis.
+    dense: Option<([i32; 3], [i32; 3])>,
 }
 
-#[inline]
-fn bucket([x, y, z]: [i32; 3], mask: usize) -> usize {
-    in_column(column_hash(x, y), z, mask)
+impl Default for Buckets {
+    fn default() -> Self {
+        Buckets {
+            mask: 0,
+            dense: None,
+        }
+    }
+}
+
+impl Buckets {
+    /// The buckets for `n` bodies whose ordinary ones are in `cells`.
+    fn for_cells(cells: impl Iterator<Item = [i32; 3]>, n: usize) -> Buckets {
+        let (mut lo, mut hi) = ([i32::MAX; 3], [i32::MIN; 3]);
+        for cell in cells {
+            for a in 0..3 {
+                lo[a] = lo[a].min(cell[a]);
+                hi[a] = hi[a].max(cell[a]);
+            }
+        }
+        let hashed = Buckets {
+            mask: (2 * n).next_power_of_two() - 1,
+            dense: None,
+        };
+        if lo[0] > hi[0] {
+            return hashed;
+        }
+        // One cell more below and above (the clamped coordinates are within ±10⁶).
+        let origin = lo.map(|c| c - 1);
+        let dims: [i32; 3] = std::array::from_fn(|a| hi[a] - lo[a] + 3);
+        let cells: u64 = dims.iter().map(|&d| d as u64).product();
+        if cells > (DENSE_CELLS_PER_BODY * n as u64).max(DENSE_CELLS_ANYWAY) {
+            return hashed;
+        }
+        Buckets {
+            mask: usize::MAX,
+            dense: Some((origin, dims)),
+        }
+    }
+
+    /// Buckets in the table.
+    fn count(&self) -> usize {
+        match self.dense {
+            Some((_, d)) => (d[0] * d[1] * d[2]) as usize,
+            None => self.mask + 1,
+        }
+    }
+
+    /// The number of the column of cells at (x, y), all z: a cell's bucket
+    /// is `in_column` of it and the cell's z. Dense, (x, y) must be within
+    /// the box.
+    #[inline]
+    fn column(&self, x: i32, y: i32) -> u64 {
+        match self.dense {
+            Some((o, d)) => {
+                let column = ((x - o[0]) as i64 * d[1] as i64 + (y - o[1]) as i64) * d[2] as i64;
+                (column - o[2] as i64) as u64
+            }
+            None => column_hash(x, y),
+        }
+    }
+
+    /// Bucket of cell z of a column: consecutive along z, so that the three
+    /// cells a lookup needs in a column sit side by side in the table.
+    #[inline]
+    fn in_column(&self, column: u64, z: i32) -> usize {
+        column.wrapping_add(z as i64 as u64) as usize & self.mask
+    }
+
+    /// The bucket of an ordinary body's cell (within the box, dense).
+    #[inline]
+    fn of_ordinary(&self, [x, y, z]: [i32; 3]) -> usize {
+        self.in_column(self.column(x, y), z)
+    }
+
+    /// The bucket of any cell; None for a cell outside the dense box, which
+    /// holds no body.
+    #[inline]
+    fn of_cell(&self, cell: [i32; 3]) -> Option<usize> {
+        if let Some((o, d)) = self.dense {
+            if (0..3).any(|a| cell[a] < o[a] || cell[a] >= o[a] + d[a]) {
+                return None;
+            }
+        }
+        Some(self.of_ordinary(cell))
+    }
 }
 
 #[cfg(test)]

@@ -1,22 +1,26 @@
-//! The broadphase's tests: its pairs against every pair's test, their order,
-//! the woken bodies' pairs, and a table kept over many steps.
+//! The broadphase's tests: its pairs against every pair's test (in a table
+//! of a bucket a cell and in a hashed one), their order, the woken bodies'
+//! pairs, and a table kept over many steps.
 
 use super::*;
 
 use crate::hash::uniform as random;
 
-/// Brute-force reference on random clouds: the grid finds exactly the overlapping pairs.
+/// Brute-force reference on random clouds: the grid finds exactly the
+/// overlapping pairs, whether its table has a bucket a cell (a cloud in a
+/// room) or hashes them (a few bodies strewn far out).
 #[test]
 fn grid_pairs_equal_all_pairs_reference() {
     let mut rnd = random(12345);
-    for round in 0..20 {
-        let n = 50 + round * 20;
-        // Around the origin (cells on both sides of zero), a few bodies
-        // far out where the cell coordinates are clamped.
+    for round in 0..40 {
+        let n = 50 + (round / 2) * 20;
+        let strewn = round % 2 == 0;
+        // Around the origin (cells on both sides of zero); strewn, a few
+        // bodies far out where the cell coordinates are clamped.
         let center: Vec<Vec3> = (0..n)
             .map(|i| {
                 let c = Vec3::new(rnd(), rnd(), rnd()) * 3.0 - 1.5;
-                if i % 23 == 0 {
+                if strewn && i % 23 == 0 {
                     c * 1.0e6
                 } else {
                     c
@@ -36,6 +40,7 @@ fn grid_pairs_equal_all_pairs_reference() {
         let awake: Vec<bool> = (0..n).map(|i| i % 5 != 0).collect();
         let mut bp = BroadPhase::default();
         bp.update(&center, &radius, &awake, 0.2);
+        assert_eq!(bp.buckets.dense.is_none(), strewn, "round {round}");
         let mut got = bp.pairs.clone();
         got.sort_unstable();
         let mut want = Vec::new();
@@ -122,7 +127,10 @@ fn a_kept_table_gives_what_a_fresh_one_gives() {
         if let Some(l) = large {
             radius[l] = 0.6;
         }
-        if kept.clone().refresh(&center, &radius, &awake, 0.2) {
+        if matches!(
+            kept.clone().refresh(&center, &radius, &awake, 0.2),
+            Refreshed::Kept
+        ) {
             refreshed += 1;
         }
         kept.update(&center, &radius, &awake, 0.2);
@@ -134,6 +142,49 @@ fn a_kept_table_gives_what_a_fresh_one_gives() {
         }
     }
     assert!(refreshed > 100, "the table was rebuilt nearly every step");
+}
+
+/// A crowd drifting together, a few of it across cells at every step (so
+/// the kept table is rebuilt without a refresh tried, `REFRESH_SKIPS`),
+/// then coming to rest: the kept table gives the pairs a fresh one gives,
+/// and refreshes again once the crowd rests.
+#[test]
+fn a_kept_table_of_a_drifting_crowd_gives_what_a_fresh_one_gives() {
+    let mut rnd = random(99);
+    let n = 400;
+    let mut center: Vec<Vec3> = (0..n)
+        .map(|_| Vec3::new(rnd() * 4.0, rnd() * 4.0, rnd() * 4.0))
+        .collect();
+    let radius: Vec<f32> = (0..n).map(|_| 0.05 + 0.15 * rnd()).collect();
+    let awake = vec![true; n];
+    let mut kept = BroadPhase::default();
+    let (mut skipped, mut refreshed_at_rest) = (0, 0);
+    for step in 0..120 {
+        if step < 80 {
+            for c in &mut center {
+                *c += Vec3::new(0.0, 0.017, 0.0) + (Vec3::new(rnd(), rnd(), rnd()) - 0.5) * 0.004;
+            }
+        }
+        if kept.skip_refresh > 0 {
+            skipped += 1;
+        } else if step >= 90
+            && matches!(
+                kept.clone().refresh(&center, &radius, &awake, 0.2),
+                Refreshed::Kept
+            )
+        {
+            refreshed_at_rest += 1;
+        }
+        kept.update(&center, &radius, &awake, 0.2);
+        let mut fresh = BroadPhase::default();
+        fresh.update(&center, &radius, &awake, 0.2);
+        assert_eq!(kept.pairs, fresh.pairs, "step {step}");
+    }
+    assert!(
+        skipped > 50,
+        "refreshes skipped in {skipped} steps of the drift"
+    );
+    assert_eq!(refreshed_at_rest, 30, "the table at rest was rebuilt");
 }
 
 #[test]
