@@ -11,6 +11,7 @@ use glam::{Quat, Vec3};
 use up_geom::Sphere;
 
 use super::collide::NearBalloon;
+use super::leaf_capsule::LeafCapsule;
 use super::solve::SubstepInput;
 use crate::solver::body_state::BodyState;
 use crate::threading::tasks::fill_chunks;
@@ -37,6 +38,9 @@ const UNPLACED: NearBalloon = NearBalloon {
 pub(crate) struct BodySpheres {
     /// Per body (dense).
     pub placed: Vec<NearBalloon>,
+    /// Per shape, the capsule holding its tree's leaves (shapes are only
+    /// added, so those found stay right).
+    pub capsules: Vec<LeafCapsule>,
 }
 
 impl BodySpheres {
@@ -45,6 +49,12 @@ impl BodySpheres {
     pub fn place(&mut self, input: &SubstepInput, states: &[BodyState]) {
         // The bodies (the states may hold more: the solver keeps its buffers).
         let n = input.centers.len();
+        let known = self.capsules.len();
+        self.capsules.extend(
+            input.shapes[known..]
+                .iter()
+                .map(|s| LeafCapsule::of(&s.tree)),
+        );
         self.placed.resize(n, UNPLACED);
         let place_body = |b: usize| {
             let s = &states[b];

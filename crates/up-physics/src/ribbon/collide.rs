@@ -38,7 +38,7 @@ use up_geom::{closest_point_triangle, Sphere, SphereTree, TriangleReach};
 /// more than the rounding between a point turned into that frame and a leaf
 /// placed in the room (a few ulps of a room coordinate, ~1e-6 m in a room of
 /// tens of metres), so no leaf the placed test would push from is skipped.
-const FRAME_SLACK: f32 = 1e-4;
+pub(super) const FRAME_SLACK: f32 = 1e-4;
 
 /// A room triangle near a ribbon this step, with its unit inward normal,
 /// its box and its edge lines (what each push reads of it, found once).

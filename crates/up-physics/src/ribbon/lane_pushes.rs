@@ -10,17 +10,20 @@ use up_geom::Sphere;
 use super::body_spheres::BodySpheres;
 use super::collide::{push_out_of_balloon, NearTriangle};
 use super::lane_group::LaneGroup;
+use super::leaf_capsule::CapsuleLanes;
 use super::solve::SubstepInput;
 use super::{BALLOON_FRICTION, RIBBON_RADIUS};
 use crate::solver::body_state::BodyState;
 use crate::solver::lanes::{set, F4, LANES, V4};
 
-/// The `k`th near balloon of each lane: its bounding sphere, and the lanes
-/// that have a `k`th (bit `l` for lane `l`).
+/// The `k`th near balloon of each lane: its bounding sphere, the capsule
+/// that holds its leaves, and the lanes that have a `k`th (bit `l` for lane
+/// `l`).
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct NearSlot {
     center: V4,
     radius: F4,
+    capsules: CapsuleLanes,
     lanes: u32,
 }
 
@@ -69,6 +72,9 @@ impl LaneGroup {
                 if let Some(b) = lane.near.get(k) {
                     slot.center.set_lane(l, b.bound.center);
                     set(&mut slot.radius, l, b.bound.radius);
+                    let capsule = &near.bodies.capsules[b.tree as usize];
+                    let pose = (b.center, b.rotation, b.scale);
+                    slot.capsules.set_lane(l, capsule, pose);
                     slot.lanes |= 1 << l;
                 }
             }
@@ -78,13 +84,17 @@ impl LaneGroup {
             let movable = self.inv_mass[i].simd_gt(F4::ZERO).to_bitmask();
             let radius = self.radius(i);
             for k in 0..most {
-                let slot = self.near_slots[k];
+                let slot = &self.near_slots[k];
                 let away = self.points[i] - slot.center;
                 let reach = slot.radius + radius;
                 // Not `<`: a NaN point is taken as within, as it would be
                 // one ribbon at a time.
                 let outside = away.dot(away).simd_ge(reach * reach).to_bitmask();
                 let mut within = !outside & slot.lanes & movable;
+                if within != 0 {
+                    // Most points within the bound are clear of the leaves.
+                    within &= slot.capsules.may_touch(self.points[i], radius);
+                }
                 while within != 0 {
                     let l = within.trailing_zeros() as usize;
                     within &= within - 1;

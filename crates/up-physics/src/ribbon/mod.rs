@@ -36,6 +36,7 @@ pub(crate) mod lane_group;
 mod lane_pushes;
 mod lane_room;
 mod lane_substep;
+mod leaf_capsule;
 pub(crate) mod nearby;
 pub(crate) mod solve;
 pub(crate) mod touch;
