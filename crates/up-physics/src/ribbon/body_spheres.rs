@@ -11,7 +11,7 @@ use glam::{Quat, Vec3};
 use up_geom::Sphere;
 
 use super::collide::NearBalloon;
-use super::leaf_capsule::LeafCapsule;
+use super::leaf_capsule::{LeafCapsule, PlacedCapsule};
 use super::solve::SubstepInput;
 use crate::solver::body_state::BodyState;
 use crate::threading::tasks::fill_chunks;
@@ -31,6 +31,12 @@ const UNPLACED: NearBalloon = NearBalloon {
     rotation: Quat::IDENTITY,
     tree: 0,
     scale: 0.0,
+    capsule: PlacedCapsule {
+        a: Vec3::ZERO,
+        ab: Vec3::ZERO,
+        inv_length_sq: 0.0,
+        reach: 0.0,
+    },
 };
 
 /// The bodies at this substep's pose.
@@ -56,6 +62,7 @@ impl BodySpheres {
                 .map(|s| LeafCapsule::of(&s.tree)),
         );
         self.placed.resize(n, UNPLACED);
+        let capsules = &self.capsules;
         let place_body = |b: usize| {
             let s = &states[b];
             let center = input.centers[b] + s.dp;
@@ -70,6 +77,7 @@ impl BodySpheres {
                 rotation: s.q,
                 tree,
                 scale,
+                capsule: capsules[tree as usize].placed(center, s.q, scale),
             }
         };
         if 2 * input.bodies.len() < n {

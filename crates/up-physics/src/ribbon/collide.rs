@@ -31,6 +31,8 @@
 //! the same bit for bit as testing every placed leaf in order.
 
 use glam::{Quat, Vec3};
+
+use super::leaf_capsule::PlacedCapsule;
 use up_geom::norm::Norm;
 use up_geom::{closest_point_triangle, Sphere, SphereTree, TriangleReach};
 
@@ -201,6 +203,8 @@ pub(crate) struct NearBalloon {
     pub tree: u32,
     /// Its tree's scale (`BodySize::scale`).
     pub scale: f32,
+    /// The capsule that holds its leaves, placed.
+    pub capsule: PlacedCapsule,
 }
 
 /// Pushes `point` (which was at `start` when the substep began), found
@@ -355,6 +359,7 @@ mod tests {
                 rotation,
                 tree: 0,
                 scale: 1.0 + 0.3 * random().x,
+                capsule: PlacedCapsule::default(),
             };
             let placed: Vec<Sphere> = tree
                 .leaves()

@@ -72,9 +72,7 @@ impl LaneGroup {
                 if let Some(b) = lane.near.get(k) {
                     slot.center.set_lane(l, b.bound.center);
                     set(&mut slot.radius, l, b.bound.radius);
-                    let capsule = &near.bodies.capsules[b.tree as usize];
-                    let pose = (b.center, b.rotation, b.scale);
-                    slot.capsules.set_lane(l, capsule, pose);
+                    slot.capsules.set_lane(l, &b.capsule);
                     slot.lanes |= 1 << l;
                 }
             }

@@ -11,11 +11,11 @@
 //! than the rounding between the two tests, so no point the exact test
 //! would push is passed over, and the pushes are the same bit for bit.
 
-use glam::Vec3;
+use glam::{Quat, Vec3};
 use up_geom::SphereTree;
 
 use super::collide::FRAME_SLACK;
-use crate::solver::lanes::{F4, Q4, V4};
+use crate::solver::lanes::{set, F4, V4};
 
 /// How much wider the capsule test is than the leaves widened by
 /// `FRAME_SLACK`, m: more than the rounding of a point turned into the
@@ -23,42 +23,58 @@ use crate::solver::lanes::{F4, Q4, V4};
 /// of metres (a few ulps of a coordinate, ~1e-6 m).
 const CAPSULE_SLACK: f32 = 1e-4;
 
-/// The segment from `a` to `b`, `radius` round it, that holds every leaf of
-/// a tree, in the tree's frame at its own scale.
+/// A segment on a line through the tree's origin (the balloon's centre of
+/// mass), from `t0` to `t1` along the unit `axis`, and `radius` round it,
+/// that holds every leaf of a tree, in the tree's frame at its own scale:
+/// on a line through the origin, one turn places it.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct LeafCapsule {
-    pub a: Vec3,
-    pub b: Vec3,
+    pub axis: Vec3,
+    pub t0: f32,
+    pub t1: f32,
     pub radius: f32,
 }
 
 impl LeafCapsule {
-    /// The capsule along the line between the two leaves' centres farthest
-    /// apart from the first leaf (a balloon's axis, for the axial covers),
-    /// as wide as the leaf that reaches farthest from that segment.
+    /// The capsule along the line between the first leaf's centre and the
+    /// leaf centre farthest from it (a balloon's axis, for the axial
+    /// covers), moved onto the parallel line through the origin (and as
+    /// much wider as it moved), as wide as the leaf that reaches farthest
+    /// from the segment.
     pub fn of(tree: &SphereTree) -> LeafCapsule {
         let leaves: Vec<_> = tree.leaf_spheres().collect();
-        let Some(first) = leaves.first() else {
-            let root = tree.root();
-            return LeafCapsule {
-                a: root.center,
-                b: root.center,
-                radius: root.radius,
-            };
-        };
-        let a = first.center;
-        let b = leaves.iter().map(|s| s.center).fold(a, |far, c| {
-            if c.distance_squared(a) > far.distance_squared(a) {
+        let first = leaves.first().map_or(tree.root().center, |s| s.center);
+        let far = leaves.iter().map(|s| s.center).fold(first, |far, c| {
+            if c.distance_squared(first) > far.distance_squared(first) {
                 c
             } else {
                 far
             }
         });
-        let radius = leaves
-            .iter()
-            .map(|s| distance_to_segment(s.center, a, b) + s.radius)
-            .fold(0.0f32, f32::max);
-        LeafCapsule { a, b, radius }
+        let axis = (far - first).normalize_or(Vec3::Y);
+        // The line through `first` and `far`, moved by `-across` onto the origin.
+        let across = first - first.dot(axis) * axis;
+        let (a, b) = (first - across, far - across);
+        let (t0, t1) = (a.dot(axis), b.dot(axis));
+        let holds = |s: up_geom::Sphere| distance_to_segment(s.center, a, b) + s.radius;
+        let radius = if leaves.is_empty() {
+            let root = tree.root();
+            holds(up_geom::Sphere::new(root.center, root.radius))
+        } else {
+            leaves.iter().map(|&s| holds(s)).fold(0.0f32, f32::max)
+        };
+        LeafCapsule {
+            axis,
+            t0,
+            t1,
+            radius,
+        }
+    }
+
+    /// The segment's ends in the tree's frame.
+    #[cfg(test)]
+    fn ends(&self) -> (Vec3, Vec3) {
+        (self.t0 * self.axis, self.t1 * self.axis)
     }
 }
 
@@ -74,48 +90,55 @@ fn distance_to_segment(p: Vec3, a: Vec3, b: Vec3) -> f32 {
     p.distance(a + t * ab)
 }
 
-/// Four balloons' capsules, for testing a point of each of four ribbons.
+/// A balloon's capsule placed at its pose: what the lanes' test reads.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct PlacedCapsule {
+    /// The segment's start and its run to the end, in the room, m.
+    pub a: Vec3,
+    pub ab: Vec3,
+    /// 1 / |ab|² (0 for a segment of no length).
+    pub inv_length_sq: f32,
+    /// The capsule's radius at the balloon's scale, and the slacks, m.
+    pub reach: f32,
+}
+
+impl LeafCapsule {
+    /// This capsule scaled by `scale` on a balloon centred at `center`
+    /// turned by `rotation` (the frame the leaves are tested in).
+    pub fn placed(&self, center: Vec3, rotation: Quat, scale: f32) -> PlacedCapsule {
+        let axis = rotation * self.axis;
+        let length = (self.t1 - self.t0) * scale;
+        let length_sq = length * length;
+        PlacedCapsule {
+            a: center + (self.t0 * scale) * axis,
+            ab: length * axis,
+            inv_length_sq: if length_sq > 0.0 {
+                1.0 / length_sq
+            } else {
+                0.0
+            },
+            reach: self.radius * scale + FRAME_SLACK + CAPSULE_SLACK,
+        }
+    }
+}
+
+/// Four balloons' placed capsules, for testing a point of each of four
+/// ribbons.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct CapsuleLanes {
-    /// Into each balloon's frame (its turn's conjugate), from its centre.
-    to_frame: Q4,
-    center: V4,
-    /// The segment's start and its run to the end, scaled, in the frame.
     a: V4,
     ab: V4,
-    /// 1 / |ab|² (0 for a segment of no length).
     inv_length_sq: F4,
-    /// The capsule's radius, scaled, and the slacks.
     reach: F4,
 }
 
 impl CapsuleLanes {
-    /// Sets lane `l` to `capsule` scaled by `scale`, of a balloon centred at
-    /// `center` turned by `rotation`.
-    pub fn set_lane(
-        &mut self,
-        l: usize,
-        capsule: &LeafCapsule,
-        (center, rotation, scale): (Vec3, glam::Quat, f32),
-    ) {
-        let to_frame = rotation.conjugate();
-        self.to_frame
-            .xyz
-            .set_lane(l, Vec3::new(to_frame.x, to_frame.y, to_frame.z));
-        crate::solver::lanes::set(&mut self.to_frame.w, l, to_frame.w);
-        self.center.set_lane(l, center);
-        let (a, b) = (capsule.a * scale, capsule.b * scale);
-        self.a.set_lane(l, a);
-        self.ab.set_lane(l, b - a);
-        let length_sq = (b - a).length_squared();
-        let inv = if length_sq > 0.0 {
-            1.0 / length_sq
-        } else {
-            0.0
-        };
-        crate::solver::lanes::set(&mut self.inv_length_sq, l, inv);
-        let reach = capsule.radius * scale + FRAME_SLACK + CAPSULE_SLACK;
-        crate::solver::lanes::set(&mut self.reach, l, reach);
+    /// Sets lane `l` to `capsule`.
+    pub fn set_lane(&mut self, l: usize, capsule: &PlacedCapsule) {
+        self.a.set_lane(l, capsule.a);
+        self.ab.set_lane(l, capsule.ab);
+        set(&mut self.inv_length_sq, l, capsule.inv_length_sq);
+        set(&mut self.reach, l, capsule.reach);
     }
 
     /// The lanes (bit `l` for lane `l`) whose point, of radius `radius`,
@@ -123,8 +146,7 @@ impl CapsuleLanes {
     /// number (as the exact test takes a NaN point).
     #[inline]
     pub fn may_touch(&self, points: V4, radius: F4) -> u32 {
-        let local = self.to_frame.rotate(points - self.center);
-        let from_a = local - self.a;
+        let from_a = points - self.a;
         let t = (from_a.dot(self.ab) * self.inv_length_sq)
             .max(F4::ZERO)
             .min(F4::ONE);
@@ -138,7 +160,6 @@ impl CapsuleLanes {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::Quat;
     use up_geom::Sphere;
 
     /// An egg of five leaves along y, as the axial covers give a balloon.
@@ -160,10 +181,22 @@ mod tests {
     fn the_capsule_holds_every_leaf() {
         let tree = egg();
         let c = LeafCapsule::of(&tree);
+        let (a, b) = c.ends();
         for s in tree.leaf_spheres() {
-            assert!(distance_to_segment(s.center, c.a, c.b) + s.radius <= c.radius + 1e-6);
+            assert!(distance_to_segment(s.center, a, b) + s.radius <= c.radius + 1e-6);
         }
         assert!((c.radius - 0.13).abs() < 1e-6, "{c:?}");
+        // Off the origin and askew, it is moved onto the origin and widened.
+        let leaves: Vec<Sphere> = [(0.0, 0.05), (0.1, 0.08), (0.2, 0.06)]
+            .map(|(t, r)| Sphere::new(Vec3::new(0.03, 0.0, 0.01) + Vec3::new(t, t, 0.5 * t), r))
+            .to_vec();
+        let tree =
+            SphereTree::from_root_and_leaves(Sphere::new(Vec3::splat(0.1), 0.4), &leaves).unwrap();
+        let c = LeafCapsule::of(&tree);
+        let (a, b) = c.ends();
+        for s in tree.leaf_spheres() {
+            assert!(distance_to_segment(s.center, a, b) + s.radius <= c.radius + 1e-6);
+        }
     }
 
     /// Points all round a turned, scaled egg: each that is within a leaf
@@ -184,7 +217,7 @@ mod tests {
             let mut points = V4::ZERO;
             let radius = 0.0025;
             for l in 0..4 {
-                lanes.set_lane(l, &capsule, (center, rotation, scale));
+                lanes.set_lane(l, &capsule.placed(center, rotation, scale));
                 let offset = Vec3::new(next(), next(), next()) * 0.44 - 0.22;
                 points.set_lane(l, center + offset * scale);
             }
