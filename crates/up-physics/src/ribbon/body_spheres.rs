@@ -31,12 +31,7 @@ const UNPLACED: NearBalloon = NearBalloon {
     rotation: Quat::IDENTITY,
     tree: 0,
     scale: 0.0,
-    capsule: PlacedCapsule {
-        a: Vec3::ZERO,
-        ab: Vec3::ZERO,
-        inv_length_sq: 0.0,
-        reach: 0.0,
-    },
+    capsule: PlacedCapsule::ANYWHERE,
 };
 
 /// The bodies at this substep's pose.
@@ -63,6 +58,10 @@ impl BodySpheres {
         );
         self.placed.resize(n, UNPLACED);
         let capsules = &self.capsules;
+        // With few ribbons among many bodies (a lone balloon awake in a
+        // time-lapse) a point rarely comes within another balloon's bound:
+        // the capsules are not placed, and every such point is pushed exactly.
+        let few = 2 * input.bodies.len() < n;
         let place_body = |b: usize| {
             let s = &states[b];
             let center = input.centers[b] + s.dp;
@@ -77,10 +76,13 @@ impl BodySpheres {
                 rotation: s.q,
                 tree,
                 scale,
-                capsule: capsules[tree as usize].placed(center, s.q, scale),
+                capsule: match few {
+                    true => PlacedCapsule::ANYWHERE,
+                    false => capsules[tree as usize].placed(center, s.q, scale),
+                },
             }
         };
-        if 2 * input.bodies.len() < n {
+        if few {
             // Only the ribbons' candidates are read: a few ribbons among
             // many bodies (a lone balloon awake in a time-lapse) place few.
             for &b in input.bodies {

@@ -102,6 +102,16 @@ pub(crate) struct PlacedCapsule {
     pub reach: f32,
 }
 
+impl PlacedCapsule {
+    /// A capsule that holds everything: every point goes on to the exact test.
+    pub const ANYWHERE: PlacedCapsule = PlacedCapsule {
+        a: Vec3::ZERO,
+        ab: Vec3::ZERO,
+        inv_length_sq: 0.0,
+        reach: f32::INFINITY,
+    };
+}
+
 impl LeafCapsule {
     /// This capsule scaled by `scale` on a balloon centred at `center`
     /// turned by `rotation` (the frame the leaves are tested in).
@@ -250,5 +260,23 @@ mod tests {
             spared * 2 > in_bound_outside,
             "{spared} of {in_bound_outside} spared"
         );
+    }
+
+    /// The capsule that is not placed holds every point.
+    #[test]
+    fn a_capsule_placed_anywhere_passes_every_point_on() {
+        let mut lanes = CapsuleLanes::default();
+        let mut points = V4::ZERO;
+        let anywhere = [
+            Vec3::ZERO,
+            Vec3::splat(1e6),
+            Vec3::new(-3.0, 40.0, 2.0),
+            Vec3::NAN,
+        ];
+        for (l, p) in anywhere.into_iter().enumerate() {
+            lanes.set_lane(l, &PlacedCapsule::ANYWHERE);
+            points.set_lane(l, p);
+        }
+        assert_eq!(lanes.may_touch(points, F4::splat(0.0025)), 0b1111);
     }
 }
