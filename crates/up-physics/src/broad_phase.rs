@@ -1,11 +1,11 @@
-//! Broadphase: candidate body pairs from a uniform hash grid.
+//! Broadphase: candidate body pairs from a uniform grid.
 //!
 //! Balloons are similar in size, so a grid whose cells are as wide as the
 //! largest ordinary bounding sphere finds every overlapping pair by looking at
 //! the 27 cells around each body: linear in the number of bodies. Each body
-//! sits in the one cell holding its centre; cells are hashed into a table
-//! twice as long as the body count and filled by a counting sort, so nothing
-//! is allocated once the buffers have grown.
+//! sits in the one cell holding its centre; the cells' buckets (`Buckets`)
+//! are filled by a counting sort, so nothing is allocated once the buffers
+//! have grown.
 //!
 //! The lookups are the cost, so the table is laid out for them. Where the
 //! bodies' cells fill a box of not many more cells than bodies (a room's
@@ -46,9 +46,11 @@ use crate::threading::tasks::{collect_in_order, fill_chunks};
 /// Bodies whose neighbours one task looks up.
 const BODY_CHUNK: usize = 512;
 
-/// Updates after a refresh of the kept table failed (a body changed cells)
-/// that rebuild it without trying one: a refresh that fails has read every
-/// body's entry for nothing, and the table rebuilt gives the same pairs.
+/// Updates after a refresh of the kept table failed among bodies most of
+/// which had moved (a crowd on the move, whose bodies change cells every
+/// step) that rebuild it without trying one: a refresh that fails has read
+/// the entries before the failing body for nothing, and the table rebuilt
+/// gives the same pairs.
 const REFRESH_SKIPS: u32 = 7;
 
 #[derive(Clone, Debug, Default)]
@@ -232,7 +234,7 @@ impl BroadPhase {
         Refreshed::Kept
     }
 
-    /// Every ordinary body into its hashed bucket by a counting sort, in
+    /// Every ordinary body into its cell's bucket by a counting sort, in
     /// body order; the large ones listed apart.
     fn rebuild(&mut self, center: &[Vec3], radius: &[f32], awake: &[bool], cell_radius: f32) {
         let n = center.len();
@@ -245,7 +247,9 @@ impl BroadPhase {
                 *cell = cell_coords(center[first + k], inv_cell);
             }
         });
-        let ordinary = (0..n).filter(|&i| radius[i] <= cell_radius);
+        // A NaN radius is ordinary, as the loops below take it.
+        let large = |i: usize| radius[i] > cell_radius;
+        let ordinary = (0..n).filter(|&i| !large(i));
         let buckets = Buckets::for_cells(ordinary.map(|i| self.cell_of[i]), n);
         self.start.clear();
         self.start.resize(buckets.count() + 1, 0);
@@ -335,8 +339,9 @@ impl BroadPhase {
 /// What `BroadPhase::refresh` did.
 enum Refreshed {
     Kept,
-    /// A body changed cells or size: the table needs a rebuild. Whether
-    /// most of the bodies before it had moved.
+    /// The table needs a rebuild: a body changed cells or became large, or
+    /// the body count, the cell size or the large bodies changed. Whether
+    /// most of the bodies before the one that changed cells had moved.
     Failed {
         most_moved: bool,
     },
@@ -526,22 +531,13 @@ const DENSE_CELLS_ANYWAY: u64 = 4096;
 /// holds too many cells, hashed by column. Either way the cells of a column
 /// along z have consecutive buckets, and a cell is found as its column's
 /// number plus its z.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 struct Buckets {
     /// Hashed: the bucket count less one (a power of two less one); dense:
     /// every bit set, the column number plus z being the bucket itself.
     mask: usize,
     /// Dense: the box's lowest cell and its cells along each axis.
     dense: Option<([i32; 3], [i32; 3])>,
-}
-
-impl Default for Buckets {
-    fn default() -> Self {
-        Buckets {
-            mask: 0,
-            dense: None,
-        }
-    }
 }
 
 impl Buckets {
@@ -577,7 +573,7 @@ impl Buckets {
     /// Buckets in the table.
     fn count(&self) -> usize {
         match self.dense {
-            Some((_, d)) => (d[0] * d[1] * d[2]) as usize,
+            Some((_, d)) => d.iter().map(|&d| d as usize).product(),
             None => self.mask + 1,
         }
     }
