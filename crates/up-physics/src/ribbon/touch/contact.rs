@@ -41,18 +41,14 @@ fn starts(groups: &[LaneGroup], s: Segment) -> ([Vec3; 2], [f32; 2]) {
     )
 }
 
-/// Moves segment `s`'s points by `d0` and `d1`; returns how far each
-/// moved as stored (rounded, a little more or less than asked).
-fn shift(groups: &mut [LaneGroup], s: Segment, d0: Vec3, d1: Vec3) -> [Vec3; 2] {
+/// Moves segment `s`'s points by `d0` and `d1`.
+fn shift(groups: &mut [LaneGroup], s: Segment, d0: Vec3, d1: Vec3) {
     let g = &mut groups[s.group as usize];
     g.pushed = true;
     let (l, i) = (s.lane as usize, s.index as usize);
-    let p0: Vec3 = g.points[i].lane(l);
-    let p1: Vec3 = g.points[i + 1].lane(l);
-    let (q0, q1) = (p0 + d0, p1 + d1);
+    let (q0, q1) = (g.points[i].lane(l) + d0, g.points[i + 1].lane(l) + d1);
     g.points[i].set_lane(l, q0);
     g.points[i + 1].set_lane(l, q1);
-    [q0 - p0, q1 - p1]
 }
 
 /// The closest points' parameters on `a` and `b` for `pair`.
@@ -102,34 +98,28 @@ pub(super) fn begin(pair: &mut Touching, groups: &[LaneGroup], push_out: f32) {
 impl RibbonTouch {
     /// Projects every pair once, in order, on the groups' points as the
     /// substep's fall and pushes left them, each by at most `most` m. A
-    /// pair that cannot touch yet is passed over unread (`pass_skip`).
+    /// pair whose segments' boxes, grown by the most their radii can be, do
+    /// not meet cannot touch and is passed over on the boxes alone
+    /// (`segment_boxes`; most of a step's pairs, found for its whole sweep,
+    /// are apart at any one pass): it keeps the side it last had, which is
+    /// how a pair found apart keeps the side it was found on.
     pub(crate) fn project(&mut self, groups: &mut [LaneGroup], most: f32) {
         for g in groups.iter_mut() {
             g.held_lanes = 0;
         }
         self.held.rows.clear();
-        self.skip.begin_pass(groups);
-        if !self.skip.in_first_pass() {
-            self.pass_began.take(groups);
-        }
+        self.boxes.make(groups);
+        self.pass_began.take(groups, self.boxes.paired());
         for k in 0..self.pairs.len() {
+            if self.boxes.apart(k) {
+                continue;
+            }
             let mut pair = self.pairs[k];
-            if self.skip.passes_over(k, pair.a, pair.b) {
-                continue;
-            }
             let (a, b) = (ends(groups, pair.a), ends(groups, pair.b));
-            let gap = gap(&a, &b);
-            self.skip.note_gap(k, gap);
-            if gap > 0.0 {
-                continue;
-            }
-            // The first pass begins where the skip's copy was taken.
-            let then = if self.skip.in_first_pass() {
-                self.skip.began()
-            } else {
-                &self.pass_began
-            };
-            let began = [then.segment(pair.a), then.segment(pair.b)];
+            let began = [
+                self.pass_began.segment(pair.a),
+                self.pass_began.segment(pair.b),
+            ];
             let friction = self.friction;
             if let Some(pushed) = project_pair(&mut pair, groups, &a, &b, began, friction, most) {
                 let side = |seg: Segment, at: f32| super::held::Side {
@@ -138,8 +128,8 @@ impl RibbonTouch {
                     segment: seg.index,
                     at,
                 };
-                self.skip.note_push(pair.a, pushed.a[0], pushed.a[1]);
-                self.skip.note_push(pair.b, pushed.b[0], pushed.b[1]);
+                self.boxes.moved(groups, pair.a);
+                self.boxes.moved(groups, pair.b);
                 let grip = pushed.slide < self.grip_slide;
                 // A contact at rest is left to the passes (`HOLD_DEPTH`).
                 if !grip
@@ -153,7 +143,6 @@ impl RibbonTouch {
             }
             self.pairs[k] = pair;
         }
-        self.skip.end_pass();
     }
 }
 
@@ -198,39 +187,15 @@ fn side(pair: &Touching, a: &Ends, b: &Ends, s: f32, t: f32) -> (Vec3, f32) {
     }
 }
 
-/// How far apart the two segments' boxes, grown by the most their radii
-/// can be, are along the axis they are furthest apart on, m: where
-/// positive they do not meet, their capsules cannot touch, and the pair is
-/// passed over without the closest points (most of a step's pairs, found
-/// for the step's whole sweep, are apart at any one pass). Its side stays
-/// as last set, which is how a pair found apart keeps the side it was found
-/// on.
-fn gap(a: &Ends, b: &Ends) -> f32 {
-    let bound = |e: &Ends| {
-        if e.last {
-            e.end_radius.max(RIBBON_RADIUS)
-        } else {
-            RIBBON_RADIUS
-        }
-    };
-    let reach = Vec3::splat(bound(a) + bound(b));
-    let (a_low, a_high) = (a.p[0].min(a.p[1]), a.p[0].max(a.p[1]));
-    let (b_low, b_high) = (b.p[0].min(b.p[1]), b.p[0].max(b.p[1]));
-    ((a_low - b_high).max(b_low - a_high) - reach).max_element()
-}
-
 /// A pair's projection: how far it was pushed apart, m, its normal, its
 /// closest points' parameters (a row of the solve that follows, `held`),
-/// how far they slid past each other this substep, m, and the moves of
-/// each segment's two points as stored.
+/// and how far they slid past each other this substep, m.
 struct Pushed {
     depth: f32,
     normal: Vec3,
     s: f32,
     t: f32,
     slide: f32,
-    a: [Vec3; 2],
-    b: [Vec3; 2],
 }
 
 /// `pair`, of segments as `a` and `b` stand, pushed apart if its capsules
@@ -282,14 +247,14 @@ fn project_pair(
     };
     let grip = -slid * (held / w);
     let impulse = push + grip;
+    shift(groups, pair.a, -wa[0] * impulse, -wa[1] * impulse);
+    shift(groups, pair.b, wb[0] * impulse, wb[1] * impulse);
     Some(Pushed {
         depth,
         normal,
         s,
         t,
         slide,
-        a: shift(groups, pair.a, -wa[0] * impulse, -wa[1] * impulse),
-        b: shift(groups, pair.b, wb[0] * impulse, wb[1] * impulse),
     })
 }
 
@@ -308,9 +273,17 @@ pub struct RibbonContact {
 impl RibbonTouch {
     /// Keeps the step's pairs within `within` m of touching as their
     /// segments end it in `groups` (read before the lanes are handed back).
+    /// A pair whose boxes are further apart is not touching, whichever side
+    /// it keeps: one that passed through another and drew away would
+    /// otherwise be listed at a separation of minus the gap between them.
     pub(crate) fn keep_touching(&mut self, groups: &[LaneGroup], within: f32) {
         self.touching.clear();
-        for pair in &self.pairs {
+        self.boxes.begin(groups, &self.pairs);
+        self.boxes.make(groups);
+        for (k, pair) in self.pairs.iter().enumerate() {
+            if self.boxes.apart_by(k, within) {
+                continue;
+            }
             let (a, b) = (ends(groups, pair.a), ends(groups, pair.b));
             let (s, t) = parameters(pair, &a, &b);
             let reach = radius(&a, s, pair.end_a) + radius(&b, t, pair.end_b);

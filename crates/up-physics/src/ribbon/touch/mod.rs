@@ -37,10 +37,9 @@
 //! points, passed through where that turned more than a right angle. A pair
 //! that passed through is pushed back to the side it came from. A pass
 //! skips a pair whose segments' boxes, grown by their radii, do not meet
-//! (most of the pairs, found for the step's whole sweep, at any one pass):
-//! it keeps the side it last had; the substep's later passes pass over,
-//! unread, a pair whose boxes were further apart in its first pass than
-//! its points have moved since (`pass_skip`). The lengths the last push
+//! (most of the pairs, found for the step's whole sweep, at any one pass),
+//! reading only the two boxes of a table it keeps as it pushes
+//! (`segment_boxes`): the pair keeps the side it last had. The lengths the last push
 //! changed are the next substep's solve's to restore.
 //!
 //! The chains' solves that follow a pass see the contacts it pushed apart
@@ -63,8 +62,8 @@ mod broad;
 mod closest;
 mod contact;
 pub(crate) mod held;
-mod pass_skip;
 mod points_then;
+mod segment_boxes;
 pub use contact::RibbonContact;
 
 pub mod crossings;
@@ -193,10 +192,10 @@ pub(crate) struct RibbonTouch {
     near_b: Vec<u32>,
     /// The last pass's contacts as rows of the chains' solve that follows.
     held: held::HeldSolve,
-    /// What lets a substep's later passes pass over pairs unread.
-    skip: pass_skip::PassSkip,
-    /// The points as the current pass began, after the first (whose are
-    /// `skip`'s): where its pairs' slides are measured to.
+    /// The segments' boxes as the current pass has left them.
+    boxes: segment_boxes::SegmentBoxes,
+    /// The points as the current pass began: where its pairs' slides are
+    /// measured to.
     pass_began: points_then::PointsThen,
 }
 
@@ -215,7 +214,7 @@ impl Default for RibbonTouch {
             near_a: Vec::new(),
             near_b: Vec::new(),
             held: held::HeldSolve::default(),
-            skip: pass_skip::PassSkip::default(),
+            boxes: segment_boxes::SegmentBoxes::default(),
             pass_began: points_then::PointsThen::default(),
         }
     }
@@ -230,6 +229,6 @@ impl RibbonTouch {
     /// Readies a substep of `h` s over `groups`, before its first pass.
     pub(crate) fn begin_substep(&mut self, groups: &[LaneGroup], h: f32) {
         self.grip_slide = GRIP_SLIDE_SPEED * h;
-        self.skip.begin_substep(groups, self.pairs.len());
+        self.boxes.begin(groups, &self.pairs);
     }
 }

@@ -1,6 +1,6 @@
 //! The lane groups' points as they stood at some moment of a substep (as
-//! its first pass began, or as the current pass began), read back by
-//! segment.
+//! the current pass of the ribbons' contacts began), read back by segment:
+//! only the groups a pair reads are taken.
 
 use glam::Vec3;
 
@@ -17,28 +17,21 @@ pub(crate) struct PointsThen {
 }
 
 impl PointsThen {
-    /// Takes the groups' points as they now are.
-    pub fn take(&mut self, groups: &[LaneGroup]) {
+    /// Takes the points of the groups marked in `read` as they now are
+    /// (the others' are not read back).
+    pub fn take(&mut self, groups: &[LaneGroup], read: &[bool]) {
         self.points.clear();
         self.offsets.clear();
-        for g in groups {
+        for (g, &read) in groups.iter().zip(read) {
             self.offsets.push(self.points.len() as u32);
-            self.points.extend_from_slice(&g.points);
+            if read {
+                self.points.extend_from_slice(&g.points);
+            }
         }
     }
 
-    /// How many points (of four lanes) were taken.
-    pub fn len(&self) -> usize {
-        self.points.len()
-    }
-
-    /// Group `k`'s points as taken.
-    pub fn of_group(&self, k: usize, count: usize) -> &[V4] {
-        &self.points[self.offsets[k] as usize..][..count]
-    }
-
-    /// Where segment `s`'s first point is, counted over every group's.
-    pub fn index(&self, s: Segment) -> usize {
+    /// Where segment `s`'s first point is, counted over the groups taken.
+    fn index(&self, s: Segment) -> usize {
         self.offsets[s.group as usize] as usize + s.index as usize
     }
 

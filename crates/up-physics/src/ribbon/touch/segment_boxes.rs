@@ -1,0 +1,145 @@
+//! Every segment's box as its points now stand, kept for a pass of the
+//! ribbons' contacts: most of a step's pairs, found for its whole sweep,
+//! are apart at any one pass, and a pair's two boxes, read side by side,
+//! tell so for a fraction of what reading its four points out of the lane
+//! groups costs. Made at each pass's start and made again, for the three
+//! segments a push can move, after each push, so a pair's gap is the one
+//! its points give at that moment, bit for bit.
+
+use glam::Vec3;
+
+use super::super::lane_group::LaneGroup;
+use super::super::RIBBON_RADIUS;
+use super::{Segment, Touching};
+use crate::solver::lanes::LANES;
+
+/// A segment's box and the most its radius can be, m: half a cache line.
+#[derive(Clone, Copy, Debug, Default)]
+#[repr(C, align(32))]
+struct SegmentBox {
+    low: Vec3,
+    radius: f32,
+    high: Vec3,
+}
+
+/// The boxes of every lane group's segments, group after group, a
+/// group's in segment order, each segment's four lanes side by side; and
+/// where the step's pairs' two boxes are, read in the pairs' order.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct SegmentBoxes {
+    boxes: Vec<SegmentBox>,
+    /// Per group: where its boxes start in `boxes`.
+    offsets: Vec<u32>,
+    /// Per pair: its two segments' boxes in `boxes`.
+    pairs: Vec<[u32; 2]>,
+    /// Per group: whether a pair has a segment of it (the others' boxes
+    /// are not made).
+    paired: Vec<bool>,
+}
+
+impl SegmentBoxes {
+    /// Readies passes over `pairs` of segments of `groups` (a substep's,
+    /// or the step's end's).
+    pub fn begin(&mut self, groups: &[LaneGroup], pairs: &[Touching]) {
+        self.offsets.clear();
+        let mut first = 0;
+        for g in groups {
+            self.offsets.push(first);
+            first += (g.points.len().saturating_sub(1) * LANES) as u32;
+        }
+        self.boxes.resize(first as usize, SegmentBox::default());
+        self.paired.clear();
+        self.paired.resize(groups.len(), false);
+        for p in pairs {
+            self.paired[p.a.group as usize] = true;
+            self.paired[p.b.group as usize] = true;
+        }
+        self.pairs.clear();
+        let offsets = &self.offsets;
+        let at = |s: Segment| index(offsets, s) as u32;
+        self.pairs.extend(pairs.iter().map(|p| [at(p.a), at(p.b)]));
+    }
+
+    /// Per group: whether a pair has a segment of it.
+    pub fn paired(&self) -> &[bool] {
+        &self.paired
+    }
+
+    /// Makes the paired groups' segments' boxes from their points as they
+    /// now are.
+    pub fn make(&mut self, groups: &[LaneGroup]) {
+        for ((g, &first), _) in groups
+            .iter()
+            .zip(&self.offsets)
+            .zip(&self.paired)
+            .filter(|(_, &p)| p)
+        {
+            let boxes = &mut self.boxes[first as usize..];
+            for i in 0..g.points.len().saturating_sub(1) {
+                for l in 0..LANES {
+                    boxes[i * LANES + l] = segment_box(g, l, i);
+                }
+            }
+        }
+    }
+
+    /// Makes again the boxes of the segments that share a point with
+    /// segment `s`, whose two points a push has just moved.
+    pub fn moved(&mut self, groups: &[LaneGroup], s: Segment) {
+        let g = &groups[s.group as usize];
+        let (l, i) = (s.lane as usize, s.index as usize);
+        let segments = g.points.len() - 1;
+        for k in i.saturating_sub(1)..(i + 2).min(segments) {
+            let at = index(
+                &self.offsets,
+                Segment {
+                    index: k as u32,
+                    ..s
+                },
+            );
+            self.boxes[at] = segment_box(g, l, k);
+        }
+    }
+
+    /// Whether pair `k`'s segments' boxes, grown by the most their radii
+    /// can be, do not meet, so that their capsules cannot touch: where, along
+    /// some axis, what lies between them less the radii is positive (the
+    /// same test, bit for bit, as the largest of these being positive).
+    #[inline]
+    pub fn apart(&self, k: usize) -> bool {
+        self.apart_by(k, 0.0)
+    }
+
+    /// Whether pair `k`'s capsules are more than `within` m apart by their
+    /// boxes (`apart`, the boxes grown by `within` more).
+    #[inline(always)]
+    pub fn apart_by(&self, k: usize, within: f32) -> bool {
+        let [a, b] = self.pairs[k];
+        let (a, b) = (&self.boxes[a as usize], &self.boxes[b as usize]);
+        let reach = Vec3::splat(a.radius + b.radius + within);
+        let beyond = (a.low - b.high - reach).cmpgt(Vec3::ZERO);
+        let below = (b.low - a.high - reach).cmpgt(Vec3::ZERO);
+        (beyond | below).any()
+    }
+}
+
+/// Where segment `s`'s box is, the groups' boxes starting at `offsets`.
+fn index(offsets: &[u32], s: Segment) -> usize {
+    offsets[s.group as usize] as usize + s.index as usize * LANES + s.lane as usize
+}
+
+/// Segment `i` of lane `l` of `g`: its points' box and the most its radius
+/// can be (a weighted end's, on a ribbon's last segment).
+fn segment_box(g: &LaneGroup, l: usize, i: usize) -> SegmentBox {
+    let (p0, p1) = (g.points[i].lane(l), g.points[i + 1].lane(l));
+    let radius = if i + 2 == g.points.len() {
+        g.end_radius.as_array()[l].max(RIBBON_RADIUS)
+    } else {
+        RIBBON_RADIUS
+    };
+    SegmentBox {
+        low: p0.min(p1),
+        radius,
+        high: p0.max(p1),
+    }
+}
