@@ -84,6 +84,10 @@ impl RibbonTouch {
                 }
             }
         }
+        // The paired ribbons as they begin the step, where a pair's side is
+        // found when a pass first needs it (`contact::begin`).
+        self.boxes.begin(&lanes.groups, &self.pairs);
+        self.step_began.take(&lanes.groups, self.boxes.paired());
     }
 
     /// Ribbon `k`'s segments' boxes, made once a step when first needed.
@@ -132,7 +136,7 @@ impl RibbonTouch {
         for &i in &self.near_a {
             for &j in &self.near_b {
                 if boxes_a[i as usize].overlaps(&boxes_b[j as usize]) {
-                    push_pairs(&mut self.pairs, self.push_out, lanes, (&ra, i), (&rb, j));
+                    push_pairs(&mut self.pairs, lanes, (&ra, i), (&rb, j));
                 }
             }
         }
@@ -155,7 +159,7 @@ impl RibbonTouch {
         for i in 0..n {
             for j in i + SELF_GAP..n.min(i.saturating_add(widest).saturating_add(1)) {
                 if boxes[i as usize].overlaps(&boxes[j as usize]) {
-                    push_pairs(&mut self.pairs, self.push_out, lanes, (&r, i), (&r, j));
+                    push_pairs(&mut self.pairs, lanes, (&r, i), (&r, j));
                 }
             }
         }
@@ -166,7 +170,6 @@ impl RibbonTouch {
 /// the two capsules, and each weighted end against the other segment.
 fn push_pairs(
     pairs: &mut Vec<Touching>,
-    push_out: f32,
     lanes: &RibbonLanes,
     (a, i): (&RibbonBox, u32),
     (b, j): (&RibbonBox, u32),
@@ -180,26 +183,19 @@ fn push_pairs(
         index + 1 == r.segments
             && lanes.groups[r.group as usize].end_radius.as_array()[r.lane as usize] > RIBBON_RADIUS
     };
-    let (sa, sb) = (segment(a, i), segment(b, j));
-    let mut pair = Touching {
-        a: sa,
-        b: sb,
-        end_a: false,
-        end_b: false,
-        normal: Vec3::ZERO,
-        allowed: 0.0,
+    let pair = Touching {
+        a: segment(a, i),
+        b: segment(b, j),
+        ..Touching::default()
     };
-    super::contact::begin(&mut pair, &lanes.groups, push_out);
     pairs.push(pair);
     for (end_a, end_b) in [(weighted(a, i), false), (false, weighted(b, j))] {
         if end_a || end_b {
-            let mut end = Touching {
+            pairs.push(Touching {
                 end_a,
                 end_b,
                 ..pair
-            };
-            super::contact::begin(&mut end, &lanes.groups, push_out);
-            pairs.push(end);
+            });
         }
     }
 }

@@ -7,6 +7,7 @@ use glam::Vec3;
 
 use super::super::lane_group::LaneGroup;
 use super::super::RIBBON_RADIUS;
+use super::points_then::PointsThen;
 use super::{closest, RibbonTouch, Segment, Touching};
 
 /// Closer than this, the closest points give no direction, m.
@@ -76,12 +77,16 @@ fn radius(e: &Ends, s: f32, end: bool) -> f32 {
     }
 }
 
-/// Readies `pair` as found at the step's start: its side (the unit line
-/// from its closest point on `a` to that on `b`; any unit vector if they
-/// meet) and the overlap it may keep this step, of the `push_out` m taken
-/// out of what it began with.
-pub(super) fn begin(pair: &mut Touching, groups: &[LaneGroup], push_out: f32) {
-    let (a, b) = (ends(groups, pair.a), ends(groups, pair.b));
+/// Readies `pair` as its segments began the step (`then`, of `groups`):
+/// its side (the unit line from its closest point on `a` to that on `b`;
+/// any unit vector if they meet) and the overlap it may keep this step, of
+/// the `push_out` m taken out of what it began with.
+fn begin(pair: &mut Touching, groups: &[LaneGroup], then: &PointsThen, push_out: f32) {
+    let ends_then = |s: Segment| Ends {
+        p: then.segment(s),
+        ..ends(groups, s)
+    };
+    let (a, b) = (ends_then(pair.a), ends_then(pair.b));
     let (s, t) = parameters(pair, &a, &b);
     let d = at(b.p, t) - at(a.p, s);
     let distance = d.length();
@@ -93,6 +98,7 @@ pub(super) fn begin(pair: &mut Touching, groups: &[LaneGroup], push_out: f32) {
     };
     let overlap = radius(&a, s, pair.end_a) + radius(&b, t, pair.end_b) - distance;
     pair.allowed = (overlap - push_out).max(0.0);
+    pair.begun = true;
 }
 
 impl RibbonTouch {
@@ -115,6 +121,9 @@ impl RibbonTouch {
                 continue;
             }
             let mut pair = self.pairs[k];
+            if !pair.begun {
+                begin(&mut pair, groups, &self.step_began, self.push_out);
+            }
             let (a, b) = (ends(groups, pair.a), ends(groups, pair.b));
             let began = [
                 self.pass_began.segment(pair.a),
@@ -284,10 +293,14 @@ impl RibbonTouch {
             if self.boxes.apart_by(k, within) {
                 continue;
             }
+            let mut pair = *pair;
+            if !pair.begun {
+                begin(&mut pair, groups, &self.step_began, self.push_out);
+            }
             let (a, b) = (ends(groups, pair.a), ends(groups, pair.b));
-            let (s, t) = parameters(pair, &a, &b);
+            let (s, t) = parameters(&pair, &a, &b);
             let reach = radius(&a, s, pair.end_a) + radius(&b, t, pair.end_b);
-            let (normal, distance) = side(pair, &a, &b, s, t);
+            let (normal, distance) = side(&pair, &a, &b, s, t);
             if distance - reach <= within {
                 self.touching.push(RibbonContact {
                     point: 0.5 * (at(a.p, s) + at(b.p, t)),

@@ -138,8 +138,12 @@ pub(crate) struct Touching {
     /// other segment.
     pub end_a: bool,
     pub end_b: bool,
-    /// From `a` toward `b` as they last stood (found, or last projected): the
-    /// side `b` keeps.
+    /// Whether `normal` and `allowed` are set: when a pass first comes to
+    /// the pair with its boxes meeting (most pairs never), from where the
+    /// segments began the step (`contact::begin`).
+    pub begun: bool,
+    /// From `a` toward `b` as they last stood (at the step's start, or last
+    /// projected): the side `b` keeps.
     pub normal: Vec3,
     /// How far they may still overlap this step, m: what they began the
     /// step overlapping less `OVERLAP_PUSH_OUT_SPEED` times the step.
@@ -197,6 +201,8 @@ pub(crate) struct RibbonTouch {
     /// The points as the current pass began: where its pairs' slides are
     /// measured to.
     pass_began: points_then::PointsThen,
+    /// The points as the step began: where a pair's side is first found.
+    step_began: points_then::PointsThen,
 }
 
 impl Default for RibbonTouch {
@@ -216,6 +222,7 @@ impl Default for RibbonTouch {
             held: held::HeldSolve::default(),
             boxes: segment_boxes::SegmentBoxes::default(),
             pass_began: points_then::PointsThen::default(),
+            step_began: points_then::PointsThen::default(),
         }
     }
 }
