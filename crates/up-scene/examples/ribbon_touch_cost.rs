@@ -1,8 +1,9 @@
 //! The step's cost with the ribbons' contacts on and off, alternated in one
 //! process: `cargo run -p up-scene --release --example ribbon_touch_cost --
-//! SCENE COUNT STEPS REPEATS` (COUNT 0: the scene's own balloon count;
-//! SCENE `bench`: the benchmark scene of COUNT balloons, seed 1, each on
-//! the default scene's ribbon).
+//! SCENE COUNT STEPS REPEATS [on|off]` (COUNT 0: the scene's own balloon
+//! count; SCENE `bench`: the benchmark scene of COUNT balloons, seed 1,
+//! each on the default scene's ribbon; `on` or `off`: only those runs, as
+//! for a profile of one).
 //! Prints each run's mean and median step, ms, and the ratio of the means.
 
 use std::time::Instant;
@@ -32,6 +33,11 @@ fn main() {
     let path = args.first().map_or("assets/scenes/bouquet.toml", |s| s);
     let arg = |k: usize, default: usize| args.get(k).map_or(default, |s| s.parse().unwrap());
     let (count, steps, repeats) = (arg(1, 0), arg(2, 300), arg(3, 3));
+    let runs: &[bool] = match args.get(4).map(String::as_str) {
+        Some("on") => &[true],
+        Some("off") => &[false],
+        _ => &[false, true],
+    };
     let mut scene = if path == "bench" {
         let ribbon = Scene::from_path("assets/scenes/default.toml")
             .unwrap()
@@ -51,7 +57,7 @@ fn main() {
     }
     let (mut on, mut off) = (0.0, 0.0);
     for _ in 0..repeats {
-        for contacts in [false, true] {
+        for &contacts in runs {
             let (mean, median, pairs) = run(&scene, contacts, steps);
             println!(
                 "contacts {contacts:5}: mean {mean:.3} ms, median {median:.3} ms, {pairs:.0} pairs a step"

@@ -309,7 +309,7 @@ fn substep(
                 g.substep_before_solve(&near);
             }
         });
-        touch.begin_substep(groups, input.h);
+        touch.begin_substep(input.h);
         touch.project(groups, f32::MAX);
         fill_chunks(groups, GROUP_CHUNK, |_, groups| {
             for g in groups {

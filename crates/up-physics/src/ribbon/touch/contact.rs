@@ -114,7 +114,7 @@ impl RibbonTouch {
             g.held_lanes = 0;
         }
         self.held.rows.clear();
-        self.boxes.make(groups);
+        self.boxes.make(groups, self.pairs.len());
         self.pass_began.take(groups, self.boxes.paired());
         for k in 0..self.pairs.len() {
             if self.boxes.apart(k) {
@@ -287,8 +287,7 @@ impl RibbonTouch {
     /// otherwise be listed at a separation of minus the gap between them.
     pub(crate) fn keep_touching(&mut self, groups: &[LaneGroup], within: f32) {
         self.touching.clear();
-        self.boxes.begin(groups, &self.pairs);
-        self.boxes.make(groups);
+        self.boxes.make(groups, self.pairs.len());
         for (k, pair) in self.pairs.iter().enumerate() {
             if self.boxes.apart_by(k, within) {
                 continue;

@@ -72,8 +72,6 @@ pub mod linking;
 use glam::Vec3;
 use up_geom::Aabb;
 
-use super::lane_group::LaneGroup;
-
 /// Friction of a ribbon on a ribbon, polypropylene on polypropylene: a
 /// guess (film on film is quoted at 0.3–0.5; curling ribbon, ribbed and
 /// often crimped, grips at least as well).
@@ -233,9 +231,8 @@ impl RibbonTouch {
         self.pairs.is_empty()
     }
 
-    /// Readies a substep of `h` s over `groups`, before its first pass.
-    pub(crate) fn begin_substep(&mut self, groups: &[LaneGroup], h: f32) {
+    /// Readies a substep of `h` s, before its first pass.
+    pub(crate) fn begin_substep(&mut self, h: f32) {
         self.grip_slide = GRIP_SLIDE_SPEED * h;
-        self.boxes.begin(groups, &self.pairs);
     }
 }

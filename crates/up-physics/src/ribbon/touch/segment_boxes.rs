@@ -38,8 +38,8 @@ pub(crate) struct SegmentBoxes {
 }
 
 impl SegmentBoxes {
-    /// Readies passes over `pairs` of segments of `groups` (a substep's,
-    /// or the step's end's).
+    /// Readies the step's passes over `pairs` of segments of `groups`,
+    /// once the pairs are found.
     pub fn begin(&mut self, groups: &[LaneGroup], pairs: &[Touching]) {
         self.offsets.clear();
         let mut first = 0;
@@ -66,8 +66,9 @@ impl SegmentBoxes {
     }
 
     /// Makes the paired groups' segments' boxes from their points as they
-    /// now are.
-    pub fn make(&mut self, groups: &[LaneGroup]) {
+    /// now are, for passes over the `pairs` pairs `begin` was given.
+    pub fn make(&mut self, groups: &[LaneGroup], pairs: usize) {
+        assert_eq!(pairs, self.pairs.len(), "the pairs changed since `begin`");
         for ((g, &first), _) in groups
             .iter()
             .zip(&self.offsets)
