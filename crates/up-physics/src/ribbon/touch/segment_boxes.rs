@@ -37,6 +37,28 @@ pub(crate) struct SegmentBoxes {
     paired: Vec<bool>,
 }
 
+impl SegmentBox {
+    fn new(p0: Vec3, p1: Vec3, radius: f32) -> SegmentBox {
+        SegmentBox {
+            low: p0.min(p1),
+            radius,
+            high: p0.max(p1),
+        }
+    }
+
+    /// Whether the boxes, each grown by its radius and `within` more, do
+    /// not meet: along some axis, what lies between them less the radii is
+    /// more than `within` (the same test, bit for bit, as the largest of
+    /// these being positive).
+    #[inline(always)]
+    fn apart(&self, other: &SegmentBox, within: f32) -> bool {
+        let reach = Vec3::splat(self.radius + other.radius + within);
+        let beyond = (self.low - other.high - reach).cmpgt(Vec3::ZERO);
+        let below = (other.low - self.high - reach).cmpgt(Vec3::ZERO);
+        (beyond | below).any()
+    }
+}
+
 impl SegmentBoxes {
     /// Readies the step's passes over `pairs` of segments of `groups`,
     /// once the pairs are found.
@@ -103,24 +125,18 @@ impl SegmentBoxes {
     }
 
     /// Whether pair `k`'s segments' boxes, grown by the most their radii
-    /// can be, do not meet, so that their capsules cannot touch: where, along
-    /// some axis, what lies between them less the radii is positive (the
-    /// same test, bit for bit, as the largest of these being positive).
+    /// can be, do not meet, so that their capsules cannot touch.
     #[inline]
     pub fn apart(&self, k: usize) -> bool {
         self.apart_by(k, 0.0)
     }
 
     /// Whether pair `k`'s capsules are more than `within` m apart by their
-    /// boxes (`apart`, the boxes grown by `within` more).
+    /// boxes.
     #[inline(always)]
     pub fn apart_by(&self, k: usize, within: f32) -> bool {
         let [a, b] = self.pairs[k];
-        let (a, b) = (&self.boxes[a as usize], &self.boxes[b as usize]);
-        let reach = Vec3::splat(a.radius + b.radius + within);
-        let beyond = (a.low - b.high - reach).cmpgt(Vec3::ZERO);
-        let below = (b.low - a.high - reach).cmpgt(Vec3::ZERO);
-        (beyond | below).any()
+        self.boxes[a as usize].apart(&self.boxes[b as usize], within)
     }
 }
 
@@ -138,9 +154,58 @@ fn segment_box(g: &LaneGroup, l: usize, i: usize) -> SegmentBox {
     } else {
         RIBBON_RADIUS
     };
-    SegmentBox {
-        low: p0.min(p1),
-        radius,
-        high: p0.max(p1),
+    SegmentBox::new(p0, p1, radius)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ribbon::touch::closest;
+    use proptest::prelude::*;
+
+    /// A coordinate, now and then exactly ±0 or not a number.
+    fn coordinate() -> impl Strategy<Value = f32> {
+        prop_oneof![
+            8 => -1.0f32..1.0,
+            1 => Just(0.0f32),
+            1 => Just(-0.0f32),
+            1 => Just(f32::NAN),
+        ]
+    }
+
+    fn point() -> impl Strategy<Value = Vec3> {
+        (coordinate(), coordinate(), coordinate()).prop_map(|(x, y, z)| Vec3::new(x, y, z))
+    }
+
+    proptest! {
+        /// The comparisons decide as the largest gap did, not a number included.
+        #[test]
+        fn apart_is_the_largest_gap_positive(
+            a in (point(), point(), 0.0f32..0.05),
+            b in (point(), point(), 0.0f32..0.05),
+            within in prop_oneof![Just(0.0f32), 0.0f32..0.01],
+        ) {
+            let (a, b) = (SegmentBox::new(a.0, a.1, a.2), SegmentBox::new(b.0, b.1, b.2));
+            let reach = Vec3::splat(a.radius + b.radius + within);
+            let gap = ((a.low - b.high).max(b.low - a.high) - reach).max_element();
+            prop_assert_eq!(a.apart(&b, within), gap > 0.0);
+        }
+
+        /// Capsules whose boxes are apart are further apart than their radii.
+        #[test]
+        fn apart_capsules_do_not_touch(
+            a in (-1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0, -0.1f32..0.1, -0.1f32..0.1, -0.1f32..0.1),
+            b in (-1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0, -0.1f32..0.1, -0.1f32..0.1, -0.1f32..0.1),
+            radii in (0.0f32..0.05, 0.0f32..0.05),
+        ) {
+            let (a0, b0) = (Vec3::new(a.0, a.1, a.2), Vec3::new(b.0, b.1, b.2));
+            let (a1, b1) = (a0 + Vec3::new(a.3, a.4, a.5), b0 + Vec3::new(b.3, b.4, b.5));
+            let boxes = (SegmentBox::new(a0, a1, radii.0), SegmentBox::new(b0, b1, radii.1));
+            if boxes.0.apart(&boxes.1, 0.0) {
+                let (s, t) = closest::segments(a0, a1, b0, b1);
+                let distance = (b0 + (b1 - b0) * t).distance(a0 + (a1 - a0) * s);
+                prop_assert!(distance > radii.0 + radii.1, "{distance}");
+            }
+        }
     }
 }
