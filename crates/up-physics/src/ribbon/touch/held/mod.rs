@@ -37,7 +37,7 @@ use super::super::chain::Knots;
 use super::super::lane_group::LaneGroup;
 use super::super::solve::CHAIN_ITERATIONS;
 use super::RibbonTouch;
-use crate::solver::lanes::V4;
+use crate::solver::lanes::{LANES, V4};
 
 mod schur;
 
@@ -135,6 +135,17 @@ pub(crate) struct HeldSolve {
     /// Per chain: its set (union–find), and the chain of each (group,
     /// lane) in this solve.
     parent: Vec<u32>,
+    /// Per chain: its set's root; per row: its set's.
+    set_of: Vec<u32>,
+    row_set: Vec<u32>,
+    /// The chains, and the rows, set by set in the sets' order, each
+    /// set's in their own order; and a count per set for the sorting.
+    chains_by_set: Vec<u32>,
+    rows_by_set: Vec<u32>,
+    counts: Vec<u32>,
+    /// Per (group, lane), four lanes a group: its chain in this solve
+    /// (`u32::MAX`: none).
+    chain_at: Vec<u32>,
     pub(super) rows: Vec<HeldRow>,
     /// Per row: its two sides' chains.
     row_chains: Vec<(u32, u32)>,
@@ -237,12 +248,12 @@ impl HeldSolve {
 
     /// The chain of (group, lane), added if new.
     fn chain_of(&mut self, groups: &[LaneGroup], s: Side) -> u32 {
-        if let Some(c) = self
-            .chains
-            .iter()
-            .position(|c| c.group == s.group && c.lane == s.lane)
-        {
-            return c as u32;
+        let at = s.group as usize * LANES + s.lane as usize;
+        if self.chain_at.len() < groups.len() * LANES {
+            self.chain_at.resize(groups.len() * LANES, u32::MAX);
+        }
+        if self.chain_at[at] != u32::MAX {
+            return self.chain_at[at];
         }
         let g = &groups[s.group as usize];
         let l = s.lane as usize;
@@ -257,13 +268,17 @@ impl HeldSolve {
             impulse: Vec3::ZERO,
         });
         self.parent.push(self.parent.len() as u32);
-        (self.chains.len() - 1) as u32
+        self.set_of.push(0);
+        let c = (self.chains.len() - 1) as u32;
+        self.chain_at[at] = c;
+        c
     }
 
     fn solve(&mut self, groups: &mut [LaneGroup], friction: f32) {
         self.friction = friction;
         self.chains.clear();
         self.parent.clear();
+        self.set_of.clear();
         self.row_chains.clear();
         for r in 0..self.rows.len() {
             let row = self.rows[r];
@@ -274,26 +289,50 @@ impl HeldSolve {
                 self.parent[ra.max(rb) as usize] = ra.min(rb);
             }
         }
-        // Each linked set in the order of its first chain.
-        for c in 0..self.chains.len() as u32 {
-            if self.find(c) != c {
-                continue;
-            }
+        // Each linked set in the order of its first chain (its root), its
+        // chains and rows each in their own order.
+        let sets = self.chains.len();
+        for c in 0..sets as u32 {
+            let root = self.find(c);
+            self.set_of[c as usize] = root;
+        }
+        let row_sets = self
+            .row_chains
+            .iter()
+            .map(|&(a, _)| self.set_of[a as usize]);
+        self.row_set.clear();
+        self.row_set.extend(row_sets);
+        by_set(
+            &self.set_of[..sets],
+            sets,
+            &mut self.counts,
+            &mut self.chains_by_set,
+        );
+        by_set(&self.row_set, sets, &mut self.counts, &mut self.rows_by_set);
+        self.taken.clear();
+        self.taken.resize(self.rows.len(), u32::MAX);
+        let (mut next_chain, mut next_row) = (0, 0);
+        while next_chain < sets {
+            let set = self.set_of[self.chains_by_set[next_chain] as usize];
+            let chains = self.chains_by_set[next_chain..]
+                .iter()
+                .take_while(|&&c| self.set_of[c as usize] == set)
+                .count();
             self.set_chains.clear();
-            for d in 0..self.chains.len() as u32 {
-                if self.find(d) == c {
-                    self.set_chains.push(d);
-                }
-            }
+            self.set_chains
+                .extend_from_slice(&self.chains_by_set[next_chain..][..chains]);
+            next_chain += chains;
+            let rows = self.rows_by_set[next_row..]
+                .iter()
+                .take_while(|&&r| self.row_set[r as usize] == set)
+                .count();
+            let (first_row, last_row) = (next_row, next_row + rows);
+            next_row = last_row;
             self.set_rows.clear();
             self.push_at.clear();
-            self.taken.clear();
-            self.taken.resize(self.rows.len(), u32::MAX);
             let mut pushes = 0;
-            for r in 0..self.rows.len() {
-                if self.find(self.row_chains[r].0) != c {
-                    continue;
-                }
+            for k in first_row..last_row {
+                let r = self.rows_by_set[k] as usize;
                 let at = self.set_rows.len() as u32;
                 match self.rows[r].kind {
                     RowKind::Push if pushes < MOST_CONTACTS => {
@@ -314,6 +353,7 @@ impl HeldSolve {
         // The lanes go back to the four-lane solve.
         for chain in &self.chains {
             groups[chain.group as usize].held_lanes = 0;
+            self.chain_at[chain.group as usize * LANES + chain.lane as usize] = u32::MAX;
         }
     }
 
@@ -376,5 +416,24 @@ impl HeldSolve {
             let total: Vec3 = g.impulse.lane(l);
             g.impulse.set_lane(l, total + chain.impulse);
         }
+    }
+}
+
+/// The items `0..set_of.len()` listed set by set in `out`, the sets in
+/// their order (`0..sets`), each set's items in theirs: a counting sort.
+fn by_set(set_of: &[u32], sets: usize, counts: &mut Vec<u32>, out: &mut Vec<u32>) {
+    counts.clear();
+    counts.resize(sets + 1, 0);
+    for &s in set_of {
+        counts[s as usize + 1] += 1;
+    }
+    for k in 1..=sets {
+        counts[k] += counts[k - 1];
+    }
+    out.clear();
+    out.resize(set_of.len(), 0);
+    for (item, &s) in set_of.iter().enumerate() {
+        out[counts[s as usize] as usize] = item as u32;
+        counts[s as usize] += 1;
     }
 }
