@@ -11,7 +11,7 @@ use glam::Vec3;
 use super::super::lane_group::LaneGroup;
 use super::super::RIBBON_RADIUS;
 use super::{Segment, Touching};
-use crate::solver::lanes::LANES;
+use crate::solver::lanes::{F4, LANES};
 
 /// A segment's box and the most its radius can be, m: half a cache line.
 #[derive(Clone, Copy, Debug, Default)]
@@ -88,19 +88,34 @@ impl SegmentBoxes {
     }
 
     /// Makes the paired groups' segments' boxes from their points as they
-    /// now are, for passes over the `pairs` pairs `begin` was given.
+    /// now are, for passes over the `pairs` pairs `begin` was given: a
+    /// segment's four lanes at once.
     pub fn make(&mut self, groups: &[LaneGroup], pairs: usize) {
         assert_eq!(pairs, self.pairs.len(), "the pairs changed since `begin`");
-        for ((g, &first), _) in groups
-            .iter()
-            .zip(&self.offsets)
-            .zip(&self.paired)
-            .filter(|(_, &p)| p)
-        {
-            let boxes = &mut self.boxes[first as usize..];
-            for i in 0..g.points.len().saturating_sub(1) {
-                for l in 0..LANES {
-                    boxes[i * LANES + l] = segment_box(g, l, i);
+        let paired = groups.iter().zip(&self.offsets).zip(&self.paired);
+        for ((g, &first), _) in paired.filter(|(_, &p)| p) {
+            let n = g.points.len().saturating_sub(1);
+            let boxes = &mut self.boxes[first as usize..][..n * LANES];
+            let end_radius = g.end_radius.as_array();
+            for (i, boxes) in boxes.chunks_exact_mut(LANES).enumerate() {
+                let (p, q) = (&g.points[i], &g.points[i + 1]);
+                let (low, high) = (
+                    [least(p.x, q.x), least(p.y, q.y), least(p.z, q.z)],
+                    [most(p.x, q.x), most(p.y, q.y), most(p.z, q.z)],
+                );
+                let lane = |v: &[F4; 3], l: usize| {
+                    Vec3::new(v[0].as_array()[l], v[1].as_array()[l], v[2].as_array()[l])
+                };
+                for (l, b) in boxes.iter_mut().enumerate() {
+                    *b = SegmentBox {
+                        low: lane(&low, l),
+                        radius: if i + 1 == n {
+                            end_radius[l].max(RIBBON_RADIUS)
+                        } else {
+                            RIBBON_RADIUS
+                        },
+                        high: lane(&high, l),
+                    };
                 }
             }
         }
@@ -138,6 +153,18 @@ impl SegmentBoxes {
         let [a, b] = self.pairs[k];
         self.boxes[a as usize].apart(&self.boxes[b as usize], within)
     }
+}
+
+/// Lane by lane the lesser of `a` and `b`, the number where one is not a
+/// number, as `f32::min` (which of ±0 aside: no box test tells them
+/// apart, the radii being positive).
+fn least(a: F4, b: F4) -> F4 {
+    (a.simd_lt(b) | b.is_nan()).select(a, b)
+}
+
+/// Lane by lane the greater, as `f32::max`.
+fn most(a: F4, b: F4) -> F4 {
+    (a.simd_gt(b) | b.is_nan()).select(a, b)
 }
 
 /// Where segment `s`'s box is, the groups' boxes starting at `offsets`.
@@ -189,6 +216,21 @@ mod tests {
             let reach = Vec3::splat(a.radius + b.radius + within);
             let gap = ((a.low - b.high).max(b.low - a.high) - reach).max_element();
             prop_assert_eq!(a.apart(&b, within), gap > 0.0);
+        }
+
+        /// The four-lane least and most are `f32::min` and `max`, lane by
+        /// lane, not a number included (±0 either way).
+        #[test]
+        fn least_and_most_are_min_and_max(
+            a in prop::array::uniform4(coordinate()),
+            b in prop::array::uniform4(coordinate()),
+        ) {
+            let same = |x: f32, y: f32| x == y || (x.is_nan() && y.is_nan());
+            let (lo, hi) = (least(F4::new(a), F4::new(b)), most(F4::new(a), F4::new(b)));
+            for l in 0..LANES {
+                prop_assert!(same(lo.as_array()[l], a[l].min(b[l])), "{a:?} {b:?}");
+                prop_assert!(same(hi.as_array()[l], a[l].max(b[l])), "{a:?} {b:?}");
+            }
         }
 
         /// Capsules whose boxes are apart are further apart than their radii.
