@@ -39,8 +39,10 @@
 //! skips a pair whose segments' boxes, grown by their radii, do not meet
 //! (most of the pairs, found for the step's whole sweep, at any one pass),
 //! reading only the two boxes of a table it keeps as it pushes
-//! (`segment_boxes`): the pair keeps the side it last had. The lengths the last push
-//! changed are the next substep's solve's to restore.
+//! (`segment_boxes`): the pair keeps the side it last had, and a pair's
+//! side is first found, from where its segments began the step, when a
+//! pass first comes to it with its boxes meeting. The lengths the last
+//! push changed are the next substep's solve's to restore.
 //!
 //! The chains' solves that follow a pass see the contacts it pushed apart
 //! that slide fast, that it pushed far or that touch a movable weight
