@@ -69,5 +69,7 @@ fn main() {
             }
         }
     }
-    println!("on / off, by the means: {:.3}", on / off);
+    if runs.len() == 2 {
+        println!("on / off, by the means: {:.3}", on / off);
+    }
 }

@@ -23,7 +23,7 @@ impl RibbonTouch {
         self.pairs.clear();
         self.push_out = super::OVERLAP_PUSH_OUT_SPEED * dt;
         self.ribbons.clear();
-        self.segment_boxes.clear();
+        self.swept_boxes.clear();
         if !self.enabled || lanes.order.is_empty() {
             return;
         }
@@ -96,7 +96,7 @@ impl RibbonTouch {
         if r.first_box != u32::MAX {
             return r.first_box;
         }
-        let first = self.segment_boxes.len() as u32;
+        let first = self.swept_boxes.len() as u32;
         let group = &lanes.groups[r.group as usize];
         let l = r.lane as usize;
         let n = r.segments as usize;
@@ -109,7 +109,7 @@ impl RibbonTouch {
             };
             let (p, q) = (group.points[i].lane(l), group.points[i + 1].lane(l));
             let aabb = Aabb::new(p.min(q), p.max(q)).expanded(r.reach + radius);
-            self.segment_boxes.push(aabb);
+            self.swept_boxes.push(aabb);
         }
         self.ribbons[k].first_box = first;
         first
@@ -123,8 +123,8 @@ impl RibbonTouch {
         }
         let (first_a, first_b) = (self.boxes_of(lanes, a), self.boxes_of(lanes, b));
         let (ra, rb) = (self.ribbons[a], self.ribbons[b]);
-        let boxes_a = &self.segment_boxes[first_a as usize..][..ra.segments as usize];
-        let boxes_b = &self.segment_boxes[first_b as usize..][..rb.segments as usize];
+        let boxes_a = &self.swept_boxes[first_a as usize..][..ra.segments as usize];
+        let boxes_b = &self.swept_boxes[first_b as usize..][..rb.segments as usize];
         self.near_a.clear();
         self.near_b.clear();
         let near = |boxes: &[Aabb], other: &Aabb, out: &mut Vec<u32>| {
@@ -155,7 +155,7 @@ impl RibbonTouch {
         }
         let widest = (within / r.shortest.max(1e-6)) as u32 + 1;
         let first = self.boxes_of(lanes, k) as usize;
-        let boxes = &self.segment_boxes[first..][..n as usize];
+        let boxes = &self.swept_boxes[first..][..n as usize];
         for i in 0..n {
             for j in i + SELF_GAP..n.min(i.saturating_add(widest).saturating_add(1)) {
                 if boxes[i as usize].overlaps(&boxes[j as usize]) {

@@ -166,7 +166,7 @@ struct RibbonBox {
     /// its shortest segment, m.
     slack: f32,
     shortest: f32,
-    /// Its segments' boxes start here in `RibbonTouch::segment_boxes`
+    /// Its segments' boxes start here in `RibbonTouch::swept_boxes`
     /// (`u32::MAX`: not made this step).
     first_box: u32,
 }
@@ -191,12 +191,13 @@ pub(crate) struct RibbonTouch {
     pub touching: Vec<RibbonContact>,
     ribbons: Vec<RibbonBox>,
     sorted: Vec<u32>,
-    segment_boxes: Vec<Aabb>,
+    swept_boxes: Vec<Aabb>,
     near_a: Vec<u32>,
     near_b: Vec<u32>,
     /// The last pass's contacts as rows of the chains' solve that follows.
     held: held::HeldSolve,
-    /// The segments' boxes as the current pass has left them.
+    /// The paired segments' boxes as the current pass has left them (or
+    /// as the step ends, for `keep_touching`).
     boxes: segment_boxes::SegmentBoxes,
     /// The points as the current pass began: where its pairs' slides are
     /// measured to.
@@ -216,7 +217,7 @@ impl Default for RibbonTouch {
             touching: Vec::new(),
             ribbons: Vec::new(),
             sorted: Vec::new(),
-            segment_boxes: Vec::new(),
+            swept_boxes: Vec::new(),
             near_a: Vec::new(),
             near_b: Vec::new(),
             held: held::HeldSolve::default(),

@@ -1,6 +1,7 @@
-//! The lane groups' points as they stood at some moment of a substep (as
-//! the current pass of the ribbons' contacts began), read back by segment:
-//! only the groups a pair reads are taken.
+//! The lane groups' points as they stood at some moment (as the step began,
+//! or as the current pass of the ribbons' contacts began), read back by
+//! segment: only the groups a pair reads are taken, and only theirs may be
+//! read back.
 
 use glam::Vec3;
 

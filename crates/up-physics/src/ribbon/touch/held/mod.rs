@@ -132,8 +132,7 @@ impl Knot {
 #[derive(Clone, Debug, Default)]
 pub(crate) struct HeldSolve {
     chains: Vec<Chain>,
-    /// Per chain: its set (union–find), and the chain of each (group,
-    /// lane) in this solve.
+    /// Per chain: its set (union–find).
     parent: Vec<u32>,
     /// Per chain: its set's root; per row: its set's.
     set_of: Vec<u32>,
