@@ -2,6 +2,7 @@ import { describe, expect, it } from "vitest";
 import * as THREE from "three";
 import { CURL_SAMPLES, Ribbons, STRIP_SAMPLES, TEXTURE_WIDTH, ribbonLengths, stripTemplate, writeRibbonTexels } from "./ribbons";
 import type { RibbonTables } from "../sim/engine";
+import { RIBBON_POINT_STRIDE } from "../sim/frameLayout";
 
 /** `n` ribbons of `points` points hanging straight down, 0.1 m a segment, side by side; every third weighted when `weighted`. */
 function hanging(n: number, points: number, weighted = false): { tables: RibbonTables; curr: Float32Array } {
@@ -71,7 +72,7 @@ describe("ribbon strips", () => {
     expect(ribbons.mesh.visible).toBe(false);
   });
 
-  it("update 5,000 ribbons in a few milliseconds of the main thread", () => {
+  it("updates 5,000 ribbons' 85,000 points, each between its two steps", () => {
     const n = 5000;
     const points = 17; // 16 segments, the scenes' default; no weights, as there
     const { tables, curr } = hanging(n, points);
@@ -91,13 +92,27 @@ describe("ribbon strips", () => {
       ribbons.update(prev, curr, k / 30);
       times.push(performance.now() - start);
     }
+    // Every point is where the last frame (alpha 29/30) puts it.
+    const texels = (ribbons as unknown as { texture: THREE.DataTexture }).texture.image.data as Float32Array;
+    const alpha = 29 / 30;
+    let worst = 0;
+    for (let i = 0; i < n * points; i++) {
+      for (let axis = 0; axis < 3; axis++) {
+        const o = i * RIBBON_POINT_STRIDE + axis;
+        const expected = prev[o] * (1 - alpha) + curr[o] * alpha;
+        worst = Math.max(worst, Math.abs(texels[i * 4 + axis] - expected));
+      }
+    }
+    // Within the texture's float32 rounding of points about 2 m out.
+    expect(worst).toBeLessThan(1e-5);
+    // Its time is reported, not asserted (a shared machine's load decides
+    // it; `make measure` times the page's frames).
     times.sort((x, y) => x - y);
-    const median = times[times.length >> 1];
     console.log(
       `ribbons: ${n} ribbons of ${points} points (${Math.ceil((n * points) / TEXTURE_WIDTH)} texture rows): ` +
-        `update median ${median.toFixed(2)} ms, worst ${times[times.length - 1].toFixed(2)} ms; new ribbons ${setMs.toFixed(1)} ms`,
+        `update median ${times[times.length >> 1].toFixed(2)} ms, worst ${times[times.length - 1].toFixed(2)} ms; ` +
+        `new ribbons ${setMs.toFixed(1)} ms`,
     );
-    // A frame is 16.7 ms; the update writes 85,000 points and should take a small part of it.
-    expect(median).toBeLessThan(4);
   });
+
 });

@@ -158,8 +158,10 @@ struct RibbonBox {
     group: u32,
     lane: u32,
     segments: u32,
-    /// How far any of its points may move this step, and its points'
-    /// largest radius, m.
+    /// How far any of its points may move this step (its fastest point's
+    /// speed times the step, and the margin; a segment's box is grown by its
+    /// own share, `broad::RibbonTouch::boxes_of`), and its points' largest
+    /// radius, m.
     reach: f32,
     radius: f32,
     /// Its length along its points less the distance between its ends, and
@@ -192,6 +194,12 @@ pub(crate) struct RibbonTouch {
     ribbons: Vec<RibbonBox>,
     sorted: Vec<u32>,
     swept_boxes: Vec<Aabb>,
+    /// The step's length, s, and the margin a point may move beyond its
+    /// speed times it, m (gravity's fall and the speculative distance).
+    dt: f32,
+    margin: f32,
+    /// A ribbon's points' speeds, m/s, while its segments' boxes are made.
+    speeds: Vec<f32>,
     near_a: Vec<u32>,
     near_b: Vec<u32>,
     /// The last pass's contacts as rows of the chains' solve that follows.
@@ -218,6 +226,9 @@ impl Default for RibbonTouch {
             ribbons: Vec::new(),
             sorted: Vec::new(),
             swept_boxes: Vec::new(),
+            dt: 0.0,
+            margin: 0.0,
+            speeds: Vec::new(),
             near_a: Vec::new(),
             near_b: Vec::new(),
             held: held::HeldSolve::default(),
