@@ -8,7 +8,8 @@
 //! (`broad`): each awake ribbon's box, widened by how far its points can
 //! move in the step (their speed, gravity's fall and a margin), swept along
 //! x for boxes that meet, then the two ribbons' segment boxes against each
-//! other; a ribbon against itself only where it is slack enough to fold back
+//! other, each widened by how far its own points and their neighbours can
+//! move; a ribbon against itself only where it is slack enough to fold back
 //! on itself. The pairs are speculative, found before they touch, so that a
 //! segment swept fast across another is caught in the substep it would
 //! cross.
