@@ -24,6 +24,7 @@ impl RibbonTouch {
         self.push_out = super::OVERLAP_PUSH_OUT_SPEED * dt;
         self.ribbons.clear();
         self.swept_boxes.clear();
+        self.speeds.clear();
         (self.dt, self.margin) = (dt, margin);
         if !self.enabled || lanes.order.is_empty() {
             return;
@@ -35,10 +36,13 @@ impl RibbonTouch {
             let mut aabb = Aabb::EMPTY;
             let (mut speed, mut along, mut shortest) = (0.0f32, 0.0f32, f32::MAX);
             let mut before: Vec3 = group.points[0].lane(l_);
+            let first_speed = self.speeds.len() as u32;
             for i in 0..=n {
                 let p: Vec3 = group.points[i].lane(l_);
                 aabb = aabb.including(p);
-                speed = speed.max(group.velocities[i].lane(l_).length());
+                let v = group.velocities[i].lane(l_).length();
+                self.speeds.push(v);
+                speed = speed.max(v);
                 if i > 0 {
                     let length = p.distance(before);
                     along += length;
@@ -58,6 +62,7 @@ impl RibbonTouch {
                 radius,
                 slack: (along - ends).max(0.0),
                 shortest,
+                first_speed,
                 first_box: u32::MAX,
             });
         }
@@ -108,11 +113,9 @@ impl RibbonTouch {
         let l = r.lane as usize;
         let n = r.segments as usize;
         let end_radius = group.end_radius.as_array()[l];
-        self.speeds.clear();
-        let speeds = group.velocities[..=n].iter().map(|v| v.lane(l).length());
-        self.speeds.extend(speeds);
+        let speeds = &self.speeds[r.first_speed as usize..][..=n];
         for i in 0..n {
-            let near = &self.speeds[i.saturating_sub(1)..(i + 3).min(n + 1)];
+            let near = &speeds[i.saturating_sub(1)..(i + 3).min(n + 1)];
             let fastest = near.iter().fold(0.0f32, |most, &v| most.max(v));
             let reach = fastest * self.dt + self.margin;
             let radius = if i + 1 == n {

@@ -169,6 +169,8 @@ struct RibbonBox {
     /// its shortest segment, m.
     slack: f32,
     shortest: f32,
+    /// Its points' speeds start here in `RibbonTouch::speeds`.
+    first_speed: u32,
     /// Its segments' boxes start here in `RibbonTouch::swept_boxes`
     /// (`u32::MAX`: not made this step).
     first_box: u32,
@@ -199,7 +201,7 @@ pub(crate) struct RibbonTouch {
     /// speed times it, m (gravity's fall and the speculative distance).
     dt: f32,
     margin: f32,
-    /// A ribbon's points' speeds, m/s, while its segments' boxes are made.
+    /// The awake ribbons' points' speeds, m/s, ribbon after ribbon.
     speeds: Vec<f32>,
     near_a: Vec<u32>,
     near_b: Vec<u32>,

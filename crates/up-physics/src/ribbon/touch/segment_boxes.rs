@@ -97,7 +97,6 @@ impl SegmentBoxes {
         for ((g, &first), _) in paired.filter(|(_, &p)| p) {
             let n = g.points.len().saturating_sub(1);
             let boxes = &mut self.boxes[first as usize..][..n * LANES];
-            let end_radius = g.end_radius.as_array();
             for (i, boxes) in boxes.chunks_exact_mut(LANES).enumerate() {
                 let (p, q) = (&g.points[i], &g.points[i + 1]);
                 let (low, high) = (
@@ -110,11 +109,7 @@ impl SegmentBoxes {
                 for (l, b) in boxes.iter_mut().enumerate() {
                     *b = SegmentBox {
                         low: lane(&low, l),
-                        radius: if i + 1 == n {
-                            end_radius[l].max(RIBBON_RADIUS)
-                        } else {
-                            RIBBON_RADIUS
-                        },
+                        radius: most_radius(g, l, i),
                         high: lane(&high, l),
                     };
                 }
@@ -177,12 +172,17 @@ fn index(offsets: &[u32], s: Segment) -> usize {
 /// can be (a weighted end's, on a ribbon's last segment).
 fn segment_box(g: &LaneGroup, l: usize, i: usize) -> SegmentBox {
     let (p0, p1) = (g.points[i].lane(l), g.points[i + 1].lane(l));
-    let radius = if i + 2 == g.points.len() {
+    SegmentBox::new(p0, p1, most_radius(g, l, i))
+}
+
+/// The most segment `i` of lane `l` of `g` can be wide, m: a weighted
+/// end's radius on the ribbon's last segment.
+fn most_radius(g: &LaneGroup, l: usize, i: usize) -> f32 {
+    if i + 2 == g.points.len() {
         g.end_radius.as_array()[l].max(RIBBON_RADIUS)
     } else {
         RIBBON_RADIUS
-    };
-    SegmentBox::new(p0, p1, radius)
+    }
 }
 
 #[cfg(test)]
