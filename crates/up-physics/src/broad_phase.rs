@@ -65,8 +65,14 @@ pub(crate) struct BroadPhase {
     scale: GridScale,
     /// Which bucket each cell's bodies are in.
     buckets: Buckets,
-    /// Each ordinary body's place in `items` (`u32::MAX` for a large one).
+    /// Each ordinary body's place in `items` (`LARGE` for a large one).
     slot_of: Vec<u32>,
+    /// Each body's bucket (`LARGE` for a large one), and the body of each
+    /// entry of `items`: `rebuild`'s counting sort.
+    bucket_of: Vec<u32>,
+    body_at: Vec<u32>,
+    /// The box of each task's bodies' cells, for `rebuild`.
+    task_boxes: Vec<CellBox>,
     /// The cell radius the table was built for (`f32::NAN`: none built).
     built_for: f32,
     /// Updates left that rebuild the table without trying to refresh it.
@@ -235,30 +241,57 @@ impl BroadPhase {
     }
 
     /// Every ordinary body into its cell's bucket by a counting sort, in
-    /// body order; the large ones listed apart.
+    /// body order; the large ones listed apart. Only the counting and the
+    /// slots are serial: each body's cell and bucket, the cells' box and
+    /// the entries themselves are filled in tasks.
     fn rebuild(&mut self, center: &[Vec3], radius: &[f32], awake: &[bool], cell_radius: f32) {
         let n = center.len();
         self.large.clear();
         let inv_cell = 0.5 / cell_radius;
-        let mut item_radius = 0.0f32;
+        // A NaN radius is ordinary, as the comparisons below take it.
+        let large = |i: usize| radius[i] > cell_radius;
         self.cell_of.resize(n, [0; 3]);
         fill_chunks(&mut self.cell_of, BODY_CHUNK, |first, cells| {
             for (k, cell) in cells.iter_mut().enumerate() {
                 *cell = cell_coords(center[first + k], inv_cell);
             }
         });
-        // A NaN radius is ordinary, as the loops below take it.
-        let large = |i: usize| radius[i] > cell_radius;
-        let ordinary = (0..n).filter(|&i| !large(i));
-        let buckets = Buckets::for_cells(ordinary.map(|i| self.cell_of[i]), n);
+        let cell_of = &self.cell_of;
+        let tasks = n.div_ceil(BODY_CHUNK);
+        self.task_boxes.resize(tasks, CellBox::EMPTY);
+        fill_chunks(&mut self.task_boxes, 1, |first, boxes| {
+            for (k, cells) in boxes.iter_mut().enumerate() {
+                let task = first + k;
+                let bodies = task * BODY_CHUNK..((task + 1) * BODY_CHUNK).min(n);
+                *cells = bodies
+                    .filter(|&i| !large(i))
+                    .fold(CellBox::EMPTY, |b, i| b.with(cell_of[i], radius[i]));
+            }
+        });
+        let cells = self
+            .task_boxes
+            .iter()
+            .fold(CellBox::EMPTY, |a, &b| a.joined(b));
+        let buckets = Buckets::for_box(cells.lo, cells.hi, n);
+        self.bucket_of.resize(n, 0);
+        fill_chunks(&mut self.bucket_of, BODY_CHUNK, |first, out| {
+            for (k, bucket) in out.iter_mut().enumerate() {
+                let i = first + k;
+                *bucket = if large(i) {
+                    LARGE
+                } else {
+                    buckets.of_ordinary(cell_of[i]) as u32
+                };
+            }
+        });
+
         self.start.clear();
         self.start.resize(buckets.count() + 1, 0);
-        for i in 0..n {
-            if radius[i] > cell_radius {
+        for (i, &b) in self.bucket_of.iter().enumerate() {
+            if b == LARGE {
                 self.large.push(i as u32);
             } else {
-                self.start[buckets.of_ordinary(self.cell_of[i]) + 1] += 1;
-                item_radius = item_radius.max(radius[i]);
+                self.start[b as usize + 1] += 1;
             }
         }
         for b in 1..self.start.len() {
@@ -267,32 +300,79 @@ impl BroadPhase {
         self.cursor.clear();
         self.cursor.extend_from_slice(&self.start);
         // Every entry and slot is written below: kept ones are not cleared first.
-        let items = *self.start.last().unwrap_or(&0) as usize;
-        self.items.resize(items, GridItem::default());
-        self.slot_of.resize(n, u32::MAX);
-        for i in 0..n {
-            if radius[i] > cell_radius {
-                self.slot_of[i] = u32::MAX;
+        let entries = *self.start.last().unwrap_or(&0) as usize;
+        self.body_at.resize(entries, 0);
+        self.slot_of.resize(n, LARGE);
+        for (i, &b) in self.bucket_of.iter().enumerate() {
+            self.slot_of[i] = if b == LARGE {
+                LARGE
             } else {
-                let b = buckets.of_ordinary(self.cell_of[i]);
-                let slot = self.cursor[b];
-                self.items[slot as usize] = GridItem {
+                let slot = self.cursor[b as usize];
+                self.cursor[b as usize] += 1;
+                self.body_at[slot as usize] = i as u32;
+                slot
+            };
+        }
+
+        self.items.resize(entries, GridItem::default());
+        let body_at = &self.body_at;
+        fill_chunks(&mut self.items, BODY_CHUNK, |first, items| {
+            for (k, item) in items.iter_mut().enumerate() {
+                let i = body_at[first + k] as usize;
+                *item = GridItem {
                     center: center[i],
                     radius: radius[i],
-                    cell: cell_key(self.cell_of[i]),
+                    cell: cell_key(cell_of[i]),
                     body: i as u32,
                     awake: awake[i],
                 };
-                self.slot_of[i] = slot;
-                self.cursor[b] += 1;
             }
-        }
+        });
         self.scale = GridScale {
             inv_cell,
-            item_radius,
+            item_radius: cells.radius,
         };
         self.buckets = buckets;
         self.built_for = cell_radius;
+    }
+}
+
+/// A large body's bucket and slot: it has none.
+const LARGE: u32 = u32::MAX;
+
+/// The box of some ordinary bodies' cells and their largest radius (a
+/// task's share of `rebuild`'s bodies, or all of them).
+#[derive(Clone, Copy, Debug)]
+struct CellBox {
+    lo: [i32; 3],
+    hi: [i32; 3],
+    /// Largest radius, NaNs passed over (`f32::max`).
+    radius: f32,
+}
+
+impl CellBox {
+    /// No cell: `lo` above `hi`.
+    const EMPTY: CellBox = CellBox {
+        lo: [i32::MAX; 3],
+        hi: [i32::MIN; 3],
+        radius: 0.0,
+    };
+
+    fn with(self, cell: [i32; 3], radius: f32) -> CellBox {
+        CellBox {
+            lo: std::array::from_fn(|a| self.lo[a].min(cell[a])),
+            hi: std::array::from_fn(|a| self.hi[a].max(cell[a])),
+            radius: self.radius.max(radius),
+        }
+    }
+
+    /// Both boxes in one; the same whichever way round.
+    fn joined(self, other: CellBox) -> CellBox {
+        CellBox {
+            lo: std::array::from_fn(|a| self.lo[a].min(other.lo[a])),
+            hi: std::array::from_fn(|a| self.hi[a].max(other.hi[a])),
+            radius: self.radius.max(other.radius),
+        }
     }
 }
 

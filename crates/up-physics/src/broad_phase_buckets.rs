@@ -26,15 +26,9 @@ pub(super) struct Buckets {
 }
 
 impl Buckets {
-    /// The buckets for `n` bodies whose ordinary ones are in `cells`.
-    pub(super) fn for_cells(cells: impl Iterator<Item = [i32; 3]>, n: usize) -> Buckets {
-        let (mut lo, mut hi) = ([i32::MAX; 3], [i32::MIN; 3]);
-        for cell in cells {
-            for a in 0..3 {
-                lo[a] = lo[a].min(cell[a]);
-                hi[a] = hi[a].max(cell[a]);
-            }
-        }
+    /// The buckets for `n` bodies whose ordinary ones' cells fill the box
+    /// from `lo` to `hi` (`lo` above `hi` where there are none).
+    pub(super) fn for_box(lo: [i32; 3], hi: [i32; 3], n: usize) -> Buckets {
         let hashed = Buckets {
             mask: (2 * n).next_power_of_two() - 1,
             dense: None,
