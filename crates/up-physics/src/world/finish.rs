@@ -6,7 +6,7 @@ use glam::Vec3;
 use super::{World, PLACE_CHUNK};
 use crate::contact::StoredImpulse;
 use crate::solver::body_state::world_inverse_inertia;
-use crate::threading::tasks::for_each_run;
+use crate::threading::tasks::for_each_run_collect;
 
 impl World {
     /// What each contact hands to the next step's warm start.
@@ -24,16 +24,10 @@ impl World {
     /// Copies the solver's results back to the bodies; clears held forces.
     pub(super) fn finish_motion(&mut self) {
         let solver = &self.stages.solve.solver;
-        // Left where the step found them; quarantined at the step's end.
-        let non_finite = &mut self.stages.faults.non_finite;
-        non_finite.clear();
-        non_finite.extend(
-            solver
-                .awake
-                .iter()
-                .map(|&i| i as usize)
-                .filter(|&i| solver.states[i].runaway),
-        );
+        // The runaways are left where the step found them (only an awake
+        // body's state can run away) and quarantined at the step's end.
+        let faults = &mut self.stages.faults;
+        faults.non_finite.clear();
         let b = &mut self.bodies;
         let (n, shapes, shape, awake) = (b.len(), &self.shapes, &b.shape, &b.awake);
         let inertia_factor = &b.inertia_factor;
@@ -45,28 +39,39 @@ impl World {
             &mut b.force[..],
             &mut b.torque[..],
         );
-        for_each_run(n, PLACE_CHUNK, parts, |first, run| {
-            let (center, rotation, linear_velocity, angular_velocity, force, torque) = run;
-            for k in 0..center.len() {
-                let i = first + k;
-                force[k] = Vec3::ZERO;
-                torque[k] = Vec3::ZERO;
-                let s = &solver.states[i];
-                if !awake[i] || s.runaway {
-                    continue;
+        let (lists, runaways) = (&mut faults.task_faulty, &mut faults.non_finite);
+        for_each_run_collect(
+            n,
+            PLACE_CHUNK,
+            parts,
+            lists,
+            runaways,
+            |first, run, runaways| {
+                let (center, rotation, linear_velocity, angular_velocity, force, torque) = run;
+                for k in 0..center.len() {
+                    let i = first + k;
+                    force[k] = Vec3::ZERO;
+                    torque[k] = Vec3::ZERO;
+                    let s = &solver.states[i];
+                    if s.runaway {
+                        runaways.push(i);
+                    }
+                    if !awake[i] || s.runaway {
+                        continue;
+                    }
+                    center[k] += s.dp;
+                    rotation[k] = s.q;
+                    linear_velocity[k] = s.v;
+                    // Keep angular momentum L = I·ω across the rotation (the gyroscopic
+                    // effect): the solve used the inertia at the step's start.
+                    let momentum = s.inv_inertia.inverse() * s.w;
+                    let inv_inertia_local =
+                        shapes[shape[i] as usize].inv_inertia_local * inertia_factor[i];
+                    let w = world_inverse_inertia(s.q, inv_inertia_local) * momentum;
+                    angular_velocity[k] = if w.is_finite() { w } else { s.w };
                 }
-                center[k] += s.dp;
-                rotation[k] = s.q;
-                linear_velocity[k] = s.v;
-                // Keep angular momentum L = I·ω across the rotation (the gyroscopic
-                // effect): the solve used the inertia at the step's start.
-                let momentum = s.inv_inertia.inverse() * s.w;
-                let inv_inertia_local =
-                    shapes[shape[i] as usize].inv_inertia_local * inertia_factor[i];
-                let w = world_inverse_inertia(s.q, inv_inertia_local) * momentum;
-                angular_velocity[k] = if w.is_finite() { w } else { s.w };
-            }
-        });
+            },
+        );
     }
 
     /// Each joint keeps the tension its last substep took.

@@ -10,12 +10,16 @@ use super::World;
 use crate::body::BodySize;
 use crate::forces::atmosphere::Atmosphere;
 use crate::gas::Gas;
+use crate::threading::tasks::for_each_run_collect;
 
 /// A balloon's gas is advanced (and a sleeper's thresholds checked) once
 /// this many seconds of it have gathered, not every step: 10,000 balloons'
 /// gas every step would cost a few per cent of the step, and in a second
 /// an 11″ balloon shrinks by a few micrometres.
 const GAS_INTERVAL_S: f64 = 1.0;
+
+/// Bodies whose gas one task takes on.
+const GAS_CHUNK: usize = 1024;
 
 impl World {
     /// The gas stage, first in the step: the air at this step, every gas
@@ -45,36 +49,54 @@ impl World {
     pub(super) fn age_gas(&mut self, seconds: f64, air: &Atmosphere, interval: f64) {
         let mut woken = std::mem::take(&mut self.stages.gas_woken);
         let mut moved = std::mem::take(&mut self.stages.gas_moved);
+        let mut aged = std::mem::take(&mut self.stages.gas_aged);
         woken.clear();
         moved.clear();
+        aged.clear();
         let b = &mut self.bodies;
-        let ribbons = &self.ribbons;
-        for i in 0..b.len() {
-            let Some(gas) = b.gas[i].as_mut() else {
-                continue;
-            };
-            gas.owed_s += seconds;
-            if gas.owed_s < interval {
-                continue;
-            }
-            let owed = std::mem::take(&mut gas.owed_s);
-            gas.advance(owed, air);
-            if b.awake[i] {
-                moved.push(i as u32);
-            } else {
-                let shape = &self.shapes[b.shape[i] as usize];
-                // Only a balloon on a ribbon hovers: the finer threshold
-                // is looked up only once it is passed.
-                let wakes = match moved_too_far(gas, b.size[i], shape.def.volume, air) {
-                    Wake::No => false,
-                    Wake::Yes => true,
-                    Wake::IfHovering => ribbons.on(b.id[i]).is_some(),
-                };
-                if wakes {
-                    woken.push(b.island[i]);
-                    moved.push(i as u32);
+        let (awake, size, shape, island, id) = (&b.awake, &b.size, &b.shape, &b.island, &b.id);
+        let (shapes, ribbons) = (&self.shapes, &self.ribbons);
+        let lists = &mut self.stages.gas_task_aged;
+        // Each gas on in tasks; what moved and what woke listed in body order.
+        for_each_run_collect(
+            b.len(),
+            GAS_CHUNK,
+            &mut b.gas[..],
+            lists,
+            &mut aged,
+            |first, gases, aged| {
+                for (k, gas) in gases.iter_mut().enumerate() {
+                    let i = first + k;
+                    let Some(gas) = gas.as_mut() else {
+                        continue;
+                    };
+                    gas.owed_s += seconds;
+                    if gas.owed_s < interval {
+                        continue;
+                    }
+                    let owed = std::mem::take(&mut gas.owed_s);
+                    gas.advance(owed, air);
+                    if awake[i] {
+                        aged.push((i as u32, None));
+                        continue;
+                    }
+                    let shape = &shapes[shape[i] as usize];
+                    // Only a balloon on a ribbon hovers: the finer threshold
+                    // is looked up only once it is passed.
+                    let wakes = match moved_too_far(gas, size[i], shape.def.volume, air) {
+                        Wake::No => false,
+                        Wake::Yes => true,
+                        Wake::IfHovering => ribbons.on(id[i]).is_some(),
+                    };
+                    if wakes {
+                        aged.push((i as u32, Some(island[i])));
+                    }
                 }
-            }
+            },
+        );
+        for &(i, woke) in &aged {
+            moved.push(i);
+            woken.extend(woke);
         }
         woken.sort_unstable();
         woken.dedup();
@@ -86,6 +108,7 @@ impl World {
         }
         self.stages.gas_woken = woken;
         self.stages.gas_moved = moved;
+        self.stages.gas_aged = aged;
     }
 
     /// Body `i` takes the size and mass of its gas (its shape's without),
