@@ -8,9 +8,10 @@ use crate::threading::tasks::fill_chunks;
 
 impl BroadPhase {
     /// Every ordinary body into its cell's bucket by a counting sort, in
-    /// body order; the large ones listed apart. Only the counting and the
-    /// slots are serial: each body's cell and bucket, the cells' box and
-    /// the entries themselves are filled in tasks.
+    /// body order; the large ones listed apart. Each body's cell and
+    /// bucket, each task's box of cells and the entries are found in
+    /// tasks; the counts, the slots, the large list and the tasks' boxes
+    /// joined are serial.
     pub(super) fn rebuild(
         &mut self,
         center: &[Vec3],

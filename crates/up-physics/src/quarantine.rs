@@ -75,7 +75,8 @@ pub(crate) struct FaultBuffers {
     /// Dense indices of the bodies to take out this step (the solve's
     /// runaways first, then `find_faulty`'s).
     pub non_finite: Vec<usize>,
-    /// Each task's finds.
+    /// Each task's finds: the solve's runaways (`finish_motion`), then
+    /// `find_faulty`'s.
     pub task_faulty: Vec<Vec<usize>>,
 }
 

@@ -85,8 +85,8 @@ struct Stages {
     gas_woken: Vec<u32>,
     /// Awake bodies whose gas moved this step (`gas`).
     gas_moved: Vec<u32>,
-    /// The bodies whose gas moved, each with the island it woke if it
-    /// slept, in body order, and each task's share of them (`gas`).
+    /// The awake bodies whose gas moved and the sleepers it woke (with
+    /// the island woken), in body order, and each task's share (`gas`).
     gas_aged: Vec<(u32, Option<u32>)>,
     gas_task_aged: Vec<Vec<(u32, Option<u32>)>>,
     /// The solver's constraints are the found contacts' (`contacts`): a
