@@ -1,6 +1,6 @@
 //! The broadphase's tests: its pairs against every pair's test (in a table
 //! of a bucket a cell and in a hashed one), their order, the woken bodies'
-//! pairs, and a table kept over many steps.
+//! pairs, a table kept over many steps, and a table rebuilt in tasks.
 
 use super::*;
 
@@ -221,4 +221,63 @@ fn woken_pairs_defer_to_a_full_update_when_large_bodies_are_about() {
     let mut bp = BroadPhase::default();
     bp.update(&center, &radius, &[false, false], 0.2);
     assert!(!bp.add_woken_pairs(&center, &radius, &[false, false], &[true, false]));
+}
+
+/// A table rebuilt in tasks is the one built on one thread, entry for
+/// entry: thousands of bodies (several tasks' worth), large ones and a NaN
+/// radius among them, in a table of a bucket a cell and in a hashed one.
+#[cfg(feature = "parallel")]
+#[test]
+fn a_table_rebuilt_in_tasks_is_the_one_built_on_one_thread() {
+    let mut rnd = random(777);
+    for strewn in [false, true] {
+        let n = 5 * BODY_CHUNK + 37;
+        let center: Vec<Vec3> = (0..n)
+            .map(|i| {
+                let c = Vec3::new(rnd(), rnd(), rnd()) * 6.0 - 3.0;
+                if strewn && i % 97 == 0 {
+                    c * 1.0e6
+                } else {
+                    c
+                }
+            })
+            .collect();
+        let radius: Vec<f32> = (0..n)
+            .map(|i| match i % 211 {
+                0 => 0.3 + rnd(),
+                5 => f32::NAN,
+                _ => 0.05 + 0.15 * rnd(),
+            })
+            .collect();
+        let awake: Vec<bool> = (0..n).map(|i| i % 7 != 0).collect();
+        let built = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let mut table = BroadPhase::default();
+                table.rebuild(&center, &radius, &awake, 0.2);
+                table
+            })
+        };
+        let (one, three) = (built(1), built(3));
+        let entries = |table: &BroadPhase| -> Vec<_> {
+            let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+            let entry =
+                |e: &GridItem| (bits(e.center), e.radius.to_bits(), e.cell, e.body, e.awake);
+            table.items.iter().map(entry).collect()
+        };
+        assert_eq!(one.buckets.dense.is_none(), strewn);
+        assert_eq!(one.buckets.dense, three.buckets.dense);
+        assert_eq!(one.buckets.mask, three.buckets.mask);
+        assert_eq!(entries(&one), entries(&three));
+        assert_eq!(one.start, three.start);
+        assert_eq!(one.slot_of, three.slot_of);
+        assert_eq!(one.cell_of, three.cell_of);
+        assert!(!one.large.is_empty());
+        assert_eq!(one.large, three.large);
+        let item_radius = |table: &BroadPhase| table.scale.item_radius.to_bits();
+        assert_eq!(item_radius(&one), item_radius(&three));
+    }
 }
