@@ -7,7 +7,7 @@ use glam::{Quat, Vec3};
 #[cfg(feature = "parallel")]
 use up_physics::divergence::lockstep_with;
 #[cfg(feature = "parallel")]
-use up_physics::WorldDef;
+use up_physics::{EnvelopeDef, WorldDef};
 use up_physics::{SnapshotError, World};
 
 #[test]
@@ -171,6 +171,61 @@ fn the_state_hash_does_not_depend_on_the_thread_count() {
     if let Some(parted) = parted {
         panic!("the global pool against one thread: {parted}");
     }
+}
+
+/// The gas is taken on in tasks: a crowd of more balloons than a task takes,
+/// asleep under a low ceiling, leaking an hour's helium a second, so that at
+/// each second's gas step every gas moves at once and wakes its sleeper.
+/// Stepped on three threads beside one, compared body by body every step.
+#[cfg(feature = "parallel")]
+#[test]
+fn the_gas_taken_on_in_tasks_is_the_same_on_any_thread_count() {
+    let crowd = || {
+        let def = WorldDef {
+            room: Some(room(12.0, 12.0, 0.45, None)),
+            sleep_linear_speed: 0.3,
+            sleep_angular_speed: 3.0,
+            time_to_sleep: 0.2,
+            ..WorldDef::default()
+        };
+        let (mut world, shape) = world_with(def);
+        let mut envelope = EnvelopeDef::latex(0.0035, 0.003, 0.289, 1.0, 1.0);
+        envelope.helium_permeance *= 3600.0;
+        for i in 0..1200 {
+            let (x, z) = ((i % 35) as f32 * 0.22 - 3.74, (i / 35) as f32 * 0.22 - 3.74);
+            let q = Quat::from_rotation_y(i as f32);
+            let id = add(&mut world, shape, Vec3::new(x, 0.25, z), q);
+            world.fill(id, &envelope, 0.0).expect("a valid envelope");
+        }
+        world
+    };
+    let pool = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("a thread pool")
+    };
+    let (one, three) = (pool(1), pool(3));
+    let (mut a, mut b) = (one.install(crowd), three.install(crowd));
+    let (mut most_asleep, mut woke) = (0, false);
+    let parted = lockstep_with(
+        &mut a,
+        &mut b,
+        190,
+        |w| {
+            let asleep_before = w.body_count() as u32 - w.stats().awake_count;
+            one.install(|| w.step());
+            let asleep = w.body_count() as u32 - w.stats().awake_count;
+            most_asleep = most_asleep.max(asleep);
+            woke |= asleep_before > 1024 && asleep + 1024 < asleep_before;
+        },
+        |w| three.install(|| w.step()),
+    );
+    if let Some(parted) = parted {
+        panic!("3 threads against one: {parted}");
+    }
+    assert!(most_asleep > 1024, "too few asleep to split: {most_asleep}");
+    assert!(woke, "the gas woke no crowd of sleepers in one step");
 }
 
 #[test]
