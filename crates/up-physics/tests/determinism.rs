@@ -88,6 +88,15 @@ fn bodies_added_and_removed_while_running() {
     assert!(world.center_of_mass(new).unwrap().y > 1.0);
 }
 
+/// A pool of `threads` threads to step a world on.
+#[cfg(feature = "parallel")]
+fn pool(threads: usize) -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("a thread pool")
+}
+
 /// With the `parallel` feature the narrowphase, the preparation of the
 /// constraints (in contact order, then gathered group by group), the colours
 /// of the solve and the body passes run on rayon's threads (on one thread the
@@ -120,12 +129,6 @@ fn the_state_hash_does_not_depend_on_the_thread_count() {
             add(&mut world, shape, Vec3::new(x, y, z), q);
         }
         world
-    };
-    let pool = |threads: usize| {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .expect("a thread pool")
     };
     let one = pool(1);
     // Each thread count stepped beside one thread, compared body by body
@@ -198,12 +201,6 @@ fn the_gas_taken_on_in_tasks_is_the_same_on_any_thread_count() {
             world.fill(id, &envelope, 0.0).expect("a valid envelope");
         }
         world
-    };
-    let pool = |threads: usize| {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .expect("a thread pool")
     };
     let (one, three) = (pool(1), pool(3));
     let (mut a, mut b) = (one.install(crowd), three.install(crowd));
