@@ -6,6 +6,26 @@ use super::*;
 
 use crate::hash::uniform as random;
 
+/// `n` centres at random in a cube `width` wide round the origin (cells on
+/// both sides of zero); with `strewn_every`, every so many of them a
+/// million times farther out, where the cell coordinates are clamped.
+fn cloud(
+    rnd: &mut impl FnMut() -> f32,
+    n: usize,
+    width: f32,
+    strewn_every: Option<usize>,
+) -> Vec<Vec3> {
+    (0..n)
+        .map(|i| {
+            let c = (Vec3::new(rnd(), rnd(), rnd()) - 0.5) * width;
+            match strewn_every {
+                Some(every) if i % every == 0 => c * 1.0e6,
+                _ => c,
+            }
+        })
+        .collect()
+}
+
 /// Brute-force reference on random clouds: the grid finds exactly the
 /// overlapping pairs, whether its table has a bucket a cell (a cloud in a
 /// room) or hashes them (a few bodies strewn far out).
@@ -15,18 +35,7 @@ fn grid_pairs_equal_all_pairs_reference() {
     for round in 0..40 {
         let n = 50 + (round / 2) * 20;
         let strewn = round % 2 == 0;
-        // Around the origin (cells on both sides of zero); strewn, a few
-        // bodies far out where the cell coordinates are clamped.
-        let center: Vec<Vec3> = (0..n)
-            .map(|i| {
-                let c = Vec3::new(rnd(), rnd(), rnd()) * 3.0 - 1.5;
-                if strewn && i % 23 == 0 {
-                    c * 1.0e6
-                } else {
-                    c
-                }
-            })
-            .collect();
+        let center = cloud(&mut rnd, n, 3.0, strewn.then_some(23));
         // A few large (fast) bodies among ordinary ones.
         let radius: Vec<f32> = (0..n)
             .map(|i| {
@@ -232,16 +241,7 @@ fn a_table_rebuilt_in_tasks_is_the_one_built_on_one_thread() {
     let mut rnd = random(777);
     for strewn in [false, true] {
         let n = 5 * BODY_CHUNK + 37;
-        let center: Vec<Vec3> = (0..n)
-            .map(|i| {
-                let c = Vec3::new(rnd(), rnd(), rnd()) * 6.0 - 3.0;
-                if strewn && i % 97 == 0 {
-                    c * 1.0e6
-                } else {
-                    c
-                }
-            })
-            .collect();
+        let center = cloud(&mut rnd, n, 6.0, strewn.then_some(97));
         let radius: Vec<f32> = (0..n)
             .map(|i| match i % 211 {
                 0 => 0.3 + rnd(),
