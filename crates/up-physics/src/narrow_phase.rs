@@ -27,6 +27,7 @@ use up_geom::{prune_shadowed, Contact, PlacedTree, RelativeMotion, TriMesh};
 
 use crate::body::{BodySize, ShapeData};
 use crate::contact::{pair_key, ContactFeature, ContactPoint, STATIC_BODY};
+use crate::threading::join::append_lists;
 use crate::threading::spare::{release_spare, BUFFER_FLOOR, TASK_LIST_FLOOR};
 use crate::threading::tasks::{collect_in_order, TaskList};
 
@@ -192,6 +193,8 @@ pub(crate) struct ContactList {
     pub max_penetration: f32,
     /// A query's contacts, before they become points of the list.
     scratch: Vec<Contact>,
+    /// Where each task's contacts start in this list, as `join_all` joins them.
+    run_offsets: Vec<u32>,
 }
 
 impl ContactList {
@@ -305,6 +308,29 @@ impl TaskList for ContactList {
                 .map(|&(key, start, count)| (key, start + offset, count)),
         );
         self.max_penetration = self.max_penetration.max(other.max_penetration);
+    }
+
+    /// Appends the lists' contacts and runs in tasks (`join::append_lists`),
+    /// each list's runs moved past the contacts before its own.
+    fn join_all(&mut self, lists: &[Self]) {
+        self.run_offsets.clear();
+        let mut offset = self.contacts.len() as u32;
+        for list in lists {
+            self.run_offsets.push(offset);
+            offset += list.contacts.len() as u32;
+            self.max_penetration = self.max_penetration.max(list.max_penetration);
+        }
+        append_lists(&mut self.contacts, lists, |l| &l.contacts[..], |_, &c| c);
+        let offsets = &self.run_offsets;
+        append_lists(
+            &mut self.runs,
+            lists,
+            |l| &l.runs[..],
+            |k, &run| {
+                let (key, start, count) = run;
+                (key, start + offsets[k], count)
+            },
+        );
     }
 }
 

@@ -13,6 +13,7 @@ pub(crate) use near_lists::{NearFinder, NearLists, RibbonList, Spheres};
 pub(crate) use sphere_grid::{sphere_meets_box, SphereGrid};
 
 use crate::ribbon::collide::NearTriangle;
+use crate::threading::join::append_lists;
 use crate::threading::tasks::TaskList;
 
 /// The balloons and room triangles near the step's awake ribbons, each
@@ -36,6 +37,12 @@ impl TaskList for NearFound {
         self.bodies.extend_from_slice(&other.bodies);
         self.triangles.extend_from_slice(&other.triangles);
         self.found += other.found;
+    }
+
+    fn join_all(&mut self, lists: &[Self]) {
+        append_lists(&mut self.bodies, lists, |l| &l.bodies[..], |_, &b| b);
+        append_lists(&mut self.triangles, lists, |l| &l.triangles[..], |_, &t| t);
+        self.found += lists.iter().map(|l| l.found).sum::<u64>();
     }
 }
 

@@ -5,6 +5,8 @@
 use std::cell::Cell;
 use std::ops::Range;
 
+use crate::threading::join::append_lists;
+
 #[cfg(feature = "parallel")]
 use rayon::prelude::*;
 
@@ -200,15 +202,26 @@ pub(crate) trait TaskList: Default + Send {
     fn reset(&mut self);
     /// Appends `other` after what this list holds.
     fn join(&mut self, other: &Self);
+    /// Appends `lists` one after another: `join` a list at a time, unless
+    /// the list copies them in tasks (`join::append_lists`).
+    fn join_all(&mut self, lists: &[Self]) {
+        for list in lists {
+            self.join(list);
+        }
+    }
 }
 
-impl<T: Copy + Send> TaskList for Vec<T> {
+impl<T: Copy + Send + Sync> TaskList for Vec<T> {
     fn reset(&mut self) {
         self.clear();
     }
 
     fn join(&mut self, other: &Self) {
         self.extend_from_slice(other);
+    }
+
+    fn join_all(&mut self, lists: &[Self]) {
+        append_lists(self, lists, |list| &list[..], |_, &item| item);
     }
 }
 
@@ -245,9 +258,7 @@ pub(crate) fn collect_in_order<L, F>(
                     })
                 })
         });
-        for list in &lists[..tasks] {
-            out.join(list);
-        }
+        out.join_all(&lists[..tasks]);
         // Lists this step left idle hold nothing, so `spare` can free them.
         lists[tasks..].iter_mut().for_each(L::reset);
         return;
@@ -320,9 +331,7 @@ pub(crate) fn for_each_run_collect<P, L, F>(
                 run(first, parts, list);
             })
         });
-        for list in &lists[..tasks] {
-            out.join(list);
-        }
+        out.join_all(&lists[..tasks]);
         lists[tasks..].iter_mut().for_each(L::reset);
         return;
     }
