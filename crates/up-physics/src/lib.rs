@@ -28,6 +28,7 @@ pub mod gas;
 mod grab;
 mod hash;
 mod joint;
+mod knocks;
 mod narrow_phase;
 mod quarantine;
 pub mod ribbon;

@@ -31,10 +31,6 @@ use crate::threading::join::append_lists;
 use crate::threading::spare::{release_spare, BUFFER_FLOOR, TASK_LIST_FLOOR};
 use crate::threading::tasks::{collect_in_order, TaskList};
 
-/// Broadphase pairs whose knocks one task finds.
-#[cfg(feature = "parallel")]
-const KNOCK_CHUNK: usize = 2048;
-
 /// Room tests and pairs handed to one task.
 const TASK_ITEMS: usize = 256;
 
@@ -76,77 +72,6 @@ impl StepMotion {
     pub fn knocked_closer(self, other: StepMotion, towards: Vec3, allowance: f32) -> f32 {
         (self.knock.dot(towards) - allowance).max(0.0)
             + (other.knock.dot(-towards) - allowance).max(0.0)
-    }
-}
-
-/// Sets each body's `knock`: for every neighbour it may meet this step (root
-/// spheres within twice the speculative distance and their closing, as
-/// `roots_within(a, b, gap)` says), the
-/// most that collision can change its velocity in the step (the closing
-/// times `share`, (1 + e)·m_other / (m + m_other)), pointing away from that
-/// neighbour, summed. The margins were set from the velocities at the step's
-/// start: a column rising together, whose top balloon is stopped, throws the
-/// next one down onto the one below, which had no contact with it (balloons
-/// moving together have none), 2.4 mm deep in one step. Only pairs that a
-/// knock throws together get a wider margin: balloons arriving side by side
-/// under a pile that stops them do not.
-///
-/// With several threads each pair's two knocks are found in tasks (they read
-/// only the step's motion, not the knocks), into `thrown`, then summed in
-/// pair order: the same sums as one thread's, bit for bit.
-pub(crate) fn add_knocks(
-    motion: &mut [StepMotion],
-    pairs: &[(u32, u32)],
-    #[cfg_attr(not(feature = "parallel"), allow(unused_variables, clippy::ptr_arg))]
-    thrown: &mut Vec<Option<[Vec3; 2]>>,
-    centers: impl Fn(usize) -> Vec3 + Sync,
-    roots_within: impl Fn(usize, usize, f32) -> bool + Sync,
-    share: impl Fn(usize, usize) -> f32 + Sync,
-    speculative_distance: f32,
-) {
-    // What a pair's collision may throw a and b by (a away from b, b away from a).
-    let knocks = |motion: &[StepMotion], a: usize, b: usize| {
-        let closing = motion[a].closing(motion[b]);
-        if closing > 0.0 && roots_within(a, b, 2.0 * speculative_distance + closing) {
-            let towards_b = unit_or_zero(centers(b) - centers(a));
-            Some([
-                share(a, b) * closing * towards_b,
-                share(b, a) * closing * towards_b,
-            ])
-        } else {
-            None
-        }
-    };
-    let sum = |motion: &mut [StepMotion], (a, b): (u32, u32), knocks: Option<[Vec3; 2]>| {
-        if let Some([to_a, to_b]) = knocks {
-            motion[a as usize].knock -= to_a;
-            motion[b as usize].knock += to_b;
-        }
-    };
-    for m in motion.iter_mut() {
-        m.knock = Vec3::ZERO;
-    }
-    #[cfg(feature = "parallel")]
-    if crate::threading::tasks::worth_splitting(pairs.len(), KNOCK_CHUNK) {
-        thrown.resize(pairs.len(), None);
-        let read: &[StepMotion] = motion;
-        crate::threading::tasks::fill_chunks(thrown, KNOCK_CHUNK, |first, out| {
-            for (k, t) in out.iter_mut().enumerate() {
-                let (a, b) = pairs[first + k];
-                *t = knocks(read, a as usize, b as usize);
-            }
-        });
-        for (&pair, &t) in pairs.iter().zip(thrown.iter()) {
-            sum(motion, pair, t);
-        }
-        return;
-    }
-    // Unused this step: its length must say so (`spare`).
-    #[cfg(feature = "parallel")]
-    thrown.clear();
-    for &(a, b) in pairs {
-        let t = knocks(motion, a as usize, b as usize);
-        sum(motion, (a, b), t);
     }
 }
 
@@ -375,82 +300,6 @@ impl NarrowPhase {
                 let pairs = &pairs[range.start.max(n) - n..range.end.max(n) - n];
                 list.collect(input, room, room_tests, pairs);
             },
-        );
-    }
-}
-
-#[cfg(all(test, feature = "parallel"))]
-mod tests {
-    use super::*;
-    use crate::hash::uniform;
-
-    /// Knocks found in tasks and summed in pair order are the serial sums, bit
-    /// for bit: random motions, over 5,000 pairs (split on three threads, whole on
-    /// one), most bodies knocked by several neighbours.
-    #[test]
-    fn knocks_found_in_tasks_sum_as_on_one_thread() {
-        let mut random = uniform(7);
-        let n = 1500;
-        let centers: Vec<Vec3> = (0..n)
-            .map(|_| Vec3::new(random(), random(), random()) * 3.0)
-            .collect();
-        let inv_mass: Vec<f32> = (0..n).map(|_| 1.0 + 9.0 * random()).collect();
-        let start: Vec<StepMotion> = (0..n)
-            .map(|_| StepMotion {
-                linear: (Vec3::new(random(), random(), random()) - 0.5) * 0.04,
-                spin: 0.005 * random(),
-                ..StepMotion::default()
-            })
-            .collect();
-        let mut pairs: Vec<(u32, u32)> = (0..n as u32)
-            .flat_map(|a| {
-                let picks: Vec<u32> = (0..5).map(|_| (random() * n as f32) as u32).collect();
-                picks
-                    .into_iter()
-                    .filter(move |&b| b > a)
-                    .map(move |b| (a, b))
-            })
-            .collect();
-        pairs.extend((0..n as u32 - 1).map(|a| (a, a + 1)));
-        pairs.sort_unstable();
-        assert!(pairs.len() > 2 * KNOCK_CHUNK, "{} pairs", pairs.len());
-        let knocked = |threads: usize| {
-            let mut motion = start.clone();
-            let mut thrown = Vec::new();
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            pool.install(|| {
-                add_knocks(
-                    &mut motion,
-                    &pairs,
-                    &mut thrown,
-                    |i| centers[i],
-                    |a, b, gap| centers[a].distance(centers[b]) < 0.8 + gap,
-                    |a, b| 1.4 * inv_mass[a] / (inv_mass[a] + inv_mass[b]),
-                    0.01,
-                )
-            });
-            assert_eq!(thrown.len(), if threads > 1 { pairs.len() } else { 0 });
-            motion
-        };
-        let (serial, split) = (knocked(1), knocked(3));
-        let bits = |m: &[StepMotion]| -> Vec<[u32; 3]> {
-            m.iter()
-                .map(|m| m.knock.to_array().map(f32::to_bits))
-                .collect()
-        };
-        assert_eq!(bits(&split), bits(&serial));
-        let knocked_thrice = (0..n)
-            .filter(|&i| {
-                let touches = |&&(a, b): &&(u32, u32)| a as usize == i || b as usize == i;
-                pairs.iter().filter(touches).count() >= 3 && serial[i].knock != Vec3::ZERO
-            })
-            .count();
-        assert!(
-            knocked_thrice > n / 3,
-            "{knocked_thrice} bodies in 3+ pairs knocked"
         );
     }
 }

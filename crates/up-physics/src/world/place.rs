@@ -8,7 +8,8 @@ use up_geom::Pose;
 
 use super::{World, PLACE_CHUNK};
 use crate::body::{Bodies, ShapeData};
-use crate::narrow_phase::{add_knocks, StepMotion};
+use crate::knocks::{add_knocks, KnockLists};
+use crate::narrow_phase::StepMotion;
 use crate::threading::tasks::{fill_chunks, for_each_run, Ragged};
 
 /// The placing stage's buffers: per body unless said otherwise.
@@ -25,20 +26,17 @@ pub(crate) struct Placement {
     pub placed_asleep: Vec<bool>,
     /// How far it moves this step (zero for sleepers).
     pub motion: Vec<StepMotion>,
-    /// Per broadphase pair, in a step whose knocks are found in tasks: the
-    /// knocks it gives its bodies (`add_knocks`); empty otherwise.
-    pub thrown: Vec<Option<[Vec3; 2]>>,
+    /// The knocking pairs, in a step whose knocks are found in tasks
+    /// (`add_knocks`).
+    pub knocks: KnockLists,
     /// Handle index of each body (the narrowphase keys pairs by them).
     pub handle: Vec<u32>,
 }
 
 impl Placement {
-    /// Gives back the capacity the knocks' buffer left unused (`spare`).
+    /// Gives back the capacity the knocks' lists left unused (`spare`).
     pub fn release_spare(&mut self) {
-        crate::threading::spare::release_spare(
-            &mut self.thrown,
-            crate::threading::spare::BUFFER_FLOOR,
-        );
+        self.knocks.release_spare();
     }
 }
 
@@ -132,7 +130,7 @@ impl World {
         });
     }
 
-    /// Each body's knock, from the broadphase's pairs (`narrow_phase::add_knocks`).
+    /// Each body's knock, from the broadphase's pairs (`knocks::add_knocks`).
     pub(super) fn add_knocks(&mut self) {
         let s = &mut self.stages.place;
         let (shapes, bodies) = (&self.shapes, &self.bodies);
@@ -144,7 +142,7 @@ impl World {
         add_knocks(
             &mut s.motion,
             &self.stages.broad.pairs,
-            &mut s.thrown,
+            &mut s.knocks,
             |i| centers[i],
             within,
             share,
