@@ -10,11 +10,15 @@ use glam::Vec3;
 use up_geom::norm::unit_or_zero;
 
 use crate::narrow_phase::StepMotion;
-use crate::threading::spare::{release_spare, BUFFER_FLOOR, TASK_LIST_FLOOR};
+use crate::threading::spare::{release_spare, TASK_LIST_FLOOR};
 
 /// Broadphase pairs whose knocks one task finds.
 #[cfg(feature = "parallel")]
 const KNOCK_CHUNK: usize = 2048;
+
+/// Bodies a task calls `add_knocks`' `then` on, when the knocks were summed
+/// on one thread.
+const THEN_CHUNK: usize = 512;
 
 /// What a pair's collision may throw its bodies by: `a` by `-to_a`, `b` by `to_b`.
 #[derive(Clone, Copy, Debug, Default)]
@@ -25,21 +29,25 @@ pub(crate) struct Thrown {
     to_b: Vec3,
 }
 
-/// The knocking pairs of a step whose knocks are found in tasks, in pair
-/// order (empty otherwise), and each task's list, kept for its buffer.
+/// Each task's knocking pairs, in pair order, in a step whose knocks are
+/// found in tasks (empty otherwise), kept for their buffers.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct KnockLists {
-    pub thrown: Vec<Thrown>,
     tasks: Vec<Vec<Thrown>>,
 }
 
 impl KnockLists {
     /// Gives back the capacity the lists left unused (`spare`).
     pub fn release_spare(&mut self) {
-        release_spare(&mut self.thrown, BUFFER_FLOOR);
         for list in &mut self.tasks {
             release_spare(list, TASK_LIST_FLOOR);
         }
+    }
+
+    /// The knocking pairs listed, in pair order.
+    #[cfg(feature = "parallel")]
+    fn thrown(&self) -> impl Iterator<Item = &Thrown> {
+        self.tasks.iter().flatten()
     }
 }
 
@@ -53,15 +61,17 @@ impl KnockLists {
 /// next one down onto the one below, which had no contact with it (balloons
 /// moving together have none), 2.4 mm deep in one step. Only pairs that a
 /// knock throws together get a wider margin: balloons arriving side by side
-/// under a pile that stops them do not.
+/// under a pile that stops them do not. Then `then(i, motion)` once a body,
+/// its knock summed.
 pub(crate) fn add_knocks(
     motion: &mut [StepMotion],
     pairs: &[(u32, u32)],
-    #[cfg_attr(not(feature = "parallel"), allow(unused_variables))] lists: &mut KnockLists,
+    lists: &mut KnockLists,
     centers: impl Fn(usize) -> Vec3 + Sync,
     roots_within: impl Fn(usize, usize, f32) -> bool + Sync,
     share: impl Fn(usize, usize) -> f32 + Sync,
     speculative_distance: f32,
+    then: impl Fn(usize, &mut StepMotion) + Sync,
 ) {
     let knocks = |motion: &[StepMotion], (a, b): (u32, u32)| {
         let (i, j) = (a as usize, b as usize);
@@ -81,24 +91,26 @@ pub(crate) fn add_knocks(
     #[cfg(feature = "parallel")]
     if crate::threading::tasks::worth_splitting(pairs.len(), KNOCK_CHUNK) {
         let read: &[StepMotion] = motion;
-        let (tasks, thrown) = (&mut lists.tasks, &mut lists.thrown);
-        thrown.clear();
-        crate::threading::tasks::collect_in_order(
-            pairs.len(),
-            KNOCK_CHUNK,
-            tasks,
-            thrown,
-            |range, out| out.extend(pairs[range].iter().filter_map(|&p| knocks(read, p))),
-        );
-        sum_by_body_range(motion, thrown);
+        let tasks = pairs.len().div_ceil(KNOCK_CHUNK);
+        if lists.tasks.len() < tasks {
+            lists.tasks.resize_with(tasks, Vec::new);
+        }
+        // Not joined: the sums read the tasks' lists one after another.
+        let (found, idle) = lists.tasks.split_at_mut(tasks);
+        crate::threading::tasks::fill_chunks(found, 1, |first, lists| {
+            for (k, list) in lists.iter_mut().enumerate() {
+                let task = first + k;
+                let run = task * KNOCK_CHUNK..((task + 1) * KNOCK_CHUNK).min(pairs.len());
+                list.clear();
+                list.extend(pairs[run].iter().filter_map(|&p| knocks(read, p)));
+            }
+        });
+        idle.iter_mut().for_each(Vec::clear);
+        sum_by_body_range(motion, lists, then);
         return;
     }
     // Unused this step: their lengths must say so (`spare`).
-    #[cfg(feature = "parallel")]
-    {
-        lists.thrown.clear();
-        lists.tasks.iter_mut().for_each(Vec::clear);
-    }
+    lists.tasks.iter_mut().for_each(Vec::clear);
     for m in motion.iter_mut() {
         m.knock = Vec3::ZERO;
     }
@@ -108,12 +120,22 @@ pub(crate) fn add_knocks(
             motion[t.b as usize].knock += t.to_b;
         }
     }
+    crate::threading::tasks::fill_chunks(motion, THEN_CHUNK, |first, motions| {
+        for (k, m) in motions.iter_mut().enumerate() {
+            then(first + k, m);
+        }
+    });
 }
 
-/// Sums `thrown` into the bodies' knocks, a range of bodies a thread: each
-/// reads the whole list in order and adds what falls in its range.
+/// Sums the listed knocks into the bodies' knocks, a range of bodies a
+/// thread (each reads the whole list in order and adds what falls in its
+/// range), then calls `then` on each of its bodies.
 #[cfg(feature = "parallel")]
-fn sum_by_body_range(motion: &mut [StepMotion], thrown: &[Thrown]) {
+fn sum_by_body_range(
+    motion: &mut [StepMotion],
+    lists: &KnockLists,
+    then: impl Fn(usize, &mut StepMotion) + Sync,
+) {
     let range = motion
         .len()
         .div_ceil(crate::threading::tasks::threads_here())
@@ -124,13 +146,16 @@ fn sum_by_body_range(motion: &mut [StepMotion], thrown: &[Thrown]) {
         }
         let len = mine.len();
         let mine_at = |body: u32| (body as usize).checked_sub(first).filter(|&k| k < len);
-        for t in thrown {
+        for t in lists.thrown() {
             if let Some(k) = mine_at(t.a) {
                 mine[k].knock -= t.to_a;
             }
             if let Some(k) = mine_at(t.b) {
                 mine[k].knock += t.to_b;
             }
+        }
+        for (k, m) in mine.iter_mut().enumerate() {
+            then(first + k, m);
         }
     });
 }
@@ -186,10 +211,14 @@ mod tests {
                     |a, b, gap| centers[a].distance(centers[b]) < 0.8 + gap,
                     |a, b| 1.4 * inv_mass[a] / (inv_mass[a] + inv_mass[b]),
                     0.01,
+                    |i, m| m.knock_turn += 1.0 + i as f32,
                 )
             });
+            // `then` once a body, with its index.
+            let once = motion.iter().enumerate();
+            assert!(once.clone().all(|(i, m)| m.knock_turn == 1.0 + i as f32));
             // Split, only the knocking pairs are listed; whole, none are.
-            let listed = lists.thrown.len();
+            let listed = lists.thrown().count();
             assert!(
                 threads > 1 && listed > 0 && listed < pairs.len() || threads == 1 && listed == 0
             );

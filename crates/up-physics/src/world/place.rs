@@ -10,7 +10,7 @@ use super::{World, PLACE_CHUNK};
 use crate::body::{Bodies, ShapeData};
 use crate::knocks::{add_knocks, KnockLists};
 use crate::narrow_phase::StepMotion;
-use crate::threading::tasks::{fill_chunks, for_each_run, Ragged};
+use crate::threading::tasks::{for_each_run, Ragged};
 
 /// The placing stage's buffers: per body unless said otherwise.
 #[derive(Clone, Debug, Default)]
@@ -147,20 +147,17 @@ impl World {
             within,
             share,
             self.def.speculative_distance,
-        );
-        // Once a body, not in each of its pairs: the turn its knock may give.
-        fill_chunks(&mut s.motion, PLACE_CHUNK, |first, motions| {
-            for (k, m) in motions.iter_mut().enumerate() {
+            // Once a body, not in each of its pairs: the turn its knock may give.
+            |i, m| {
                 m.knock_turn = if m.knock == Vec3::ZERO {
                     0.0
                 } else {
-                    let i = first + k;
                     let shape = &shapes[bodies.shape[i] as usize];
                     let (factor, scale) = (bodies.inertia_factor[i], bodies.size[i].scale);
                     m.knock.norm() * shape.turn_per_knock(factor, scale, bodies.inv_mass[i])
                 };
-            }
-        });
+            },
+        );
     }
 
     /// Cell radius: the largest root sphere plus its margin at a brisk ascent.
