@@ -7,7 +7,6 @@
 //! as one thread does, so the sums are the same bit for bit.
 
 use glam::Vec3;
-use up_geom::norm::unit_or_zero;
 
 use crate::narrow_phase::StepMotion;
 use crate::threading::spare::{release_spare, TASK_LIST_FLOOR};
@@ -52,8 +51,8 @@ impl KnockLists {
 }
 
 /// Sets each body's `knock`: for every neighbour it may meet this step (root
-/// spheres within twice the speculative distance and their closing, as
-/// `roots_within(a, b, gap)` says), the
+/// spheres within twice the speculative distance and their closing:
+/// `towards_within(a, b, gap)` gives the unit vector from a to b then), the
 /// most that collision can change its velocity in the step (the closing
 /// times `share`, (1 + e)·m_other / (m + m_other)), pointing away from that
 /// neighbour, summed. The margins were set from the velocities at the step's
@@ -67,8 +66,7 @@ pub(crate) fn add_knocks(
     motion: &mut [StepMotion],
     pairs: &[(u32, u32)],
     lists: &mut KnockLists,
-    centers: impl Fn(usize) -> Vec3 + Sync,
-    roots_within: impl Fn(usize, usize, f32) -> bool + Sync,
+    towards_within: impl Fn(usize, usize, f32) -> Option<Vec3> + Sync,
     share: impl Fn(usize, usize) -> f32 + Sync,
     speculative_distance: f32,
     then: impl Fn(usize, &mut StepMotion) + Sync,
@@ -76,17 +74,16 @@ pub(crate) fn add_knocks(
     let knocks = |motion: &[StepMotion], (a, b): (u32, u32)| {
         let (i, j) = (a as usize, b as usize);
         let closing = motion[i].closing(motion[j]);
-        if closing > 0.0 && roots_within(i, j, 2.0 * speculative_distance + closing) {
-            let towards_b = unit_or_zero(centers(j) - centers(i));
-            Some(Thrown {
-                a,
-                b,
-                to_a: share(i, j) * closing * towards_b,
-                to_b: share(j, i) * closing * towards_b,
-            })
-        } else {
-            None
+        if closing <= 0.0 {
+            return None;
         }
+        let towards_b = towards_within(i, j, 2.0 * speculative_distance + closing)?;
+        Some(Thrown {
+            a,
+            b,
+            to_a: share(i, j) * closing * towards_b,
+            to_b: share(j, i) * closing * towards_b,
+        })
     };
     #[cfg(feature = "parallel")]
     if crate::threading::tasks::worth_splitting(pairs.len(), KNOCK_CHUNK) {
@@ -162,6 +159,8 @@ fn sum_by_body_range(
 
 #[cfg(all(test, feature = "parallel"))]
 mod tests {
+    use up_geom::norm::unit_or_zero;
+
     use super::*;
     use crate::hash::uniform;
 
@@ -207,8 +206,10 @@ mod tests {
                     &mut motion,
                     &pairs,
                     &mut lists,
-                    |i| centers[i],
-                    |a, b, gap| centers[a].distance(centers[b]) < 0.8 + gap,
+                    |a, b, gap| {
+                        (centers[a].distance(centers[b]) < 0.8 + gap)
+                            .then(|| unit_or_zero(centers[b] - centers[a]))
+                    },
                     |a, b| 1.4 * inv_mass[a] / (inv_mass[a] + inv_mass[b]),
                     0.01,
                     |i, m| m.knock_turn += 1.0 + i as f32,

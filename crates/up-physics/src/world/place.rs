@@ -3,7 +3,7 @@
 //! knocks its pairs may give it), and the broadphase's pairs of those bounds.
 
 use glam::Vec3;
-use up_geom::norm::{distance, Norm};
+use up_geom::norm::{distance, unit_or_zero, Norm};
 use up_geom::Pose;
 
 use super::{World, PLACE_CHUNK};
@@ -135,7 +135,10 @@ impl World {
         let s = &mut self.stages.place;
         let (shapes, bodies) = (&self.shapes, &self.bodies);
         let centers = &s.bound_center;
-        let within = |a, b, gap| roots_within(shapes, bodies, centers, a, b, gap);
+        let towards_within = |a: usize, b: usize, gap| {
+            roots_within(shapes, bodies, centers, a, b, gap)
+                .then(|| unit_or_zero(centers[b] - centers[a]))
+        };
         let inv_mass = |i: usize| bodies.inv_mass[i];
         let bounce = 1.0 + self.def.restitution;
         let share = |a: usize, b: usize| bounce * inv_mass(a) / (inv_mass(a) + inv_mass(b));
@@ -143,8 +146,7 @@ impl World {
             &mut s.motion,
             &self.stages.broad.pairs,
             &mut s.knocks,
-            |i| centers[i],
-            within,
+            towards_within,
             share,
             self.def.speculative_distance,
             // Once a body, not in each of its pairs: the turn its knock may give.
