@@ -64,6 +64,22 @@ pub(crate) struct WarmStartCache {
 
 const EMPTY_SLOT: u32 = u32::MAX;
 
+/// The open-addressing table of `runs`' keys: each run's index at its key's
+/// hash, or the next free slot after it; twice as many slots as runs.
+fn index_runs(table: &mut Vec<u32>, runs: &[(u64, u32, u32)]) {
+    let capacity = (runs.len() * 2).next_power_of_two().max(16);
+    table.clear();
+    table.resize(capacity, EMPTY_SLOT);
+    let mask = capacity - 1;
+    for (run, &(key, _, _)) in runs.iter().enumerate() {
+        let mut slot = crate::hash::mix64(key) as usize & mask;
+        while table[slot] != EMPTY_SLOT {
+            slot = (slot + 1) & mask;
+        }
+        table[slot] = run as u32;
+    }
+}
+
 impl WarmStartCache {
     /// Gives back the capacity its pairs left unused (`spare`).
     pub fn release_spare(&mut self) {
@@ -110,17 +126,24 @@ impl WarmStartCache {
 
     /// Rebuilds the lookup table after `runs` changed.
     pub fn index(&mut self) {
-        let capacity = (self.runs.len() * 2).next_power_of_two().max(16);
-        self.table.clear();
-        self.table.resize(capacity, EMPTY_SLOT);
-        let mask = capacity - 1;
-        for (run, &(key, _, _)) in self.runs.iter().enumerate() {
-            let mut slot = crate::hash::mix64(key) as usize & mask;
-            while self.table[slot] != EMPTY_SLOT {
-                slot = (slot + 1) & mask;
-            }
-            self.table[slot] = run as u32;
+        index_runs(&mut self.table, &self.runs);
+    }
+
+    /// Calls `fill` on the impulses (as many as `runs` covers) while the
+    /// lookup table is rebuilt from `runs`: on two threads when there are
+    /// several, since the table needs only the runs (built serially, it
+    /// would hold the pool's other threads idle).
+    pub fn fill_and_index(&mut self, fill: impl FnOnce(&mut [StoredImpulse]) + Send) {
+        let (impulses, table, runs) = (&mut self.impulses[..], &mut self.table, &self.runs);
+        #[cfg(feature = "parallel")]
+        if crate::threading::tasks::threads_here() > 1 {
+            use crate::threading::thread_times;
+            let index = || thread_times::task(|| index_runs(table, runs));
+            thread_times::pass(|| rayon::join(index, || fill(impulses)));
+            return;
         }
+        fill(impulses);
+        index_runs(table, runs);
     }
 
     /// The stored impulses of a pair, if it had contacts last step.
@@ -304,6 +327,46 @@ mod tests {
         for (i, &p) in order.iter().enumerate() {
             let want: &[f32] = if p < 40 { &[p as f32] } else { &[] };
             assert_eq!(seen[i], (i, want.to_vec()), "pair {p}");
+        }
+    }
+
+    /// The impulses filled while the table is rebuilt, on one thread or on
+    /// three: every pair finds the impulses filled for it, through a table
+    /// laid out as `index` lays it.
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn impulses_filled_while_the_table_is_built_are_found_by_their_pairs() {
+        let mut serial = WarmStartCache::default();
+        for p in 0..3_000u32 {
+            serial.push_run(pair_key(p, 3 * p + 1), &[impulse(p as f32); 2]);
+        }
+        serial.index();
+        for threads in [1, 3] {
+            let mut cache = WarmStartCache {
+                runs: serial.runs.clone(),
+                impulses: vec![StoredImpulse::default(); serial.impulses.len()],
+                table: vec![7; 5],
+            };
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                cache.fill_and_index(|impulses| {
+                    for (k, stored) in impulses.iter_mut().enumerate() {
+                        *stored = impulse((k / 2) as f32);
+                    }
+                })
+            });
+            assert_eq!(cache.table, serial.table, "{threads} threads");
+            for p in 0..3_000u32 {
+                let normals: Vec<f32> = cache
+                    .find(pair_key(p, 3 * p + 1))
+                    .iter()
+                    .map(|i| i.normal)
+                    .collect();
+                assert_eq!(normals, [p as f32; 2], "{threads} threads, pair {p}");
+            }
         }
     }
 

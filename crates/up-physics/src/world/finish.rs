@@ -17,8 +17,9 @@ impl World {
         self.warm
             .impulses
             .resize(found.contacts.len(), StoredImpulse::default());
-        self.stages.solve.solver.store_all(&mut self.warm.impulses);
-        self.warm.index();
+        let solver = &self.stages.solve.solver;
+        self.warm
+            .fill_and_index(|impulses| solver.store_all(impulses));
     }
 
     /// Copies the solver's results back to the bodies; clears held forces.
