@@ -11,7 +11,7 @@ use crate::threading::spare::{release_spare, BUFFER_FLOOR};
 /// Stands for the static room in a contact's `body_b`.
 pub(crate) const STATIC_BODY: u32 = u32::MAX;
 
-/// One contact point between body A and body B (or the room). 48 bytes.
+/// One contact point between body A and body B (or the room). 56 bytes.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct ContactPoint {
     /// Dense body indices; `body_b == STATIC_BODY` for the room.
@@ -139,7 +139,8 @@ impl WarmStartCache {
         if crate::threading::tasks::threads_here() > 1 {
             use crate::threading::thread_times;
             let index = || thread_times::task(|| index_runs(table, runs));
-            thread_times::pass(|| rayon::join(index, || fill(impulses)));
+            let fill = || thread_times::task(|| fill(impulses));
+            thread_times::pass(|| rayon::join(index, fill));
             return;
         }
         fill(impulses);

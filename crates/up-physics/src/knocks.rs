@@ -2,7 +2,7 @@
 //! from the broadphase's pairs, for the narrowphase's margins.
 //!
 //! With several threads the pairs' knocks are found in tasks and listed in
-//! pair order, and each task then sums them for a range of bodies of its
+//! pair order, and each thread then sums them for a range of bodies of its
 //! own, reading the whole list: every body adds its knocks up in pair order,
 //! as one thread does, so the sums are the same bit for bit.
 

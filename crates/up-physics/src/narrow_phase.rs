@@ -7,7 +7,7 @@
 //! the other within the step) plus the most their gap can close, from their
 //! relative motion: balloons rising side by side are to each other as if at
 //! rest. A body that a collision may throw further within the step than a
-//! speculative distance (`add_knocks`) widens the margins of the pairs it is
+//! speculative distance (`knocks::add_knocks`) widens the margins of the pairs it is
 //! thrown towards, and its margin with the room. Of the several leaf pairs two
 //! trees meet at, the gaps a shallower contact shadows are dropped
 //! (`prune_shadowed`), by the motion the margin stands for: the gaps that
@@ -37,7 +37,7 @@ const TASK_ITEMS: usize = 256;
 /// How far a body moves in this step: its displacement v·dt, the angle |ω|·dt
 /// it turns through and the arc |ω|·r·dt its bounding sphere's surface
 /// travels; how much farther collisions within the step may throw it, and
-/// which way (`knock`, see `add_knocks`), and how far that may turn it
+/// which way (`knock`, see `knocks::add_knocks`), and how far that may turn it
 /// (`knock_turn`: the knock struck off the centre, `ShapeData::turn_per_knock`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct StepMotion {
@@ -222,19 +222,6 @@ impl TaskList for ContactList {
         self.clear();
     }
 
-    /// Appends another list (its runs moved past this one's contacts).
-    fn join(&mut self, other: &ContactList) {
-        let offset = self.contacts.len() as u32;
-        self.contacts.extend_from_slice(&other.contacts);
-        self.runs.extend(
-            other
-                .runs
-                .iter()
-                .map(|&(key, start, count)| (key, start + offset, count)),
-        );
-        self.max_penetration = self.max_penetration.max(other.max_penetration);
-    }
-
     /// Appends the lists' contacts and runs in tasks (`join::append_lists`),
     /// each list's runs moved past the contacts before its own.
     fn join_all(&mut self, lists: &[Self]) {
@@ -301,5 +288,63 @@ impl NarrowPhase {
                 list.collect(input, room, room_tests, pairs);
             },
         );
+    }
+}
+
+#[cfg(all(test, feature = "parallel"))]
+mod tests {
+    use super::*;
+
+    /// A task's list: `runs` pairs from body `first` on, each body's run
+    /// 1 to 3 contacts of its own, keyed by the body.
+    fn task_list(first: u32, runs: u32) -> ContactList {
+        let mut list = ContactList::default();
+        for body in first..first + runs {
+            let (start, count) = (list.contacts.len() as u32, 1 + body % 3);
+            let point = ContactPoint {
+                body_a: body,
+                body_b: STATIC_BODY,
+                normal: Vec3::Z,
+                point_a: Vec3::ZERO,
+                point_b: Vec3::ZERO,
+                separation: -1e-6 * body as f32,
+                feature: ContactFeature::default(),
+            };
+            list.contacts
+                .extend(std::iter::repeat_n(point, count as usize));
+            list.runs.push((body as u64, start, count));
+            list.max_penetration = list.max_penetration.max(1e-6 * body as f32);
+        }
+        list
+    }
+
+    /// Lists joined on three threads (some empty), after a run the list
+    /// already held: the runs come in the lists' order, back to back, each
+    /// on its own contacts, and the deepest overlap is the deepest of all.
+    #[test]
+    fn contact_lists_joined_in_tasks_keep_each_run_on_its_contacts() {
+        let lists: Vec<ContactList> = (0..40)
+            .map(|k| task_list(1 + 200 * k, if k % 5 == 2 { 0 } else { 200 }))
+            .collect();
+        let mut joined = task_list(0, 1);
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(3)
+            .build()
+            .unwrap();
+        pool.install(|| joined.join_all(&lists));
+        assert!(joined.runs.len() > 4_096, "the runs are joined in tasks");
+        let keys = joined.runs.iter().map(|&(key, _, _)| key);
+        let want = std::iter::once(0).chain(lists.iter().flat_map(|l| l.runs.iter().map(|r| r.0)));
+        assert!(keys.eq(want), "runs in the lists' order");
+        let mut end = 0;
+        for &(key, start, count) in &joined.runs {
+            assert_eq!((start, count), (end, 1 + key as u32 % 3), "run {key}");
+            let own = &joined.contacts[start as usize..(start + count) as usize];
+            assert!(own.iter().all(|c| c.body_a as u64 == key), "run {key}");
+            end = start + count;
+        }
+        assert_eq!(end as usize, joined.contacts.len());
+        let deepest = lists.iter().map(|l| l.max_penetration).fold(0.0, f32::max);
+        assert_eq!(joined.max_penetration, deepest);
     }
 }

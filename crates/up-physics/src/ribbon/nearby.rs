@@ -33,12 +33,6 @@ impl TaskList for NearFound {
         self.found = 0;
     }
 
-    fn join(&mut self, other: &Self) {
-        self.bodies.extend_from_slice(&other.bodies);
-        self.triangles.extend_from_slice(&other.triangles);
-        self.found += other.found;
-    }
-
     fn join_all(&mut self, lists: &[Self]) {
         append_lists(&mut self.bodies, lists, |l| &l.bodies[..], |_, &b| b);
         append_lists(&mut self.triangles, lists, |l| &l.triangles[..], |_, &t| t);

@@ -5,7 +5,7 @@
 //! A pass whose tasks each push into a list (`tasks::collect_in_order`) ends
 //! with one list: the narrowphase's contacts (tens of thousands of 56-byte
 //! points in a crowd), the broadphase's pairs. Copied on the step's thread
-//! alone, that copy left the pool's other threads idle.
+//! alone, the copy would hold the pool's other threads idle.
 
 use std::mem::MaybeUninit;
 
@@ -47,6 +47,8 @@ where
                 slot.write(map(first + k, item));
             }
         }
+        // Every slot written: `items` gave each list the length it was cut by.
+        assert!(slots.next().is_none(), "a list changed length while joined");
     });
     let joined = out.len() + total;
     // SAFETY: the `total` slots past the length were split into one stretch
@@ -96,7 +98,7 @@ where
 mod tests {
     use super::*;
 
-    /// Lists of every length from 0 to 299 (so some runs copy nothing),
+    /// Lists of every length from 0 to 299 (one run copies nothing),
     /// joined after what the output held, on 1 to 4 threads: the output is
     /// the lists one after another, each item mapped with its list's index.
     #[test]

@@ -200,24 +200,14 @@ where
 pub(crate) trait TaskList: Default + Send {
     /// Empties the list, keeping its buffers.
     fn reset(&mut self);
-    /// Appends `other` after what this list holds.
-    fn join(&mut self, other: &Self);
-    /// Appends `lists` one after another: `join` a list at a time, unless
-    /// the list copies them in tasks (`join::append_lists`).
-    fn join_all(&mut self, lists: &[Self]) {
-        for list in lists {
-            self.join(list);
-        }
-    }
+    /// Appends `lists` one after another, copied in tasks when long
+    /// (`join::append_lists`).
+    fn join_all(&mut self, lists: &[Self]);
 }
 
 impl<T: Copy + Send + Sync> TaskList for Vec<T> {
     fn reset(&mut self) {
         self.clear();
-    }
-
-    fn join(&mut self, other: &Self) {
-        self.extend_from_slice(other);
     }
 
     fn join_all(&mut self, lists: &[Self]) {
