@@ -9,7 +9,8 @@
 //                            [--engines up,rapier,rapier-simd,jolt]
 //
 // --threads T: UP and Jolt on T threads (Jolt's multithreaded flavour above 1);
-// Rapier's npm builds run on one. Needs target/release/up-bench (the scene,
+// Rapier's npm builds run on one. --threaded: UP's threaded module even on one
+// thread (a pool of one), to set its cost apart from the single-threaded module's. Needs target/release/up-bench (the scene,
 // the peers' matched parameters, and the overlap measure — one measurement for
 // every engine, natively) and UP's modules with their glue: web/public/wasm/up_wasm.wasm
 // on one thread, web/public/wasm/threads/up_wasm.wasm on more (make builds both).
@@ -58,6 +59,7 @@ function parseArgs(argv) {
     json: false,
     engines: [...ENGINES],
     threads: 1,
+    threaded: false,
     rss: true,
     rssProbe: null,
     upBench: join(ROOT, 'target', 'release', 'up-bench'),
@@ -72,6 +74,7 @@ function parseArgs(argv) {
       case '--balloons': opts.balloons = intArg(arg, next(), 1, 50000); break;
       case '--steps': opts.steps = intArg(arg, next(), 1, 1000000); break;
       case '--threads': opts.threads = intArg(arg, next(), 1, 256); break;
+      case '--threaded': opts.threaded = true; break;
       case '--seed': opts.seed = intArg(arg, next(), 0, Number.MAX_SAFE_INTEGER); break;
       case '--json': opts.json = true; break;
       case '--no-rss': opts.rss = false; break;
@@ -84,7 +87,7 @@ function parseArgs(argv) {
       case '--rss-probe': opts.rssProbe = next(); break;
       case '--up-bench': opts.upBench = resolve(next()); break;
       case '--help':
-        console.log(`node bench.mjs [--balloons N] [--steps K] [--seed S] [--threads T] [--json] [--engines ${ENGINES.join(',')}] [--no-rss] [--up-bench PATH]`);
+        console.log(`node bench.mjs [--balloons N] [--steps K] [--seed S] [--threads T] [--threaded] [--json] [--engines ${ENGINES.join(',')}] [--no-rss] [--up-bench PATH]`);
         process.exit(0);
         break;
       default: throw new Error(`unknown argument ${JSON.stringify(arg)} (try --help)`);
@@ -106,9 +109,9 @@ function loadScene(opts) {
 
 class UpWasm {
   /** Loads the module at `path` with its glue (the same name ending in .js) next to it. */
-  /** One thread: today's module; T threads: the threaded one on a pool of T workers (sim-node/loadEngine.mjs). */
-  static async load(threads) {
-    const { glue, memory } = await loadUpWasm({ threads });
+  /** One thread: today's module unless `threaded`; T threads: the threaded one on a pool of T workers (sim-node/loadEngine.mjs). */
+  static async load(threads, threaded = threads > 1) {
+    const { glue, memory } = await loadUpWasm({ threads, threaded });
     return new UpWasm(glue, memory);
   }
 
@@ -288,7 +291,7 @@ class RapierEngine {
 
 async function buildEngines(opts, exported, names) {
   // UP builds the scene for every engine; it runs on opts.threads only where it is timed.
-  const up = await UpWasm.load(names.includes('up') ? opts.threads : 1);
+  const up = await UpWasm.load(names.includes('up') ? opts.threads : 1, opts.threaded || opts.threads > 1);
   up.loadSceneJson(JSON.stringify(exported.scene));
   if (up.bodyCount() !== exported.balloons) {
     throw new Error(`UP's wasm built ${up.bodyCount()} balloons, expected ${exported.balloons}`);
@@ -359,7 +362,7 @@ function measure(opts, frames) {
 }
 
 function probeInChild(opts, engine, steps) {
-  const args = [fileURLToPath(import.meta.url), '--rss-probe', engine, '--balloons', String(opts.balloons), '--seed', String(opts.seed), '--steps', String(steps), '--threads', String(opts.threads), '--up-bench', opts.upBench];
+  const args = [fileURLToPath(import.meta.url), '--rss-probe', engine, '--balloons', String(opts.balloons), '--seed', String(opts.seed), '--steps', String(steps), '--threads', String(opts.threads), ...(opts.threaded ? ['--threaded'] : []), '--up-bench', opts.upBench];
   const r = spawnSync(process.execPath, args, { encoding: 'utf8', maxBuffer: 1 << 24 });
   if (r.status !== 0) throw new Error(`memory probe for ${engine} failed: ${r.stderr.trim()}`);
   return JSON.parse(r.stdout.trim().split('\n').pop());
@@ -407,6 +410,7 @@ async function main() {
       balloons: opts.balloons,
       steps,
       threads: e.threads,
+      ...(e.name === 'up' && opts.threaded ? { threaded: true } : {}),
       ms_per_step_median: median(t),
       ms_per_step_p95: quantile(t, 0.95),
       ms_per_step_mean: mean(t),
