@@ -33,12 +33,14 @@ use crate::threading::thread_times;
 
 /// Spins before a waiting thread yields its core (to a thread that holds a
 /// block, when there are more threads than cores); in WebAssembly, where it
-/// then sleeps until woken (`give_way`), it spins longer first, since a wake
-/// costs microseconds and most waits at a barrier are shorter.
+/// then sleeps until woken (`give_way`), it spins far longer first: a sleep
+/// and its wake cost tens of microseconds, and the solve crosses hundreds of
+/// barriers a step (at 4,096 spins the page's two threads waited 2.5–4.1 ms
+/// a step at them, at 65,536 1.3–1.9 ms: docs/perf-log.md).
 #[cfg(not(all(target_arch = "wasm32", target_feature = "atomics")))]
 const SPINS_BEFORE_YIELD: u32 = 64;
 #[cfg(all(target_arch = "wasm32", target_feature = "atomics"))]
-const SPINS_BEFORE_YIELD: u32 = 4_096;
+const SPINS_BEFORE_YIELD: u32 = 65_536;
 
 /// An atomic alone on its cache line (128 bytes: some cores fetch lines in
 /// pairs), so that threads updating neighbours do not contend.
