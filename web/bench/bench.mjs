@@ -10,7 +10,9 @@
 //
 // --threads T: UP and Jolt on T threads (Jolt's multithreaded flavour above 1);
 // Rapier's npm builds run on one. --threaded: UP's threaded module even on one
-// thread (a pool of one), to set its cost apart from the single-threaded module's. Needs target/release/up-bench (the scene,
+// thread (a pool of one), to set its cost apart from the single-threaded module's.
+// --thread-times: each of UP's threads in each stage (busy, at barriers, idle), as
+// up-bench's table, after the run (two clock reads per task while timed). Needs target/release/up-bench (the scene,
 // the peers' matched parameters, and the overlap measure — one measurement for
 // every engine, natively) and UP's modules with their glue: web/public/wasm/up_wasm.wasm
 // on one thread, web/public/wasm/threads/up_wasm.wasm on more (make builds both).
@@ -75,6 +77,7 @@ function parseArgs(argv) {
       case '--steps': opts.steps = intArg(arg, next(), 1, 1000000); break;
       case '--threads': opts.threads = intArg(arg, next(), 1, 256); break;
       case '--threaded': opts.threaded = true; break;
+      case '--thread-times': opts.threadTimes = true; break;
       case '--seed': opts.seed = intArg(arg, next(), 0, Number.MAX_SAFE_INTEGER); break;
       case '--json': opts.json = true; break;
       case '--no-rss': opts.rss = false; break;
@@ -87,7 +90,7 @@ function parseArgs(argv) {
       case '--rss-probe': opts.rssProbe = next(); break;
       case '--up-bench': opts.upBench = resolve(next()); break;
       case '--help':
-        console.log(`node bench.mjs [--balloons N] [--steps K] [--seed S] [--threads T] [--threaded] [--json] [--engines ${ENGINES.join(',')}] [--no-rss] [--up-bench PATH]`);
+        console.log(`node bench.mjs [--balloons N] [--steps K] [--seed S] [--threads T] [--threaded] [--thread-times] [--json] [--engines ${ENGINES.join(',')}] [--no-rss] [--up-bench PATH]`);
         process.exit(0);
         break;
       default: throw new Error(`unknown argument ${JSON.stringify(arg)} (try --help)`);
@@ -116,6 +119,7 @@ class UpWasm {
   }
 
   constructor(glue, memory) {
+    this.glue = glue;
     this.memory = memory;
     this.engine = new glue.Engine();
     // Strides come from the module, not from copies here.
@@ -167,6 +171,34 @@ class UpWasm {
   awakeCount() {
     return this.engine.stats().awake;
   }
+
+  /** Times each thread's part of each stage from the next step on (or stops). */
+  setThreadTiming(on) {
+    this.glue.set_thread_timing(on);
+  }
+
+  /** Each stage's per-thread means a step since the last read (crates/up-wasm/src/thread_stats.rs). */
+  threadTimes() {
+    return this.engine.stats().threads;
+  }
+}
+
+/** The per-thread figures as up-bench's `--thread-times` table (crates/up-bench/src/thread_times.rs). */
+function threadTable(stages) {
+  const total = stages.length ? stages[stages.length - 1].wall_ms : 0;
+  const threads = stages.length ? stages[0].busy_ms.length : 0;
+  const who = (t) => `${t === 0 ? "step's" : `t${t}`} busy/barrier/idle`;
+  let out = `${'stage, ms/step'.padEnd(16)} ${'wall'.padStart(8)} ${'barriers'.padStart(9)} ${'passes'.padStart(7)}`;
+  for (let t = 0; t < threads; t++) out += `  ${who(t).padStart(22)}`;
+  out += '\n';
+  for (const s of stages.filter((s) => s.stage === 'total' || s.wall_ms >= 0.01 * total)) {
+    out += `${s.stage.padEnd(16)} ${s.wall_ms.toFixed(3).padStart(8)} ${s.barriers.toFixed(1).padStart(9)} ${s.passes.toFixed(1).padStart(7)}`;
+    for (let t = 0; t < threads; t++) {
+      out += `  ${`${s.busy_ms[t].toFixed(2)}/${s.barrier_ms[t].toFixed(2)}/${s.idle_ms[t].toFixed(2)}`.padStart(22)}`;
+    }
+    out += '\n';
+  }
+  return out;
 }
 
 class UpEngine {
@@ -388,6 +420,11 @@ async function main() {
   // Poses at every step (or every k-th: at most pose_budget of them per
   // engine), measured after the timed loop, as the native harness does.
   const every = Math.max(1, Math.ceil((opts.balloons * steps) / exported.pose_budget));
+  const timed = opts.threadTimes ? engines.find((e) => e.name === 'up') : null;
+  if (timed) {
+    timed.up.threadTimes(); // the sums start with the first timed step
+    timed.up.setThreadTiming(true);
+  }
   for (let step = 1; step <= steps; step++) {
     // Alternate who goes first, as the native harness does.
     const order = step % 2 === 1 ? engines.keys() : [...engines.keys()].reverse();
@@ -400,6 +437,8 @@ async function main() {
       engines.forEach((e, i) => frames[i].push(e.poses()));
     }
   }
+  const threadTimes = timed ? timed.up.threadTimes() : null;
+  if (timed) timed.up.setThreadTiming(false);
   const results = engines.map((e, i) => {
     const m = measure(opts, frames[i]);
     const rss = opts.rss ? probeInChild(opts, e.name, steps) : null;
@@ -422,6 +461,7 @@ async function main() {
       peak_rss_mb: rss ? rss.peak_rss_mb : null,
       rss_bytes_per_balloon: rss ? ((rss.peak_rss_mb - rss.baseline_rss_mb) * 1e6) / opts.balloons : null,
       room_width_m: exported.room_width_m,
+      ...(e === timed ? { stage_threads_mean: threadTimes } : {}),
       ...(e.name.startsWith('rapier') ? { rapier_shape: 'compound' } : {}),
       ...(e.name === 'up' ? {} : { package: PACKAGES[e.name], version: packageVersion(PACKAGES[e.name]) }),
     };
@@ -452,6 +492,7 @@ async function main() {
           `max penetration ${(r.max_penetration_m * 1e3).toFixed(3)} mm, escaped ${r.escaped}, awake ${r.awake_at_end}, ` +
           `peak RSS ${r.peak_rss_mb === null ? '-' : r.peak_rss_mb.toFixed(1)} MB`,
       );
+      if (r.stage_threads_mean) process.stdout.write(threadTable(r.stage_threads_mean));
     }
     for (const r of up ? peers : []) {
       const key = `ratio_${r.engine.replace('-', '_')}_over_up`;
