@@ -3,6 +3,7 @@
 //! engines, stepped alternately in one process. docs/benchmarks.md says how
 //! each quantity is matched and measured.
 
+pub mod core_probe;
 pub mod engine;
 pub mod measure;
 pub mod output;

@@ -266,6 +266,9 @@ fn print_table(results: &[EngineResult]) {
         if let Some(stages) = &r.stage_threads_mean {
             print!("{}", up_bench::thread_times::table(stages));
         }
+        if let Some([before, after]) = r.core_round_trip_ns {
+            println!("a cache line's round trip between two cores: {before:.0} ns before the run, {after:.0} ns after");
+        }
     }
     if let (Some(by_median), Some(by_mean)) =
         (ratio(results, output::median), ratio(results, output::mean))

@@ -59,6 +59,11 @@ pub struct EngineResult {
     /// in each stage, ms per step over the run.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stage_threads_mean: Option<Vec<up_physics::StageThreadMeans>>,
+    /// UP with `--thread-times` on several threads: a cache line's round
+    /// trip between two cores just before the run and just after, ns
+    /// (`core_probe`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub core_round_trip_ns: Option<[f64; 2]>,
 }
 
 fn is_zero(n: &usize) -> bool {
@@ -157,6 +162,7 @@ mod tests {
             rapier_joints: None,
             stage_ms_mean: None,
             stage_threads_mean: None,
+            core_round_trip_ns: None,
         }
     }
 

@@ -299,6 +299,7 @@ mod tests {
             rapier_joints: (engine == "rapier").then(|| "impulse".into()),
             stage_ms_mean: (engine == "up").then(|| vec![("solve".into(), 1.5)]),
             stage_threads_mean: None,
+            core_round_trip_ns: None,
         }
     }
 

@@ -19,6 +19,7 @@ use anyhow::{bail, Context, Result};
 use serde::{Deserialize, Serialize};
 use up_geom::Pose;
 
+use crate::core_probe;
 use crate::engine::{Engine, EngineKind};
 use crate::measure::{measure_every, measure_frames};
 use crate::output::EngineResult;
@@ -207,6 +208,8 @@ pub fn run(opts: &RunOptions) -> Result<Vec<EngineResult>> {
     let mut stages: Vec<Vec<(&'static str, f64)>> = vec![Vec::new(); engines.len()];
     let mut threads: Vec<ThreadSums> = vec![ThreadSums::default(); engines.len()];
     up_physics::set_thread_timing(opts.thread_times);
+    let probe_cores = opts.thread_times && opts.threads > 1;
+    let round_trip_before = probe_cores.then(core_probe::round_trip_ns).flatten();
     let mut scratch = Vec::new();
     let order: Vec<usize> = (0..engines.len()).collect();
     for step in 1..=opts.steps {
@@ -245,6 +248,9 @@ pub fn run(opts: &RunOptions) -> Result<Vec<EngineResult>> {
             }
         }
     }
+
+    let round_trip_after = probe_cores.then(core_probe::round_trip_ns).flatten();
+    let round_trips = round_trip_before.zip(round_trip_after).map(|(a, b)| [a, b]);
 
     if let Some(path) = &opts.step_times {
         let names: Vec<&str> = engines.iter().map(|e| e.name()).collect();
@@ -298,6 +304,7 @@ pub fn run(opts: &RunOptions) -> Result<Vec<EngineResult>> {
                     .collect()
             }),
             stage_threads_mean: Some(threads[i].means()).filter(|rows| !rows.is_empty()),
+            core_round_trip_ns: round_trips.filter(|_| kind == EngineKind::Up),
         });
     }
     Ok(results)
