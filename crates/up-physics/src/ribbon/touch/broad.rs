@@ -9,7 +9,9 @@ use up_geom::Aabb;
 
 use super::super::lane_group::RibbonLanes;
 use super::super::RIBBON_RADIUS;
+use super::box_lanes::{groups_for, BoxLanes};
 use super::{RibbonBox, RibbonTouch, Segment, Touching};
+use crate::solver::lanes::LANES;
 
 /// The first segments' separation that two segments of one ribbon must
 /// have to be paired: neighbours share a point and bend about it.
@@ -24,6 +26,7 @@ impl RibbonTouch {
         self.push_out = super::OVERLAP_PUSH_OUT_SPEED * dt;
         self.ribbons.clear();
         self.swept_boxes.clear();
+        self.swept_lanes.clear();
         self.speeds.clear();
         (self.dt, self.margin) = (dt, margin);
         if !self.enabled || lanes.order.is_empty() {
@@ -64,6 +67,7 @@ impl RibbonTouch {
                 shortest,
                 first_speed,
                 first_box: u32::MAX,
+                first_lanes: u32::MAX,
             });
         }
         self.sorted.clear();
@@ -127,32 +131,41 @@ impl RibbonTouch {
             let aabb = Aabb::new(p.min(q), p.max(q)).expanded(reach + radius);
             self.swept_boxes.push(aabb);
         }
+        self.ribbons[k].first_lanes = self.swept_lanes.len() as u32;
+        BoxLanes::push_all(&self.swept_boxes[first as usize..], &mut self.swept_lanes);
         self.ribbons[k].first_box = first;
         first
     }
 
     /// The segments of ribbons `a` and `b` (`a < b`, in solver order) whose
-    /// boxes meet.
+    /// boxes meet: each of `a`'s that meets `b`'s box against all of `b`'s,
+    /// four at a time (a box of `b`'s that meets one of `a`'s, which lies
+    /// within `a`'s box, meets `a`'s box too).
     fn pair_ribbons(&mut self, lanes: &RibbonLanes, a: usize, b: usize) {
         if tied_together(lanes, &self.ribbons[a], &self.ribbons[b]) {
             return;
         }
-        let (first_a, first_b) = (self.boxes_of(lanes, a), self.boxes_of(lanes, b));
+        self.boxes_of(lanes, a);
+        self.boxes_of(lanes, b);
         let (ra, rb) = (self.ribbons[a], self.ribbons[b]);
-        let boxes_a = &self.swept_boxes[first_a as usize..][..ra.segments as usize];
-        let boxes_b = &self.swept_boxes[first_b as usize..][..rb.segments as usize];
-        self.near_a.clear();
-        self.near_b.clear();
-        let near = |boxes: &[Aabb], other: &Aabb, out: &mut Vec<u32>| {
-            let within = |i: &usize| boxes[*i].overlaps(other);
-            out.extend((0..boxes.len()).filter(within).map(|i| i as u32));
+        let lanes_of = |r: &RibbonBox| {
+            let first = r.first_lanes as usize;
+            &self.swept_lanes[first..first + groups_for(r.segments as usize)]
         };
-        near(boxes_a, &rb.aabb, &mut self.near_a);
-        near(boxes_b, &ra.aabb, &mut self.near_b);
-        for &i in &self.near_a {
-            for &j in &self.near_b {
-                if boxes_a[i as usize].overlaps(&boxes_b[j as usize]) {
-                    push_pairs(&mut self.pairs, lanes, (&ra, i), (&rb, j));
+        let (lanes_a, lanes_b) = (lanes_of(&ra), lanes_of(&rb));
+        let boxes_a = &self.swept_boxes[ra.first_box as usize..][..ra.segments as usize];
+        for (ga, group_a) in lanes_a.iter().enumerate() {
+            let mut near = group_a.meeting(&rb.aabb);
+            while near != 0 {
+                let i = ga * LANES + near.trailing_zeros() as usize;
+                near &= near - 1;
+                for (gb, group_b) in lanes_b.iter().enumerate() {
+                    let mut meeting = group_b.meeting(&boxes_a[i]);
+                    while meeting != 0 {
+                        let j = gb * LANES + meeting.trailing_zeros() as usize;
+                        meeting &= meeting - 1;
+                        push_pairs(&mut self.pairs, lanes, (&ra, i as u32), (&rb, j as u32));
+                    }
                 }
             }
         }

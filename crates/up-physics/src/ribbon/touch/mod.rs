@@ -61,6 +61,7 @@
 //! they would without it (one pass per group, bit for bit), so ribbons that
 //! never touch, and sleeping ones, cost no more than the pairing.
 
+mod box_lanes;
 mod broad;
 mod closest;
 mod contact;
@@ -172,8 +173,10 @@ struct RibbonBox {
     /// Its points' speeds start here in `RibbonTouch::speeds`.
     first_speed: u32,
     /// Its segments' boxes start here in `RibbonTouch::swept_boxes`
-    /// (`u32::MAX`: not made this step).
+    /// (`u32::MAX`: not made this step), and the same four at a time here
+    /// in `RibbonTouch::swept_lanes`.
     first_box: u32,
+    first_lanes: u32,
 }
 
 /// The ribbons' contacts with each other, kept between steps for their
@@ -197,14 +200,13 @@ pub(crate) struct RibbonTouch {
     ribbons: Vec<RibbonBox>,
     sorted: Vec<u32>,
     swept_boxes: Vec<Aabb>,
+    swept_lanes: Vec<box_lanes::BoxLanes>,
     /// The step's length, s, and the margin a point may move beyond its
     /// speed times it, m (gravity's fall and the speculative distance).
     dt: f32,
     margin: f32,
     /// The awake ribbons' points' speeds, m/s, ribbon after ribbon.
     speeds: Vec<f32>,
-    near_a: Vec<u32>,
-    near_b: Vec<u32>,
     /// The last pass's contacts as rows of the chains' solve that follows.
     held: held::HeldSolve,
     /// The paired segments' boxes as the current pass has left them (or
@@ -229,11 +231,10 @@ impl Default for RibbonTouch {
             ribbons: Vec::new(),
             sorted: Vec::new(),
             swept_boxes: Vec::new(),
+            swept_lanes: Vec::new(),
             dt: 0.0,
             margin: 0.0,
             speeds: Vec::new(),
-            near_a: Vec::new(),
-            near_b: Vec::new(),
             held: held::HeldSolve::default(),
             boxes: segment_boxes::SegmentBoxes::default(),
             pass_began: points_then::PointsThen::default(),
