@@ -8,7 +8,7 @@ use up_geom::Aabb;
 
 use crate::solver::lanes::{LANES, V4};
 
-/// Up to `LANES` boxes, the unused lanes empty.
+/// Up to `LANES` boxes; an unused lane holds zeros, and `used` leaves it out.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct BoxLanes {
     min: V4,
@@ -57,9 +57,10 @@ mod tests {
     use super::*;
     use glam::Vec3;
 
-    /// Four lanes meet exactly the boxes `Aabb::overlaps` meets, touching,
-    /// apart, inside and NaN boxes among them, over a count that leaves the
-    /// last group part empty.
+    /// Four lanes meet exactly the boxes `Aabb::overlaps` meets: random
+    /// boxes, a NaN bound, and boxes that only touch, face on face along
+    /// each axis from either side (each of the six comparisons at equality),
+    /// over a count that leaves the last group part empty.
     #[test]
     fn four_lanes_meet_the_boxes_one_at_a_time_meets() {
         let mut next = crate::hash::uniform(3);
@@ -74,23 +75,30 @@ mod tests {
         let mut lanes = Vec::new();
         BoxLanes::push_all(&boxes, &mut lanes);
         assert_eq!(lanes.len(), groups_for(boxes.len()));
-        let (mut met, mut tests) = (0, 0);
-        for trial in 0..500 {
-            let (a, b) = (random(), random() * 0.3);
-            let mut probe = Aabb::new(a, a + b);
-            // Edge on edge: boxes that only touch meet.
-            if trial % 7 == 0 {
-                let other = boxes[trial % boxes.len()];
-                probe = Aabb::new(
-                    Vec3::new(other.max.x, probe.min.y, probe.min.z),
-                    probe.max.max(Vec3::splat(other.max.x)),
-                );
+        let mut probes: Vec<Aabb> = (0..500)
+            .map(|_| {
+                let (a, b) = (random(), random() * 0.3);
+                Aabb::new(a, a + b)
+            })
+            .collect();
+        // Face on face: each box's face along each axis, met from outside.
+        for other in &boxes {
+            for axis in 0..3 {
+                let (mut above, mut below) = (*other, *other);
+                above.min[axis] = other.max[axis];
+                above.max[axis] = other.max[axis] + 0.1;
+                below.max[axis] = other.min[axis];
+                below.min[axis] = other.min[axis] - 0.1;
+                probes.extend([above, below]);
             }
+        }
+        let (mut met, mut tests) = (0, 0);
+        for (k, probe) in probes.iter().enumerate() {
             for (g, group) in lanes.iter().enumerate() {
                 let want = (0..LANES)
-                    .filter(|l| boxes.get(g * LANES + l).is_some_and(|b| b.overlaps(&probe)))
+                    .filter(|l| boxes.get(g * LANES + l).is_some_and(|b| b.overlaps(probe)))
                     .fold(0, |bits, l| bits | 1 << l);
-                assert_eq!(group.meeting(&probe), want, "trial {trial}, group {g}");
+                assert_eq!(group.meeting(probe), want, "probe {k}, group {g}");
                 met += want.count_ones();
                 tests += 1;
             }

@@ -1,6 +1,7 @@
 //! The step's pairs of segments that may touch (`RibbonTouch::find_pairs`):
 //! the awake ribbons' boxes swept along x, then, for two ribbons whose boxes
-//! meet, each one's segments near the other's box tested box against box.
+//! meet, the first one's segments that meet the second's box tested against
+//! all of the second's segments, four boxes at a time (`box_lanes`).
 //! Every order is fixed (the ribbons' solver order, ties broken by it), so
 //! the pairs come out the same on any number of threads.
 

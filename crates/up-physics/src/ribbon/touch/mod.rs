@@ -173,9 +173,10 @@ struct RibbonBox {
     /// Its points' speeds start here in `RibbonTouch::speeds`.
     first_speed: u32,
     /// Its segments' boxes start here in `RibbonTouch::swept_boxes`
-    /// (`u32::MAX`: not made this step), and the same four at a time here
-    /// in `RibbonTouch::swept_lanes`.
+    /// (`u32::MAX`: not made this step).
     first_box: u32,
+    /// The same boxes, four to a group, start here in
+    /// `RibbonTouch::swept_lanes` (`u32::MAX`: not made this step).
     first_lanes: u32,
 }
 
