@@ -81,16 +81,23 @@ impl RibbonTouch {
             );
             a.total_cmp(&b).then(i.cmp(&j))
         });
+        // The boxes in that order, for the sweep to read side by side: read
+        // through `sorted`, each would be a miss of the cache in a crowd.
+        self.sorted_boxes.clear();
+        let ribbons = &self.ribbons;
+        let in_order = self.sorted.iter().map(|&i| ribbons[i as usize].aabb);
+        self.sorted_boxes.extend(in_order);
         for s in 0..self.sorted.len() {
             let i = self.sorted[s] as usize;
             self.pair_with_itself(lanes, i);
-            let max_x = self.ribbons[i].aabb.max.x;
+            let box_i = self.sorted_boxes[s];
             for t in s + 1..self.sorted.len() {
-                let j = self.sorted[t] as usize;
-                if self.ribbons[j].aabb.min.x > max_x {
+                let box_j = &self.sorted_boxes[t];
+                if box_j.min.x > box_i.max.x {
                     break;
                 }
-                if self.ribbons[i].aabb.overlaps(&self.ribbons[j].aabb) {
+                if box_i.overlaps(box_j) {
+                    let j = self.sorted[t] as usize;
                     self.pair_ribbons(lanes, i.min(j), i.max(j));
                 }
             }

@@ -199,7 +199,10 @@ pub(crate) struct RibbonTouch {
     /// The pairs touching at the step's end (`keep_touching`), for drawing.
     pub touching: Vec<RibbonContact>,
     ribbons: Vec<RibbonBox>,
+    /// The awake ribbons by their boxes' least x, and their boxes in that
+    /// order.
     sorted: Vec<u32>,
+    sorted_boxes: Vec<Aabb>,
     swept_boxes: Vec<Aabb>,
     swept_lanes: Vec<box_lanes::BoxLanes>,
     /// The step's length, s, and the margin a point may move beyond its
@@ -231,6 +234,7 @@ impl Default for RibbonTouch {
             touching: Vec::new(),
             ribbons: Vec::new(),
             sorted: Vec::new(),
+            sorted_boxes: Vec::new(),
             swept_boxes: Vec::new(),
             swept_lanes: Vec::new(),
             dt: 0.0,
