@@ -82,7 +82,7 @@ impl RibbonTouch {
             a.total_cmp(&b).then(i.cmp(&j))
         });
         // The boxes in that order, for the sweep to read side by side: read
-        // through `sorted`, each would be a miss of the cache in a crowd.
+        // through `sorted`, most would miss the cache in a crowd.
         self.sorted_boxes.clear();
         let ribbons = &self.ribbons;
         let in_order = self.sorted.iter().map(|&i| ribbons[i as usize].aabb);

@@ -199,9 +199,9 @@ pub(crate) struct RibbonTouch {
     /// The pairs touching at the step's end (`keep_touching`), for drawing.
     pub touching: Vec<RibbonContact>,
     ribbons: Vec<RibbonBox>,
-    /// The awake ribbons by their boxes' least x, and their boxes in that
-    /// order.
+    /// The awake ribbons by their boxes' least x (ties by index).
     sorted: Vec<u32>,
+    /// Their boxes in that order, for the sweep to read side by side.
     sorted_boxes: Vec<Aabb>,
     swept_boxes: Vec<Aabb>,
     swept_lanes: Vec<box_lanes::BoxLanes>,
